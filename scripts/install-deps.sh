@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs grip's build and run dependencies from Debian 12 packages.
+# Idempotent: when every package is already present it returns in well under a second.
+# Works as root or through sudo.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libopenmpi-dev openmpi-bin
+  libhdf5-openmpi-dev
+  libpetsc-real-dev libmetis-dev
+  libcgal-dev libgmp-dev libmpfr-dev
+  libsuitesparse-dev libopenblas0-pthread
+  libeigen3-dev libspdlog-dev libfmt-dev libtbb-dev
+  libtomlplusplus-dev libcli11-dev liburdfdom-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3-h5py python3-matplotlib python3-numpy
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  # dpkg-query prints "install ok installed" only for fully installed packages.
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+if [[ $(id -u) -eq 0 ]]; then sudo=(); else sudo=(sudo); fi
+echo "install-deps: installing ${#missing[@]} missing Debian packages: ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

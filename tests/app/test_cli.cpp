@@ -1,0 +1,53 @@
+// The `grip` command line as a user meets it: versions, unknown commands, global options.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "tests/app/run_grip.hpp"
+
+namespace grip::testing {
+namespace {
+
+TEST(GripCli, VersionNamesEveryLibraryAndTheRevision) {
+  const GripRun run = run_grip("--version");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  for (const char* word : {"grip 0.", "revision", "MPI", "HDF5", "(parallel)", "PETSc", "CGAL",
+                           "Eigen"}) {
+    EXPECT_NE(run.out.find(word), std::string::npos) << "missing '" << word << "' in\n" << run.out;
+  }
+  EXPECT_EQ(run.out.find("revision unknown"), std::string::npos) << run.out;
+}
+
+TEST(GripCli, UnknownCommandExitsTwoWithOneLine) {
+  const GripRun run = run_grip("no-such-command");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("'no-such-command' is not a grip command"), std::string::npos) << run.err;
+  EXPECT_TRUE(run.out.empty()) << run.out;
+}
+
+TEST(GripCli, UnknownOptionExitsTwoWithOneLine) {
+  const GripRun run = run_grip("--no-such-option");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+}
+
+TEST(GripCli, NoCommandPrintsUsageAndExitsTwo) {
+  const GripRun run = run_grip("");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("Usage"), std::string::npos) << run.err;
+}
+
+TEST(GripCli, HelpExitsZero) {
+  const GripRun run = run_grip("--help");
+  EXPECT_EQ(run.exit_code, 0);
+  EXPECT_NE(run.out.find("--log-level"), std::string::npos) << run.out;
+}
+
+TEST(GripCli, BadLogLevelIsAUsageError) {
+  const GripRun bad = run_grip("--log-level loud");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("unknown log level 'loud'"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace grip::testing
