@@ -1,0 +1,37 @@
+#pragma once
+// Sparse symmetric positive-definite solves for one environment's Newton systems, by CHOLMOD.
+// The symbolic analysis (fill-reducing ordering, supernodal structure) is done once per
+// sparsity pattern and reused by every numeric factorization with that pattern.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+
+namespace grip::solver {
+
+class SparseCholesky {
+ public:
+  // METIS (nested dissection) suits the large FEM systems of soft fingers and objects;
+  // AMD is cheaper to compute for small or very sparse systems.
+  enum class Ordering { kMetis, kAmd };
+
+  explicit SparseCholesky(Ordering ordering = Ordering::kMetis);
+  ~SparseCholesky();
+  SparseCholesky(SparseCholesky&&) noexcept;
+  SparseCholesky& operator=(SparseCholesky&&) noexcept;
+
+  // Factorizes the symmetric matrix whose lower triangle (column-major, compressed) is given.
+  // Re-analyses only when the pattern differs from the last one. Returns false when the
+  // matrix is not numerically positive definite (solve() must then not be called).
+  bool factorize(const Eigen::SparseMatrix<double>& lower);
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+
+  // Symbolic analyses done so far: one per distinct pattern seen in a row.
+  int analyses() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace grip::solver
