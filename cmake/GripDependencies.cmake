@@ -39,6 +39,8 @@ pkg_check_modules(TOMLPP REQUIRED IMPORTED_TARGET tomlplusplus)
 find_package(CLI11 REQUIRED)
 find_package(urdfdom REQUIRED)
 find_package(Threads REQUIRED)
+# SHA-256 of job files (the dataset's job id); libssl-dev also comes with parallel HDF5.
+find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 
 if(GRIP_BUILD_TESTS)
   find_package(GTest REQUIRED)

@@ -48,6 +48,65 @@ int main(int argc, char** argv) {
 
   // subcommands:
 
+  grip::commands::SimulateArgs simulate_args;
+  CLI::App* simulate = app.add_subcommand("simulate", "Simulate one scene file (TOML) and report");
+  simulate->add_option("scene", simulate_args.scene, "Scene file (docs/scene-format.md)")
+      ->required();
+  simulate->add_option("--report", simulate_args.report, "Write the JSON report here (default: stdout)");
+  simulate->add_flag("--trace", simulate_args.trace, "Add per-step centres of mass to the report");
+  simulate->callback([&] { run = [&] { return grip::commands::simulate(simulate_args); }; });
+
+  grip::commands::CcdBenchArgs ccd_bench_args;
+  CLI::App* ccd_bench = app.add_subcommand(
+      "ccd-bench", "Score additive CCD on a CCD benchmark file (Wang et al. 2021 rational CSV)");
+  CLI::Option* ccd_file =
+      ccd_bench->add_option("file", ccd_bench_args.file, "Query file (8 rows per query)");
+  CLI::Option* ccd_type = ccd_bench
+                              ->add_option("--type", ccd_bench_args.type,
+                                           "Query type: vf (vertex-face), ee (edge-edge)")
+                              ->check(CLI::IsMember({"vf", "ee"}));
+  CLI::Option* ccd_write = ccd_bench->add_option(
+      "--write-hard", ccd_bench_args.write_hard_dir,
+      "Write the generated hard query set (hard-vertex-face.csv, hard-edge-edge.csv) to DIR");
+  ccd_file->needs(ccd_type);
+  ccd_write->excludes(ccd_file)->excludes(ccd_type);
+  ccd_bench->callback([&] { run = [&] { return grip::commands::ccd_bench(ccd_bench_args); }; });
+
+  // `asset` groups object-asset work; other helpers add their subcommands to it.
+  CLI::App* asset = app.add_subcommand("asset", "Prepare object and gripper assets");
+  asset->require_subcommand(1);
+  grip::commands::AssetPrepareArgs prepare_args;
+  CLI::App* prepare = asset->add_subcommand(
+      "prepare", "Repair a surface mesh into a closed solid, tetrahedralize it, write .msh/.vtu/.obj");
+  prepare->add_option("input", prepare_args.input, "Surface mesh (.obj, .stl, .ply, .off)")
+      ->required();
+  prepare->add_option("--out", prepare_args.out_dir, "Output folder")->required();
+  prepare->add_option("--edge", prepare_args.edge_length, "Target tet edge length (m)")
+      ->required();
+  prepare->add_option("--alpha", prepare_args.alpha_ratio,
+                      "Alpha-wrap fallback: alpha as a fraction of the bounding-box diagonal")
+      ->capture_default_str();
+  prepare->add_option("--offset", prepare_args.offset_ratio,
+                      "Alpha-wrap fallback: offset as a fraction of the bounding-box diagonal")
+      ->capture_default_str();
+  prepare->add_option("--seed", prepare_args.seed, "Tetrahedralization seed")->capture_default_str();
+  prepare->callback([&] { run = [&] { return grip::commands::asset_prepare(prepare_args); }; });
+  grip::commands::AssetGalleryArgs gallery_args;
+  CLI::App* gallery = asset->add_subcommand(
+      "gallery", "Write every object category and gripper (open and closed) as .obj meshes");
+  gallery->add_option("--out", gallery_args.out_dir, "Output folder")->required();
+  gallery->callback([&] { run = [&] { return grip::commands::asset_gallery(gallery_args); }; });
+
+  std::string inspect_dataset;
+  bool inspect_job = false;
+  CLI::App* inspect = app.add_subcommand(
+      "inspect", "Print a dataset's provenance and summary (success rates, D1/D2, failures)");
+  inspect->add_option("dataset", inspect_dataset, "The dataset (.h5)")->required();
+  inspect->add_flag("--job", inspect_job, "Also print the job file text stored in the dataset");
+  inspect->callback([&] {
+    run = [&] { return grip::commands::inspect(inspect_dataset, inspect_job); };
+  });
+
   std::vector<const char*> grip_argv;
   for (const auto& arg : split.grip) grip_argv.push_back(arg.c_str());
   try {

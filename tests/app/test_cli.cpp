@@ -49,5 +49,24 @@ TEST(GripCli, BadLogLevelIsAUsageError) {
   EXPECT_NE(bad.err.find("unknown log level 'loud'"), std::string::npos) << bad.err;
 }
 
+TEST(GripCli, SimulateWritesAReportAndFailsClearlyOnBadScenes) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto scene = dir / "grip_cli_scene.toml";
+  std::ofstream(scene) << "[sim]\nduration = 0.05\n[[body]]\nname = \"b\"\ntype = \"affine\"\n"
+                          "shape = \"box\"\nsize = [0.1, 0.1, 0.1]\n";
+  const GripRun ok = run_grip("simulate " + scene.string());
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"status\": \"ok\""), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("\"steps\": 5"), std::string::npos) << ok.out;
+
+  std::ofstream(scene) << "[sim]\nduration = 0.05\nfoo = 1\n";
+  const GripRun bad = run_grip("simulate " + scene.string());
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(count_lines(bad.err), 1) << bad.err;
+  EXPECT_NE(bad.err.find("grip_cli_scene.toml:3: unknown key 'sim.foo'"), std::string::npos)
+      << bad.err;
+  std::filesystem::remove(scene);
+}
+
 }  // namespace
 }  // namespace grip::testing

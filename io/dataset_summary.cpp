@@ -1,0 +1,63 @@
+#include "io/dataset_summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace grip::io {
+
+Statistics statistics(std::vector<double> values) {
+  std::erase_if(values, [](double v) { return !std::isfinite(v); });
+  Statistics s;
+  s.count = values.size();
+  if (values.empty()) return s;
+  std::sort(values.begin(), values.end());
+  s.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(s.count);
+  s.min = values.front();
+  s.max = values.back();
+  const std::size_t middle = values.size() / 2;
+  s.median = values.size() % 2 == 1 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+  return s;
+}
+
+DatasetSummary summarize(const DatasetReader& reader) {
+  const DatasetLayout& layout = reader.layout();
+  DatasetSummary summary;
+  summary.candidates = layout.candidate_count;
+  for (std::uint32_t g = 0; g < layout.grippers.size(); ++g) {
+    summary.by_gripper.push_back({reader.gripper(g).name});
+  }
+  for (std::uint32_t o = 0; o < layout.objects.size(); ++o) {
+    summary.by_object.push_back({reader.object(o).name});
+  }
+  const std::vector<std::uint8_t> done = reader.done();
+  const std::vector<CandidateRecord> records = reader.candidates();
+  std::vector<double> d1, d2, wall_time;
+  for (std::uint64_t id = 0; id < layout.candidate_count; ++id) {
+    Tally& gripper = summary.by_gripper[layout.gripper[id]];
+    Tally& object = summary.by_object[layout.object[id]];
+    ++gripper.candidates;
+    ++object.candidates;
+    if (!done[id]) continue;
+    const CandidateRecord& r = records[id];
+    ++summary.done;
+    ++gripper.done;
+    ++object.done;
+    wall_time.push_back(r.wall_time);
+    if (r.status == Status::kSuccess) {
+      ++summary.success;
+      ++gripper.success;
+      ++object.success;
+      d1.push_back(r.d1);
+      d2.push_back(r.d2);
+    } else if (static_cast<std::uint8_t>(r.failure) < kFailureKindCount) {
+      ++summary.failures[static_cast<std::uint8_t>(r.failure)];
+    }
+  }
+  summary.d1 = statistics(std::move(d1));
+  summary.d2 = statistics(std::move(d2));
+  summary.wall_time = statistics(std::move(wall_time));
+  return summary;
+}
+
+}  // namespace grip::io

@@ -1,0 +1,45 @@
+#pragma once
+// Counts and statistics over a dataset's committed candidates: what `grip inspect` prints
+// after the provenance.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/candidate_record.hpp"
+#include "io/dataset_reader.hpp"
+
+namespace grip::io {
+
+struct Statistics {
+  std::uint64_t count = 0;  // values summarized (finite ones)
+  double mean = 0;
+  double min = 0;
+  double median = 0;  // the mean of the two middle values when count is even
+  double max = 0;
+};
+
+Statistics statistics(std::vector<double> values);
+
+struct Tally {
+  std::string name;
+  std::uint64_t candidates = 0;
+  std::uint64_t done = 0;
+  std::uint64_t success = 0;
+};
+
+struct DatasetSummary {
+  std::uint64_t candidates = 0;
+  std::uint64_t done = 0;
+  std::uint64_t success = 0;
+  std::vector<Tally> by_gripper;                            // in gripper order
+  std::vector<Tally> by_object;                             // in object order
+  Statistics d1;                                            // m, over successful candidates
+  Statistics d2;                                            // m, over successful candidates
+  Statistics wall_time;                                     // s, over done candidates
+  std::array<std::uint64_t, kFailureKindCount> failures{};  // done failures by FailureKind
+};
+
+DatasetSummary summarize(const DatasetReader& reader);
+
+}  // namespace grip::io

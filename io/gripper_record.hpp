@@ -1,0 +1,24 @@
+#pragma once
+// One gripper setting of a dataset: what a candidate's pose, joints and closing forces mean
+// and the surface whose vertex order per-frame gripper positions follow. A bimanual setting
+// is its own gripper record with hands = 2.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace grip::io {
+
+struct GripperRecord {
+  std::string name;  // e.g. "umi-soft", "leap", "leap-bimanual"
+  std::string kind;  // "parallel" or "hand"
+  bool soft = false;
+  std::uint32_t hands = 1;                // 1, or 2 for bimanual
+  std::vector<std::string> joint_names;   // per hand; m for prismatic, rad for revolute
+  std::vector<std::string> finger_names;  // per hand; closing forces follow this order
+  std::vector<double> vertices;           // 3 per vertex, m, one hand's surface at rest
+  std::vector<std::int32_t> triangles;    // 3 per triangle
+
+  std::size_t vertex_count() const { return vertices.size() / 3; }
+};
+
+}  // namespace grip::io

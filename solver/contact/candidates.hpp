@@ -1,0 +1,25 @@
+#pragma once
+// The broad phase of one environment: point-triangle and edge-edge pairs of the collision mesh
+// whose boxes, swept from one configuration to another and inflated by d_hat, overlap. The
+// list holds every pair that can come within d_hat anywhere on the straight path between the
+// two configurations, so it serves CCD and every barrier evaluation along that path.
+#include <array>
+#include <vector>
+
+#include "solver/model.hpp"
+
+namespace grip::solver {
+
+struct ContactPair {
+  bool edge_edge = false;     // else point-triangle
+  std::array<int, 4> vertex;  // collision vertices: (p, t0, t1, t2) or (ea0, ea1, eb0, eb1)
+  double friction = 0.0;      // mu of the two bodies
+  double mollifier_eps = 0.0; // edge-edge: eps_x of the parallel-edge mollifier (rest lengths)
+};
+
+// Pairs near the path start -> end (both collision vertex positions, one row per vertex), in a
+// deterministic order. Pairs that share a vertex, and pairs of bodies that never touch, are left out.
+std::vector<ContactPair> find_contact_pairs(const Model& model, const Vertices& start,
+                                            const Vertices& end, double d_hat);
+
+}  // namespace grip::solver

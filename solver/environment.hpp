@@ -1,0 +1,91 @@
+#pragma once
+// One simulation environment: a shared static Model and this environment's own state (DOFs,
+// velocities, kinematic poses and scripts, gravity, barrier stiffness), advanced one implicit
+// Euler step at a time by projected Newton. Every accepted step leaves every contact pair
+// apart (distance > 0) and every tet positively oriented; a step that cannot do so fails the
+// environment with a reason, and a failed environment stays failed.
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/linear/sparse_cholesky.hpp"
+#include "solver/model.hpp"
+#include "solver/newton/incremental_potential.hpp"
+
+namespace grip::solver {
+
+// The total contact force (barrier and friction) that body_b exerts on body_a, body_a < body_b.
+struct PairForce {
+  int body_a = -1;
+  int body_b = -1;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // on body_a, N
+  double normal_force = 0.0;  // sum of the contacts' barrier force magnitudes, N
+};
+
+struct StepDiagnostics {
+  int newton_iterations = 0;
+  int line_search_steps = 0;  // Armijo halvings and inversion halvings
+  double min_distance = std::numeric_limits<double>::infinity();  // over pairs within d_hat
+  double min_volume_ratio = 1.0;  // smallest det F over all tets (1 without FEM)
+  double kappa = 0.0;
+  double residual = 0.0;  // infinity norm of the free DOFs' gradient at the end, scaled by 1/h^2 (N)
+  std::vector<PairForce> contact_forces;
+};
+
+class Environment {
+ public:
+  explicit Environment(std::shared_ptr<const Model> model);
+
+  // Advances one time step; false when the environment failed (now or before).
+  bool step();
+
+  // Between steps, the caller may redirect gravity and change kinematic scripts.
+  void set_gravity(const Eigen::Vector3d& gravity) { gravity_ = gravity; }
+  void set_script(int body, const Script& script);
+
+  const Model& model() const { return *model_; }
+  double time() const { return time_; }
+  bool failed() const { return !failure_.empty(); }
+  const std::string& failure() const { return failure_; }
+  const StepDiagnostics& last_step() const { return diagnostics_; }
+
+  const Eigen::VectorXd& dofs() const { return q_; }
+  const Eigen::VectorXd& velocities() const { return v_; }
+  // World positions of the collision vertices (one row each).
+  Vertices collision_positions() const;
+  // World positions of all vertices of one body (FEM: every vertex, including interior ones).
+  Vertices body_vertices(int body) const;
+  // Centre of mass (the frame origin for kinematic bodies), its velocity, and the body's
+  // rotation (affine: the rotation nearest its affine matrix; FEM: the best-fit rotation of its
+  // vertices against the rest shape; kinematic: its pose).
+  Eigen::Vector3d center_of_mass(int body) const;
+  Eigen::Vector3d center_of_mass_velocity(int body) const;
+  Eigen::Matrix3d rotation(int body) const;
+  // The smallest det F over the tets of every FEM body (1 without FEM).
+  double min_volume_ratio() const;
+
+ private:
+  struct StepTargets;
+  Vertices positions_at(const Eigen::VectorXd& q, const StepTargets& targets, double progress) const;
+  std::vector<FrictionContact> lag_friction(const Vertices& positions) const;
+  bool newton(StepTargets& targets, double& progress);
+  bool fail(const std::string& reason);
+  void record_diagnostics(const StepTargets& targets);
+
+  std::shared_ptr<const Model> model_;
+  Eigen::VectorXd q_;
+  Eigen::VectorXd v_;
+  std::vector<Pose> poses_;     // kinematic bodies' current poses (others unused)
+  std::vector<Eigen::Vector3d> kinematic_velocity_;  // over the last step
+  std::vector<Script> scripts_;
+  Eigen::Vector3d gravity_;
+  double kappa_;
+  double time_ = 0.0;
+  std::string failure_;
+  StepDiagnostics diagnostics_;
+  IncrementalPotential potential_;
+  SparseCholesky cholesky_;
+};
+
+}  // namespace grip::solver

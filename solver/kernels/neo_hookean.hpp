@@ -1,0 +1,204 @@
+#pragma once
+// Stable Neo-Hookean elasticity of one linear tetrahedron (Smith et al. 2018): deformation
+// gradient, energy density, first Piola stress, the tet's 12-vector gradient and 12x12 Hessian
+// (optionally PSD-projected), and the von Mises stress of its Cauchy stress.
+//
+// Energy density (Smith et al. 2018, Eq. 14 without the optional log term, dropped constant):
+//   Psi(F) = mu/2 (tr(F^T F) - 3) - mu (J - 1) + lambda/2 (J - 1)^2,   J = det F.
+// Psi(I) = 0 and P(I) = 0 (rest is stress-free). Linearizing at F = I gives
+// mu |eps|^2 + (lambda - mu)/2 tr(eps)^2, so matching linear elasticity with Lame parameters
+// (mu_L, lambda_L) needs the reparametrization mu = mu_L, lambda = lambda_L + mu_L.
+// Unlike classic Neo-Hookean there is no log(J): the energy stays finite for J <= 0 (inverted
+// elements get a restoring force), which IPC's line search filter still forbids.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "solver/kernels/hd.hpp"
+#include "solver/kernels/psd_projection.hpp"
+
+namespace grip::solver::kernels {
+
+using Vector12d = Eigen::Matrix<double, 12, 1>;
+using Matrix12d = Eigen::Matrix<double, 12, 12>;
+using Vector9d = Eigen::Matrix<double, 9, 1>;
+using Matrix9d = Eigen::Matrix<double, 9, 9>;
+
+// Parameters of the stable Neo-Hookean energy, already reparametrized (see the file comment).
+struct StableNeoHookeanParameters {
+  double mu;      // Pa
+  double lambda;  // Pa
+};
+
+// Lame parameters from Young's modulus E (Pa) and Poisson ratio nu (-1 < nu < 1/2).
+GRIP_HD inline double lame_mu(double youngs_modulus, double poisson_ratio) {
+  return youngs_modulus / (2.0 * (1.0 + poisson_ratio));
+}
+GRIP_HD inline double lame_lambda(double youngs_modulus, double poisson_ratio) {
+  return youngs_modulus * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));
+}
+
+// Stable Neo-Hookean parameters that match linear elasticity with (E, nu) at small strain.
+GRIP_HD inline StableNeoHookeanParameters stable_neo_hookean_parameters(double youngs_modulus,
+                                                                        double poisson_ratio) {
+  const double mu = lame_mu(youngs_modulus, poisson_ratio);
+  return {mu, lame_lambda(youngs_modulus, poisson_ratio) + mu};
+}
+
+// Rest shape matrix Dm = [X1 - X0, X2 - X0, X3 - X0] of a tet (columns are edge vectors).
+GRIP_HD inline Eigen::Matrix3d tet_shape_matrix(const Eigen::Vector3d& x0,
+                                                const Eigen::Vector3d& x1,
+                                                const Eigen::Vector3d& x2,
+                                                const Eigen::Vector3d& x3) {
+  Eigen::Matrix3d d;
+  d.col(0) = x1 - x0;
+  d.col(1) = x2 - x0;
+  d.col(2) = x3 - x0;
+  return d;
+}
+
+// Signed rest volume det(Dm) / 6 (positive for a positively oriented tet).
+GRIP_HD inline double tet_rest_volume(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
+                                      const Eigen::Vector3d& x2, const Eigen::Vector3d& x3) {
+  return tet_shape_matrix(x0, x1, x2, x3).determinant() / 6.0;
+}
+
+// Dm^{-1} of the rest tet, precomputed once per element.
+GRIP_HD inline Eigen::Matrix3d tet_rest_shape_inverse(const Eigen::Vector3d& x0,
+                                                      const Eigen::Vector3d& x1,
+                                                      const Eigen::Vector3d& x2,
+                                                      const Eigen::Vector3d& x3) {
+  return tet_shape_matrix(x0, x1, x2, x3).inverse();
+}
+
+// F = Ds Dm^{-1} from the 12 stacked world coordinates x = (x0, x1, x2, x3).
+GRIP_HD inline Eigen::Matrix3d deformation_gradient(const Vector12d& x,
+                                                    const Eigen::Matrix3d& rest_shape_inverse) {
+  Eigen::Matrix3d ds;
+  for (int k = 0; k < 3; ++k) ds.col(k) = x.segment<3>(3 * (k + 1)) - x.segment<3>(0);
+  return ds * rest_shape_inverse;
+}
+
+// dvec(F)/dx as a 9x12 matrix (vec is column-major: F(i, j) sits at 3 j + i); constant per tet.
+GRIP_HD inline Eigen::Matrix<double, 9, 12> deformation_gradient_jacobian(
+    const Eigen::Matrix3d& rest_shape_inverse) {
+  Eigen::Matrix<double, 9, 12> b = Eigen::Matrix<double, 9, 12>::Zero();
+  for (int j = 0; j < 3; ++j) {
+    // F(i, j) = sum_k (x_{k+1} - x_0)(i) Dminv(k, j).
+    const double sum = rest_shape_inverse.col(j).sum();
+    for (int i = 0; i < 3; ++i) {
+      b(3 * j + i, i) = -sum;
+      for (int k = 0; k < 3; ++k) b(3 * j + i, 3 * (k + 1) + i) = rest_shape_inverse(k, j);
+    }
+  }
+  return b;
+}
+
+// dJ/dF, the cofactor matrix of F: columns f1 x f2, f2 x f0, f0 x f1.
+GRIP_HD inline Eigen::Matrix3d determinant_gradient(const Eigen::Matrix3d& f) {
+  Eigen::Matrix3d g;
+  g.col(0) = f.col(1).cross(f.col(2));
+  g.col(1) = f.col(2).cross(f.col(0));
+  g.col(2) = f.col(0).cross(f.col(1));
+  return g;
+}
+
+namespace neo_hookean_detail {
+// [v]x, the matrix with [v]x w = v x w.
+GRIP_HD inline Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+}  // namespace neo_hookean_detail
+
+// d^2 J / dvec(F)^2: 3x3 blocks (a, b) = d^2 J / df_a df_b, built from cross-product matrices.
+GRIP_HD inline Matrix9d determinant_hessian(const Eigen::Matrix3d& f) {
+  Matrix9d h = Matrix9d::Zero();
+  const Eigen::Matrix3d c0 = neo_hookean_detail::cross_matrix(f.col(0));
+  const Eigen::Matrix3d c1 = neo_hookean_detail::cross_matrix(f.col(1));
+  const Eigen::Matrix3d c2 = neo_hookean_detail::cross_matrix(f.col(2));
+  h.block<3, 3>(0, 3) = -c2;
+  h.block<3, 3>(3, 0) = c2;
+  h.block<3, 3>(0, 6) = c1;
+  h.block<3, 3>(6, 0) = -c1;
+  h.block<3, 3>(3, 6) = -c0;
+  h.block<3, 3>(6, 3) = c0;
+  return h;
+}
+
+GRIP_HD inline double stable_neo_hookean_energy_density(const Eigen::Matrix3d& f,
+                                                        const StableNeoHookeanParameters& m) {
+  const double j = f.determinant();
+  return 0.5 * m.mu * (f.squaredNorm() - 3.0) - m.mu * (j - 1.0) +
+         0.5 * m.lambda * (j - 1.0) * (j - 1.0);
+}
+
+// First Piola-Kirchhoff stress P = dPsi/dF = mu F + (lambda (J - 1) - mu) dJ/dF.
+GRIP_HD inline Eigen::Matrix3d stable_neo_hookean_first_piola(const Eigen::Matrix3d& f,
+                                                              const StableNeoHookeanParameters& m) {
+  const double j = f.determinant();
+  return m.mu * f + (m.lambda * (j - 1.0) - m.mu) * determinant_gradient(f);
+}
+
+// dP/dF = d^2 Psi / dvec(F)^2 = mu I + lambda g g^T + (lambda (J - 1) - mu) d^2 J/dF^2,
+// g = vec(dJ/dF). Indefinite in general (the J terms).
+GRIP_HD inline Matrix9d stable_neo_hookean_stress_derivative(const Eigen::Matrix3d& f,
+                                                             const StableNeoHookeanParameters& m) {
+  const double j = f.determinant();
+  const Eigen::Matrix3d cof = determinant_gradient(f);
+  const Eigen::Map<const Vector9d> g(cof.data());
+  return m.mu * Matrix9d::Identity() + m.lambda * g * g.transpose() +
+         (m.lambda * (j - 1.0) - m.mu) * determinant_hessian(f);
+}
+
+// Elastic energy of a tet: rest volume times the energy density.
+GRIP_HD inline double tet_stable_neo_hookean_energy(const Vector12d& x,
+                                                    const Eigen::Matrix3d& rest_shape_inverse,
+                                                    double rest_volume,
+                                                    const StableNeoHookeanParameters& m) {
+  return rest_volume *
+         stable_neo_hookean_energy_density(deformation_gradient(x, rest_shape_inverse), m);
+}
+
+// d energy / dx = V B^T vec(P), B = dvec(F)/dx.
+GRIP_HD inline Vector12d tet_stable_neo_hookean_gradient(const Vector12d& x,
+                                                         const Eigen::Matrix3d& rest_shape_inverse,
+                                                         double rest_volume,
+                                                         const StableNeoHookeanParameters& m) {
+  const Eigen::Matrix3d p =
+      stable_neo_hookean_first_piola(deformation_gradient(x, rest_shape_inverse), m);
+  const Eigen::Map<const Vector9d> vec_p(p.data());
+  return rest_volume * deformation_gradient_jacobian(rest_shape_inverse).transpose() * vec_p;
+}
+
+// d^2 energy / dx^2 = V B^T (dP/dF) B. With project_psd, the 12x12 matrix is replaced by its
+// nearest positive semi-definite matrix (numerical eigen-decomposition of the 12x12 Hessian,
+// negative eigenvalues clamped to zero), as projected Newton needs.
+GRIP_HD inline Matrix12d tet_stable_neo_hookean_hessian(const Vector12d& x,
+                                                        const Eigen::Matrix3d& rest_shape_inverse,
+                                                        double rest_volume,
+                                                        const StableNeoHookeanParameters& m,
+                                                        bool project_psd) {
+  const Eigen::Matrix<double, 9, 12> b = deformation_gradient_jacobian(rest_shape_inverse);
+  const Matrix9d dpdf =
+      stable_neo_hookean_stress_derivative(deformation_gradient(x, rest_shape_inverse), m);
+  const Matrix12d h = rest_volume * b.transpose() * dpdf * b;
+  return project_psd ? project_to_psd<12>(h) : h;
+}
+
+// Cauchy stress sigma = P F^T / J = (mu F F^T + (lambda (J - 1) - mu) J I) / J (Pa, symmetric);
+// undefined for J = 0.
+GRIP_HD inline Eigen::Matrix3d stable_neo_hookean_cauchy_stress(
+    const Eigen::Matrix3d& f, const StableNeoHookeanParameters& m) {
+  return stable_neo_hookean_first_piola(f, m) * f.transpose() / f.determinant();
+}
+
+// Von Mises equivalent stress sqrt(3/2 s:s) of a Cauchy stress, s its deviatoric part (Pa).
+GRIP_HD inline double von_mises_stress(const Eigen::Matrix3d& cauchy_stress) {
+  const Eigen::Matrix3d dev =
+      cauchy_stress - cauchy_stress.trace() / 3.0 * Eigen::Matrix3d::Identity();
+  return std::sqrt(1.5 * dev.squaredNorm());
+}
+
+}  // namespace grip::solver::kernels

@@ -1,0 +1,63 @@
+// `grip ccd-bench --type vf|ee FILE.csv`: additive CCD scored on a file of the CCD benchmark
+// (Wang et al. 2021) rational CSV format; `grip ccd-bench --write-hard DIR` writes the generated
+// hard query set in that format. The last line of a scoring run is one JSON object.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "bench/ccd/ccd_benchmark.hpp"
+#include "bench/ccd/ccd_query_file.hpp"
+#include "bench/ccd/hard_ccd_queries.hpp"
+#include "src/app/commands.hpp"
+
+namespace grip::commands {
+
+namespace {
+
+int write_hard_queries(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  for (const auto type : {bench::CcdQueryType::kVertexFace, bench::CcdQueryType::kEdgeEdge}) {
+    const auto path = dir / (type == bench::CcdQueryType::kVertexFace ? "hard-vertex-face.csv"
+                                                                      : "hard-edge-edge.csv");
+    const auto queries = bench::hard_ccd_queries(type);
+    bench::write_ccd_query_file(path, queries);
+    std::printf("wrote %zu queries to %s\n", queries.size(), path.string().c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int ccd_bench(const CcdBenchArgs& args) {
+  if (!args.write_hard_dir.empty()) return write_hard_queries(args.write_hard_dir);
+  if (args.file.empty() || args.type.empty()) {
+    std::fprintf(stderr,
+                 "grip ccd-bench: give a query file and its type (grip ccd-bench --type vf|ee "
+                 "FILE.csv), or --write-hard DIR; see 'grip ccd-bench --help'\n");
+    return 2;
+  }
+  const bench::CcdQueryType type =
+      args.type == "vf" ? bench::CcdQueryType::kVertexFace : bench::CcdQueryType::kEdgeEdge;
+  const std::vector<bench::CcdQuery> queries = bench::read_ccd_query_file(args.file);
+  std::size_t collide = 0;
+  for (const bench::CcdQuery& q : queries) collide += q.collides;
+
+  // Minimum separation 0: the benchmark's truth is about touching, not about a gap.
+  const solver::kernels::AccdOptions options;
+  const bench::CcdBenchmarkResult r = bench::run_ccd_benchmark(queries, type, options);
+  const std::size_t misses = queries.size() - collide;
+  std::printf("%s: %zu %s queries (%zu collide, %zu do not); ACCD s = %g, min separation %g\n",
+              args.file.c_str(), r.queries, args.type.c_str(), collide, misses, options.rescaling,
+              options.min_separation);
+  std::printf(
+      "false positives %zu (%.1f%% of the non-colliding), false negatives %zu, "
+      "unsafe times of impact %zu, most iterations %zu\n",
+      r.false_positives,
+      misses ? 100.0 * static_cast<double>(r.false_positives) / static_cast<double>(misses) : 0.0,
+      r.false_negatives, r.unsafe_times, r.max_iterations);
+  std::printf("%s\n", bench::summary_json(r).c_str());
+  std::fflush(stdout);
+  return 0;
+}
+
+}  // namespace grip::commands

@@ -1,0 +1,103 @@
+// `grip inspect DATASET.h5`: the dataset's provenance, then what it holds: objects, grippers,
+// candidates done, success rates by gripper and by object, D1/D2 statistics and failures by
+// kind. Reads with serial HDF5; needs no MPI.
+#include <cstdio>
+#include <string>
+
+#include "io/dataset_reader.hpp"
+#include "io/dataset_summary.hpp"
+#include "src/app/commands.hpp"
+
+namespace grip::commands {
+
+namespace {
+
+std::string percent(std::uint64_t part, std::uint64_t whole) {
+  if (whole == 0) return "-";
+  char text[16];
+  std::snprintf(text, sizeof text, "%.1f%%",
+                100.0 * static_cast<double>(part) / static_cast<double>(whole));
+  return text;
+}
+
+void print_tallies(const char* title, const std::vector<io::Tally>& tallies) {
+  std::printf("\n%-28s %10s %10s %10s %8s\n", title, "candidates", "done", "success", "rate");
+  for (const io::Tally& tally : tallies) {
+    std::printf("  %-26s %10llu %10llu %10llu %8s\n", tally.name.c_str(),
+                static_cast<unsigned long long>(tally.candidates),
+                static_cast<unsigned long long>(tally.done),
+                static_cast<unsigned long long>(tally.success),
+                percent(tally.success, tally.done).c_str());
+  }
+}
+
+void print_statistics(const char* name, const io::Statistics& s, double scale) {
+  if (s.count == 0) {
+    std::printf("  %-18s %8s\n", name, "-");
+    return;
+  }
+  std::printf("  %-18s %8llu %12.4g %12.4g %12.4g %12.4g\n", name,
+              static_cast<unsigned long long>(s.count), s.mean * scale, s.min * scale,
+              s.median * scale, s.max * scale);
+}
+
+}  // namespace
+
+int inspect(const std::string& dataset, bool show_job) {
+  const io::DatasetReader reader(dataset);
+  const io::Provenance provenance = reader.provenance();
+  const io::DatasetLayout& layout = reader.layout();
+  std::printf("dataset     %s (%s, format version %llu)\n", dataset.c_str(), io::kFormatName,
+              static_cast<unsigned long long>(io::kFormatVersion));
+  std::printf("job         %s (seed %llu, job id %s)\n", provenance.job_file.c_str(),
+              static_cast<unsigned long long>(provenance.seed), reader.job_id().c_str());
+  std::printf("made by     grip %s (revision %s)\n", provenance.grip_version.c_str(),
+              provenance.git_revision.c_str());
+  std::printf("frames      %u closing + %u validation per trajectory\n", layout.closing_frames,
+              layout.validation_frames);
+  if (!provenance.parameters.empty()) {
+    std::printf("parameters\n");
+    for (const io::Parameter& parameter : provenance.parameters) {
+      std::printf("  %s = %s\n", parameter.key.c_str(), parameter.value.c_str());
+    }
+  }
+  if (show_job) {
+    std::printf("job file text\n%s", provenance.job_text.c_str());
+    if (!provenance.job_text.empty() && provenance.job_text.back() != '\n') std::printf("\n");
+  }
+
+  const io::DatasetSummary summary = io::summarize(reader);
+  std::printf("\nobjects     %zu\ngrippers    %zu\n", layout.objects.size(),
+              layout.grippers.size());
+  std::printf("candidates  %llu (%llu done, %llu pending)\n",
+              static_cast<unsigned long long>(summary.candidates),
+              static_cast<unsigned long long>(summary.done),
+              static_cast<unsigned long long>(summary.candidates - summary.done));
+  std::printf("success     %llu of %llu done (%s)\n",
+              static_cast<unsigned long long>(summary.success),
+              static_cast<unsigned long long>(summary.done),
+              percent(summary.success, summary.done).c_str());
+  print_tallies("by gripper", summary.by_gripper);
+  print_tallies("by object", summary.by_object);
+
+  std::printf("\n%-20s %8s %12s %12s %12s %12s\n", "successful grasps", "count", "mean", "min",
+              "median", "max");
+  print_statistics("D1 (mm)", summary.d1, 1e3);
+  print_statistics("D2 (mm)", summary.d2, 1e3);
+  std::printf("done candidates\n");
+  print_statistics("wall (s)", summary.wall_time, 1.0);
+
+  std::printf("\nfailures by kind\n");
+  bool any = false;
+  for (std::uint8_t kind = 1; kind < io::kFailureKindCount; ++kind) {
+    if (summary.failures[kind] == 0) continue;
+    any = true;
+    const std::string name(io::to_string(static_cast<io::FailureKind>(kind)));
+    std::printf("  %-24s %10llu\n", name.c_str(),
+                static_cast<unsigned long long>(summary.failures[kind]));
+  }
+  if (!any) std::printf("  none\n");
+  return 0;
+}
+
+}  // namespace grip::commands

@@ -1,0 +1,161 @@
+#include "src/geometry/mesh_io.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace grip::geometry {
+namespace {
+
+using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
+
+std::ofstream open_for_writing(const std::filesystem::path& file) {
+  std::ofstream out(file);
+  if (!out) {
+    throw std::runtime_error("cannot write '" + file.string() + "': " + std::strerror(errno) +
+                             "; check that the folder exists and is writable");
+  }
+  out.precision(17);
+  return out;
+}
+
+void finish_writing(std::ofstream& out, const std::filesystem::path& file) {
+  out.close();
+  if (!out) {
+    throw std::runtime_error("writing '" + file.string() + "' failed (disk full?)");
+  }
+}
+
+}  // namespace
+
+SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext != ".obj" && ext != ".stl" && ext != ".ply" && ext != ".off") {
+    throw std::runtime_error("cannot read '" + file.string() + "': unknown mesh format '" + ext +
+                             "'; use .obj, .stl, .ply or .off");
+  }
+  if (!std::filesystem::is_regular_file(file)) {
+    throw std::runtime_error("cannot read '" + file.string() + "': no such file");
+  }
+  if (std::filesystem::file_size(file) == 0) {
+    throw std::runtime_error("mesh '" + file.string() + "' is empty: the file has no data");
+  }
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  if (!CGAL::IO::read_polygon_soup(file.string(), points, polygons)) {
+    throw std::runtime_error("cannot read '" + file.string() + "': not a valid " + ext.substr(1) +
+                             " mesh (the parser rejected it)");
+  }
+  CGAL::Polygon_mesh_processing::merge_duplicate_points_in_polygon_soup(points, polygons);
+
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& polygon : polygons) {
+    for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
+      triangles.push_back({static_cast<int>(polygon[0]), static_cast<int>(polygon[k]),
+                           static_cast<int>(polygon[k + 1])});
+    }
+  }
+  if (points.empty() || triangles.empty()) {
+    throw std::runtime_error("mesh '" + file.string() +
+                             "' is empty: it holds no triangle or polygon");
+  }
+  SurfaceMesh mesh;
+  mesh.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    mesh.vertices.row(row) << points[i].x(), points[i].y(), points[i].z();
+  }
+  mesh.triangles.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    mesh.triangles.row(row) << triangles[i][0], triangles[i][1], triangles[i][2];
+  }
+  if (!mesh.vertices.allFinite()) {
+    throw std::runtime_error("mesh '" + file.string() + "' has a NaN or infinite coordinate");
+  }
+  return mesh;
+}
+
+void write_obj(const std::filesystem::path& file, const SurfaceMesh& mesh) {
+  std::ofstream out = open_for_writing(file);
+  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
+    out << "v " << mesh.vertices(i, 0) << ' ' << mesh.vertices(i, 1) << ' ' << mesh.vertices(i, 2)
+        << '\n';
+  }
+  for (Eigen::Index i = 0; i < mesh.triangles.rows(); ++i) {
+    out << "f " << mesh.triangles(i, 0) + 1 << ' ' << mesh.triangles(i, 1) + 1 << ' '
+        << mesh.triangles(i, 2) + 1 << '\n';
+  }
+  finish_writing(out, file);
+}
+
+void write_msh(const std::filesystem::path& file, const TetMesh& mesh) {
+  std::ofstream out = open_for_writing(file);
+  out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" << mesh.vertices.rows() << '\n';
+  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
+    out << i + 1 << ' ' << mesh.vertices(i, 0) << ' ' << mesh.vertices(i, 1) << ' '
+        << mesh.vertices(i, 2) << '\n';
+  }
+  out << "$EndNodes\n$Elements\n" << mesh.tets.rows() << '\n';
+  for (Eigen::Index i = 0; i < mesh.tets.rows(); ++i) {
+    out << i + 1 << " 4 2 1 1";
+    for (int k = 0; k < 4; ++k) out << ' ' << mesh.tets(i, k) + 1;
+    out << '\n';
+  }
+  out << "$EndElements\n";
+  finish_writing(out, file);
+}
+
+void write_vtu(const std::filesystem::path& file, const TetMesh& mesh,
+               const std::vector<CellField>& cell_fields) {
+  for (const CellField& field : cell_fields) {
+    if (field.values.size() != mesh.tets.rows()) {
+      throw std::invalid_argument("cannot write '" + file.string() + "': cell field '" +
+                                  field.name + "' has " + std::to_string(field.values.size()) +
+                                  " values for " + std::to_string(mesh.tets.rows()) + " tets");
+    }
+  }
+  std::ofstream out = open_for_writing(file);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << mesh.vertices.rows()
+      << "\" NumberOfCells=\"" << mesh.tets.rows() << "\">\n"
+      << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
+    out << mesh.vertices(i, 0) << ' ' << mesh.vertices(i, 1) << ' ' << mesh.vertices(i, 2) << '\n';
+  }
+  out << "</DataArray>\n</Points>\n<Cells>\n"
+      << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (Eigen::Index i = 0; i < mesh.tets.rows(); ++i) {
+    out << mesh.tets(i, 0) << ' ' << mesh.tets(i, 1) << ' ' << mesh.tets(i, 2) << ' '
+        << mesh.tets(i, 3) << '\n';
+  }
+  out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  for (Eigen::Index i = 0; i < mesh.tets.rows(); ++i) out << 4 * (i + 1) << '\n';
+  out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (Eigen::Index i = 0; i < mesh.tets.rows(); ++i) out << "10\n";  // VTK_TETRA
+  out << "</DataArray>\n</Cells>\n";
+  if (!cell_fields.empty()) {
+    out << "<CellData>\n";
+    for (const CellField& field : cell_fields) {
+      out << "<DataArray type=\"Float64\" Name=\"" << field.name << "\" format=\"ascii\">\n";
+      for (Eigen::Index i = 0; i < field.values.size(); ++i) out << field.values[i] << '\n';
+      out << "</DataArray>\n";
+    }
+    out << "</CellData>\n";
+  }
+  out << "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  finish_writing(out, file);
+}
+
+}  // namespace grip::geometry

@@ -1,0 +1,52 @@
+#pragma once
+// The soft fin-ray finger of the UMI-style gripper: a tapered two-wall profile joined by
+// inclined cross ribs, extruded and tetrahedralized, with its mount region and TPU material.
+#include <vector>
+
+#include "src/geometry/mesh.hpp"
+
+namespace grip::grippers {
+
+// Finger frame: the profile lies in the (y, z) plane and is extruded along x, centred on x = 0.
+// z runs from the mount face (z = 0) to the tip (z = length); the contact wall's outer face is
+// the plane y = 0 with outward normal -y, and the back wall slants from y = base_width at the
+// mount to y = tip_width at the tip. Lengths in metres.
+struct FinRayOptions {
+  double length = 0.080;          // mount face to tip
+  double base_width = 0.030;      // profile width at the mount (y)
+  double tip_width = 0.004;       // profile width at the tip (y)
+  double depth = 0.022;           // extrusion: the finger's width along x
+  double wall_thickness = 0.002;  // contact wall, back wall and tip cap
+  double rib_thickness = 0.0016;
+  double base_thickness = 0.005;  // the mount plate, clamped in the jaw
+  int rib_count = 5;
+  double rib_angle_deg = 12.0;  // ribs rise by this angle from the contact wall to the back wall
+  double top_cavity_width = 0.005;  // the cavity ends (under a solid tip) where it is this narrow
+  double edge_length = 0.0036;      // largest triangle edge of the profile mesh
+  int layers = 8;                   // tet layers across the depth
+};
+
+// TPU/TPE as printed for UMI fingers. E and mu are GRIP's (paper, Sec. III-D); density is that
+// of TPU 95A; Poisson's ratio is our choice for a soft elastomer under linear tets.
+struct FinRayMaterial {
+  double youngs_modulus = 9.4e6;  // Pa
+  double poisson_ratio = 0.4;
+  double density = 1200.0;  // kg/m^3
+  double friction = 3.5;    // dry friction coefficient against objects
+};
+
+struct FinRayFinger {
+  geometry::TetMesh mesh;             // finger frame, positively oriented tets
+  std::vector<int> mount_vertices;    // increasing; the vertices with z <= base_thickness
+  FinRayMaterial material;
+  double profile_area = 0.0;          // exact area of the meshed profile (m^2)
+};
+
+// Builds the finger: CGAL's constrained Delaunay mesher triangulates the profile (minimum
+// angle about 20.7 degrees, edges at most edge_length), and each triangle is extruded through
+// `layers` prisms, each split into three positive tets by the smallest-index diagonal rule
+// (conforming across neighbouring prisms). Throws std::invalid_argument for options that do
+// not describe a valid profile.
+FinRayFinger make_fin_ray_finger(const FinRayOptions& options = {});
+
+}  // namespace grip::grippers

@@ -1,0 +1,54 @@
+#include "src/grippers/parallel_gripper.hpp"
+
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "src/geometry/boundary_surface.hpp"
+#include "src/geometry/primitives.hpp"
+#include "src/grippers/surface_merge.hpp"
+
+namespace grip::grippers {
+
+Eigen::Isometry3d ParallelGripper::finger_pose(Jaw jaw, double opening) const {
+  if (!(opening >= min_opening && opening <= max_opening)) {
+    throw std::out_of_range(name + ": jaw opening " + std::to_string(opening) +
+                            " m is outside [" + std::to_string(min_opening) + ", " +
+                            std::to_string(max_opening) + "] m");
+  }
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  if (jaw == Jaw::kPositive) {
+    pose.translation() = Eigen::Vector3d(0.0, 0.5 * opening, 0.0);
+  } else {
+    pose.linear() = Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    pose.translation() = Eigen::Vector3d(0.0, -0.5 * opening, 0.0);
+  }
+  return pose;
+}
+
+geometry::SurfaceMesh ParallelGripper::surface(double opening) const {
+  geometry::SurfaceMesh mesh;
+  append_transformed(mesh, finger_surface, finger_pose(Jaw::kPositive, opening));
+  append_transformed(mesh, finger_surface, finger_pose(Jaw::kNegative, opening));
+  return mesh;
+}
+
+ParallelGripper make_umi_soft_gripper(const FinRayOptions& options) {
+  ParallelGripper gripper;
+  gripper.name = "umi_soft";
+  gripper.soft_finger = make_fin_ray_finger(options);
+  gripper.finger_surface = geometry::boundary_surface(gripper.soft_finger->mesh);
+  return gripper;
+}
+
+ParallelGripper make_rigid_jaw_gripper(const RigidJawOptions& options) {
+  ParallelGripper gripper;
+  gripper.name = "rigid_jaw";
+  gripper.finger_surface =
+      geometry::make_box(Eigen::Vector3d(options.width, options.thickness, options.length));
+  gripper.finger_surface.vertices.col(1).array() += 0.5 * options.thickness;
+  gripper.finger_surface.vertices.col(2).array() += 0.5 * options.length;
+  return gripper;
+}
+
+}  // namespace grip::grippers

@@ -1,0 +1,51 @@
+#pragma once
+// Two-finger parallel grippers on prismatic jaws: the UMI-style gripper with soft fin-ray
+// fingers and a rigid parallel-jaw gripper with box fingers, and where their fingers sit.
+#include <optional>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "src/geometry/mesh.hpp"
+#include "src/grippers/fin_ray_finger.hpp"
+
+namespace grip::grippers {
+
+// Gripper frame: the origin lies midway between the two fingers' mount faces; +z is the
+// approach axis (the fingers extend along +z, towards the object); +y is the closing axis: the
+// kPositive finger sits at +y and closes towards -y, the kNegative finger mirrors it by a
+// half turn about z; x = y cross z. The opening is the gap between the two contact faces
+// (the finger frames' y = 0 planes), so each contact face lies at y = +-opening / 2.
+enum class Jaw { kPositive, kNegative };
+
+// Box fingers of the rigid gripper, in the finger-frame convention of FinRayOptions: x spans
+// width centred on 0, y runs from the contact face (y = 0) to thickness, z from the mount
+// (z = 0) to length.
+struct RigidJawOptions {
+  double width = 0.020;
+  double thickness = 0.010;
+  double length = 0.050;
+};
+
+struct ParallelGripper {
+  std::string name;
+  geometry::SurfaceMesh finger_surface;     // one finger, finger frame, closed and outward
+  std::optional<FinRayFinger> soft_finger;  // the tet model of a soft finger; empty if rigid
+  double min_opening = 0.0;                 // m
+  double max_opening = 0.085;               // m
+
+  // Pose of a finger's frame in the gripper frame; throws std::out_of_range if `opening` lies
+  // outside [min_opening, max_opening].
+  Eigen::Isometry3d finger_pose(Jaw jaw, double opening) const;
+
+  // Both fingers at `opening`, in the gripper frame.
+  geometry::SurfaceMesh surface(double opening) const;
+};
+
+// UMI-style: two fin-ray fingers (the surface is the tet mesh's boundary), jaw opening 0-85 mm.
+ParallelGripper make_umi_soft_gripper(const FinRayOptions& options = {});
+
+// Two rigid box fingers on the same jaws, opening 0-85 mm.
+ParallelGripper make_rigid_jaw_gripper(const RigidJawOptions& options = {});
+
+}  // namespace grip::grippers

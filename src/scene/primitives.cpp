@@ -1,0 +1,41 @@
+#include "src/scene/primitives.hpp"
+
+#include <Eigen/Geometry>
+
+namespace grip::scene {
+
+geometry::TetMesh box_tets(const Eigen::Vector3d& size, double cell) {
+  const Eigen::Vector3i n = (size / cell).array().round().max(1.0).cast<int>();
+  auto index = [&](int i, int j, int k) { return (k * (n.y() + 1) + j) * (n.x() + 1) + i; };
+  geometry::TetMesh mesh;
+  mesh.vertices.resize((n.x() + 1) * (n.y() + 1) * (n.z() + 1), 3);
+  for (int k = 0; k <= n.z(); ++k)
+    for (int j = 0; j <= n.y(); ++j)
+      for (int i = 0; i <= n.x(); ++i) {
+        const Eigen::Vector3d t(double(i) / n.x(), double(j) / n.y(), double(k) / n.z());
+        mesh.vertices.row(index(i, j, k)) = (t.array() - 0.5).matrix().cwiseProduct(size);
+      }
+  // Kuhn's split: one tet per path from corner 000 to corner 111 along the axes.
+  constexpr int kPaths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  mesh.tets.resize(6 * n.x() * n.y() * n.z(), 4);
+  int t = 0;
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i)
+        for (const auto& path : kPaths) {
+          Eigen::Vector3i corner(i, j, k);
+          int tet[4];
+          tet[0] = index(corner.x(), corner.y(), corner.z());
+          for (int step = 0; step < 3; ++step) {
+            corner[path[step]] += 1;
+            tet[step + 1] = index(corner.x(), corner.y(), corner.z());
+          }
+          const Eigen::Vector3d a = mesh.vertices.row(tet[0]), b = mesh.vertices.row(tet[1]),
+                                c = mesh.vertices.row(tet[2]), d = mesh.vertices.row(tet[3]);
+          if ((b - a).cross(c - a).dot(d - a) < 0) std::swap(tet[1], tet[2]);
+          mesh.tets.row(t++) << tet[0], tet[1], tet[2], tet[3];
+        }
+  return mesh;
+}
+
+}  // namespace grip::scene

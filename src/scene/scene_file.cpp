@@ -1,0 +1,262 @@
+#include "src/scene/scene_file.hpp"
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "solver/model.hpp"
+#include "src/config/config.hpp"
+#include "src/geometry/boundary_surface.hpp"
+#include "src/geometry/mesh_io.hpp"
+#include "src/geometry/primitives.hpp"
+#include "src/geometry/tetrahedralize.hpp"
+#include "src/scene/primitives.hpp"
+
+namespace grip::scene {
+namespace {
+
+using config::Table;
+
+Eigen::Vector3d vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// Extrinsic XYZ Euler angles in degrees: about world x, then world y, then world z.
+Eigen::Quaterniond rotation_from_degrees(const Eigen::Vector3d& degrees) {
+  const Eigen::Vector3d r = degrees * std::numbers::pi / 180.0;
+  return Eigen::AngleAxisd(r.z(), Eigen::Vector3d::UnitZ()) *
+         Eigen::AngleAxisd(r.y(), Eigen::Vector3d::UnitY()) *
+         Eigen::AngleAxisd(r.x(), Eigen::Vector3d::UnitX());
+}
+
+double positive(const Table& table, std::string_view key, double fallback) {
+  const double value = table.number_or(key, fallback);
+  if (!(value > 0)) table.fail(key, "must be positive");
+  return value;
+}
+
+void read_sim(const Table& sim, SceneFile& out) {
+  sim.allow({"dt", "duration", "gravity", "d_hat", "kappa", "eps_v", "newton_tol",
+             "newton_velocity_tol", "max_newton_iters", "friction_lag_iterations",
+             "ccd_rescaling"});
+  solver::SimParameters& p = out.scene.sim;
+  p.dt = positive(sim, "dt", p.dt);
+  out.duration = positive(sim, "duration", out.duration);
+  p.gravity = vec(sim.vec3_or("gravity", {p.gravity.x(), p.gravity.y(), p.gravity.z()}));
+  p.d_hat = positive(sim, "d_hat", p.d_hat);
+  if (sim.is_string("kappa")) {
+    sim.choice("kappa", {"auto"});
+    p.adaptive_kappa = true;
+  } else {
+    p.kappa = positive(sim, "kappa", p.kappa);
+  }
+  p.eps_v = positive(sim, "eps_v", p.eps_v);
+  p.newton_tol = positive(sim, "newton_tol", p.newton_tol);
+  p.newton_velocity_tol = positive(sim, "newton_velocity_tol", p.newton_velocity_tol);
+  p.max_newton_iters = static_cast<int>(sim.integer_or("max_newton_iters", p.max_newton_iters));
+  if (p.max_newton_iters < 1) sim.fail("max_newton_iters", "must be at least 1");
+  p.friction_lag_iterations =
+      static_cast<int>(sim.integer_or("friction_lag_iterations", p.friction_lag_iterations));
+  if (p.friction_lag_iterations < 1) sim.fail("friction_lag_iterations", "must be at least 1");
+  p.ccd_rescaling = sim.number_or("ccd_rescaling", p.ccd_rescaling);
+  if (!(p.ccd_rescaling > 0 && p.ccd_rescaling < 1)) {
+    sim.fail("ccd_rescaling", "must lie strictly between 0 and 1");
+  }
+}
+
+// The body's surface (and tets, for FEM) from its shape keys.
+void read_shape(const Table& body, const std::filesystem::path& scene_dir,
+                solver::BodyDescription& out) {
+  const std::string shape = body.choice("shape", {"box", "sphere", "cylinder", "mesh"});
+  const bool soft = out.type == solver::BodyType::kFem;
+  const int segments = static_cast<int>(body.integer_or("segments", 24));
+  if (segments < 6) body.fail("segments", "must be at least 6");
+  double resolution = 0.0;
+  if (soft) {
+    resolution = body.number("resolution");
+    if (!(resolution > 0)) body.fail("resolution", "must be a positive tet edge length (m)");
+  } else if (body.has("resolution")) {
+    body.fail("resolution", "applies to FEM bodies only (type = \"fem\")");
+  }
+
+  geometry::SurfaceMesh surface;
+  if (shape == "box") {
+    const Eigen::Vector3d size = vec(body.vec3("size"));
+    if ((size.array() <= 0).any()) body.fail("size", "must hold three positive extents (m)");
+    if (soft) {
+      // A structured grid: exact volume, no CGAL meshing needed for boxes.
+      const geometry::TetMesh tets = box_tets(size, resolution);
+      Eigen::VectorXi to_tet;
+      const geometry::SurfaceMesh boundary = geometry::boundary_surface(tets, &to_tet);
+      out.vertices = tets.vertices;
+      out.tets = tets.tets;
+      out.triangles = boundary.triangles.unaryExpr([&](int v) { return to_tet[v]; });
+      return;
+    }
+    surface = geometry::make_box(size);
+  } else if (shape == "sphere") {
+    const double radius = body.number("radius");
+    if (!(radius > 0)) body.fail("radius", "must be positive (m)");
+    surface = geometry::make_sphere(radius, segments, segments / 2);
+  } else if (shape == "cylinder") {
+    const double radius = body.number("radius");
+    const double height = body.number("height");
+    if (!(radius > 0)) body.fail("radius", "must be positive (m)");
+    if (!(height > 0)) body.fail("height", "must be positive (m)");
+    surface = geometry::make_cylinder(radius, height, segments);
+  } else {
+    std::filesystem::path file = body.string("file");
+    if (file.is_relative()) file = scene_dir / file;
+    try {
+      surface = geometry::read_surface_mesh(file);
+    } catch (const std::exception& e) {
+      body.fail("file", std::string("cannot be used: ") + e.what());
+    }
+    const double scale = body.number_or("scale", 1.0);
+    if (!(scale > 0)) body.fail("scale", "must be positive");
+    surface.vertices *= scale;
+  }
+  if (soft) {
+    geometry::TetOptions options;
+    options.edge_length = resolution;
+    geometry::TetMesh tets;
+    try {
+      tets = geometry::tetrahedralize(surface, options, body.path());
+    } catch (const std::exception& e) {
+      body.fail("shape", std::string("could not be tetrahedralized: ") + e.what());
+    }
+    Eigen::VectorXi to_tet;
+    const geometry::SurfaceMesh boundary = geometry::boundary_surface(tets, &to_tet);
+    out.vertices = tets.vertices;
+    out.tets = tets.tets;
+    out.triangles = boundary.triangles.unaryExpr([&](int v) { return to_tet[v]; });
+  } else {
+    out.vertices = surface.vertices;
+    out.triangles = surface.triangles;
+  }
+}
+
+solver::BodyDescription read_body(const Table& body, const std::filesystem::path& scene_dir) {
+  body.allow({"name", "type", "shape", "size", "radius", "height", "file", "scale", "segments",
+              "resolution", "position", "rotation", "velocity", "angular_velocity", "density",
+              "youngs", "poisson", "friction", "orthogonality_stiffness", "pin", "keyframe"});
+  solver::BodyDescription out;
+  out.name = body.string("name");
+  const std::string type = body.choice("type", {"kinematic", "affine", "fem"});
+  out.type = type == "kinematic" ? solver::BodyType::kKinematic
+             : type == "affine"  ? solver::BodyType::kAffine
+                                 : solver::BodyType::kFem;
+  read_shape(body, scene_dir, out);
+  out.pose.position = vec(body.vec3_or("position", {0, 0, 0}));
+  out.pose.rotation = rotation_from_degrees(vec(body.vec3_or("rotation", {0, 0, 0})));
+  const Eigen::Vector3d velocity = vec(body.vec3_or("velocity", {0, 0, 0}));
+  const Eigen::Vector3d angular = vec(body.vec3_or("angular_velocity", {0, 0, 0}));
+  if (out.type == solver::BodyType::kKinematic) {
+    out.script.velocity = velocity;
+    out.script.angular_velocity = angular;
+    for (const Table& key : body.tables("keyframe")) {
+      key.allow({"time", "position", "rotation"});
+      solver::Keyframe frame;
+      frame.time = key.number("time");
+      if (!out.script.keyframes.empty() && frame.time <= out.script.keyframes.back().time) {
+        key.fail("time", "must increase from one keyframe to the next");
+      }
+      frame.pose.position = vec(key.vec3("position"));
+      frame.pose.rotation = rotation_from_degrees(vec(key.vec3_or("rotation", {0, 0, 0})));
+      out.script.keyframes.push_back(frame);
+    }
+  } else {
+    out.velocity = velocity;
+    out.angular_velocity = angular;
+    if (body.has("keyframe")) body.fail("keyframe", "applies to kinematic bodies only");
+  }
+  out.material.density = positive(body, "density", out.material.density);
+  out.material.friction = body.number_or("friction", out.material.friction);
+  if (out.material.friction < 0) body.fail("friction", "must be >= 0");
+  if (out.type == solver::BodyType::kFem) {
+    out.material.youngs = positive(body, "youngs", out.material.youngs);
+    out.material.poisson = body.number_or("poisson", out.material.poisson);
+    if (!(out.material.poisson > -1 && out.material.poisson < 0.5)) {
+      body.fail("poisson", "must lie in (-1, 0.5)");
+    }
+  } else {
+    for (const char* key : {"youngs", "poisson"}) {
+      if (body.has(key)) body.fail(key, "applies to FEM bodies only (type = \"fem\")");
+    }
+  }
+  if (out.type == solver::BodyType::kAffine) {
+    out.orthogonality_stiffness =
+        positive(body, "orthogonality_stiffness", out.orthogonality_stiffness);
+  } else if (body.has("orthogonality_stiffness")) {
+    body.fail("orthogonality_stiffness", "applies to affine bodies only (type = \"affine\")");
+  }
+  return out;
+}
+
+}  // namespace
+
+SceneFile load_scene_file(const std::filesystem::path& file) {
+  const config::Document document = config::Document::load(file);
+  const Table root = document.root();
+  root.allow({"sim", "body", "contact"});
+  SceneFile out;
+  if (const auto sim = root.optional_table("sim")) read_sim(*sim, out);
+
+  const std::vector<Table> bodies = root.tables("body");
+  if (bodies.empty()) root.fail("body", "is missing: a scene needs at least one [[body]]");
+  std::map<std::string, int> index_of;
+  for (const Table& body : bodies) {
+    out.scene.bodies.push_back(read_body(body, file.parent_path()));
+    if (!index_of.emplace(out.scene.bodies.back().name, index_of.size()).second) {
+      body.fail("name", "\"" + out.scene.bodies.back().name + "\" is used by another body");
+    }
+  }
+  auto body_index = [&](const Table& table, std::string_view key, const std::string& name) {
+    const auto it = index_of.find(name);
+    if (it == index_of.end()) table.fail(key, "names no body: \"" + name + "\"");
+    return it->second;
+  };
+
+  // Pins: the FEM vertices inside a world-space box follow a kinematic body.
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (const Table& pin : bodies[b].tables("pin")) {
+      pin.allow({"body", "min", "max"});
+      solver::BodyDescription& body = out.scene.bodies[b];
+      if (body.type != solver::BodyType::kFem) pin.fail("body", "pins apply to FEM bodies only");
+      solver::Pin p;
+      p.kinematic_body = body_index(pin, "body", pin.string("body"));
+      if (out.scene.bodies[p.kinematic_body].type != solver::BodyType::kKinematic) {
+        pin.fail("body", "must name a kinematic body");
+      }
+      const Eigen::Vector3d lo = vec(pin.vec3("min")), hi = vec(pin.vec3("max"));
+      const Eigen::Matrix3d r = body.pose.rotation.toRotationMatrix();
+      for (Eigen::Index v = 0; v < body.vertices.rows(); ++v) {
+        const Eigen::Vector3d x = r * body.vertices.row(v).transpose() + body.pose.position;
+        if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all()) {
+          p.vertices.push_back(static_cast<int>(v));
+        }
+      }
+      if (p.vertices.empty()) pin.fail("min", "and max enclose no vertex of the body");
+      body.pins.push_back(p);
+    }
+  }
+
+  for (const Table& contact : root.tables("contact")) {
+    contact.allow({"bodies", "friction"});
+    const std::vector<std::string> names = contact.strings("bodies");
+    if (names.size() != 2) contact.fail("bodies", "must name exactly two bodies");
+    solver::ContactOverride c;
+    c.body_a = body_index(contact, "bodies", names[0]);
+    c.body_b = body_index(contact, "bodies", names[1]);
+    c.friction = contact.number("friction");
+    if (c.friction < 0) contact.fail("friction", "must be >= 0");
+    out.scene.contacts.push_back(c);
+  }
+
+  try {
+    solver::Model::build(out.scene);  // validates what only the whole scene can tell
+  } catch (const std::invalid_argument& e) {
+    throw config::ConfigError(file.string() + ": " + e.what());
+  }
+  return out;
+}
+
+}  // namespace grip::scene

@@ -1,0 +1,138 @@
+// Reading and writing mesh files: round trips, every input format, and clear errors.
+#include "src/geometry/mesh_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "tests/geometry/test_meshes.hpp"
+
+namespace grip::geometry {
+namespace {
+
+namespace fs = std::filesystem;
+
+class GeometryMeshIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("grip_mesh_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path file = dir_ / name;
+    std::ofstream(file) << text;
+    return file;
+  }
+  static std::string slurp(const fs::path& file) {
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+  fs::path dir_;
+};
+
+TEST_F(GeometryMeshIoTest, ObjRoundTripIsExact) {
+  SurfaceMesh mesh = testing::box(0.1, 0.2, 0.3);
+  mesh.vertices(0, 0) = 0.1234567890123456789;
+  write_obj(dir_ / "box.obj", mesh);
+  const SurfaceMesh back = read_surface_mesh(dir_ / "box.obj");
+  EXPECT_EQ(back.vertices, mesh.vertices);
+  EXPECT_EQ(back.triangles, mesh.triangles);
+}
+
+TEST_F(GeometryMeshIoTest, ReadsOffPlyAndStlAndMergesStlCorners) {
+  const std::string off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const SurfaceMesh from_off = read_surface_mesh(write("tet.off", off));
+  EXPECT_EQ(from_off.vertices.rows(), 4);
+  EXPECT_EQ(from_off.triangles.rows(), 4);
+
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+  const SurfaceMesh from_ply = read_surface_mesh(write("quad.PLY", ply));
+  EXPECT_EQ(from_ply.vertices.rows(), 4);
+  EXPECT_EQ(from_ply.triangles.rows(), 2) << "a quad is split into two triangles";
+
+  // Two ASCII STL facets sharing an edge: 6 corners, 4 distinct points.
+  const std::string stl =
+      "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+      "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\n"
+      "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+  const SurfaceMesh from_stl = read_surface_mesh(write("two.stl", stl));
+  EXPECT_EQ(from_stl.vertices.rows(), 4);
+  EXPECT_EQ(from_stl.triangles.rows(), 2);
+}
+
+TEST_F(GeometryMeshIoTest, MissingFileErrorNamesIt) {
+  try {
+    read_surface_mesh(dir_ / "nothing.obj");
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("nothing.obj"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(GeometryMeshIoTest, EmptyFileIsAnError) {
+  const fs::path file = write("empty.obj", "");
+  try {
+    read_surface_mesh(file);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("empty.obj' is empty"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(GeometryMeshIoTest, UnreadableContentIsAnError) {
+  const fs::path file = write("garbage.off", "this is not an OFF file\n\x01\x02\x03");
+  EXPECT_THROW(read_surface_mesh(file), std::runtime_error);
+  const fs::path vertices_only = write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  EXPECT_THROW(read_surface_mesh(vertices_only), std::runtime_error);
+}
+
+TEST_F(GeometryMeshIoTest, UnknownExtensionIsAnError) {
+  const fs::path file = write("mesh.xyz", "v 0 0 0\n");
+  try {
+    read_surface_mesh(file);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(".obj, .stl, .ply or .off"), std::string::npos);
+  }
+}
+
+TEST_F(GeometryMeshIoTest, MshAndVtuHoldEveryNodeAndTet) {
+  TetMesh mesh;
+  mesh.vertices.resize(5, 3);
+  mesh.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1;
+  mesh.tets.resize(2, 4);
+  mesh.tets << 0, 1, 2, 3, 1, 2, 3, 4;
+  write_msh(dir_ / "m.msh", mesh);
+  const std::string msh = slurp(dir_ / "m.msh");
+  EXPECT_NE(msh.find("$MeshFormat\n2.2 0 8\n"), std::string::npos);
+  EXPECT_NE(msh.find("$Nodes\n5\n"), std::string::npos);
+  EXPECT_NE(msh.find("$Elements\n2\n1 4 2 1 1 1 2 3 4\n2 4 2 1 1 2 3 4 5\n"), std::string::npos);
+
+  Eigen::VectorXd stress(2);
+  stress << 1.5, 2.5;
+  write_vtu(dir_ / "m.vtu", mesh, {{"stress", stress}});
+  const std::string vtu = slurp(dir_ / "m.vtu");
+  EXPECT_NE(vtu.find("NumberOfPoints=\"5\" NumberOfCells=\"2\""), std::string::npos);
+  EXPECT_NE(vtu.find("Name=\"stress\""), std::string::npos);
+  EXPECT_NE(vtu.find("1.5\n2.5\n"), std::string::npos);
+  EXPECT_THROW(write_vtu(dir_ / "bad.vtu", mesh, {{"stress", Eigen::VectorXd(3)}}),
+               std::invalid_argument);
+}
+
+TEST_F(GeometryMeshIoTest, UnwritableFolderIsAnError) {
+  EXPECT_THROW(write_obj(dir_ / "no" / "such" / "dir.obj", testing::box(1, 1, 1)),
+               std::runtime_error);
+}
+
+}  // namespace
+}  // namespace grip::geometry

@@ -1,0 +1,124 @@
+// Scene files: what they build, and one clear error for each kind of mistake.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "src/config/config.hpp"
+#include "src/scene/scene_file.hpp"
+#include "src/scene/scene_run.hpp"
+
+namespace grip::scene {
+namespace {
+
+std::filesystem::path write_scene(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+const std::string kDrop = R"(
+[sim]
+dt = 0.01
+duration = 0.2
+kappa = "auto"
+
+[[body]]
+name = "ground"
+type = "kinematic"
+shape = "box"
+size = [1, 1, 0.02]
+position = [0, 0, -0.01]
+
+[[body]]
+name = "ball"
+type = "affine"
+shape = "sphere"
+radius = 0.02
+position = [0, 0, 0.05]
+rotation = [90, 0, 0]
+density = 800
+
+[[body]]
+name = "jelly"
+type = "fem"
+shape = "box"
+size = [0.02, 0.02, 0.02]
+resolution = 0.01
+position = [0.1, 0, 0.0115]
+youngs = 2e5
+
+[[contact]]
+bodies = ["ball", "ground"]
+friction = 0.9
+)";
+
+TEST(SceneFile, BuildsBodiesParametersAndContacts) {
+  const SceneFile file = load_scene_file(write_scene("grip_scene_drop.toml", kDrop));
+  EXPECT_DOUBLE_EQ(file.duration, 0.2);
+  EXPECT_TRUE(file.scene.sim.adaptive_kappa);
+  ASSERT_EQ(file.scene.bodies.size(), 3u);
+  EXPECT_EQ(file.scene.bodies[0].type, solver::BodyType::kKinematic);
+  EXPECT_EQ(file.scene.bodies[1].type, solver::BodyType::kAffine);
+  EXPECT_EQ(file.scene.bodies[2].type, solver::BodyType::kFem);
+  EXPECT_EQ(file.scene.bodies[2].tets.rows(), 6 * 2 * 2 * 2);
+  // Extrinsic XYZ degrees: 90 about x takes y to z.
+  const Eigen::Vector3d y = file.scene.bodies[1].pose.rotation * Eigen::Vector3d::UnitY();
+  EXPECT_NEAR(y.z(), 1.0, 1e-12);
+  ASSERT_EQ(file.scene.contacts.size(), 1u);
+  EXPECT_EQ(file.scene.contacts[0].body_a, 1);
+  EXPECT_DOUBLE_EQ(file.scene.contacts[0].friction, 0.9);
+}
+
+TEST(SceneFile, RunsAndReportsTheInvariants) {
+  const SceneReport report =
+      run_scene(load_scene_file(write_scene("grip_scene_drop.toml", kDrop)), true);
+  EXPECT_TRUE(report.ok) << report.failure;
+  EXPECT_EQ(report.steps, 20);
+  EXPECT_TRUE(report.intersection_free);
+  EXPECT_GT(report.min_volume_ratio, 0.0);
+  ASSERT_EQ(report.trace.size(), 20u);
+  // The ball fell onto the ground and rests on it.
+  EXPECT_NEAR(report.bodies[1].com.z(), 0.02, 2e-3);
+  std::ostringstream json;
+  write_json(json, report, true);
+  EXPECT_NE(json.str().find("\"status\": \"ok\""), std::string::npos);
+  EXPECT_NE(json.str().find("\"trace\""), std::string::npos);
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    load_scene_file(write_scene("grip_scene_bad.toml", text));
+  } catch (const config::ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return {};
+}
+
+TEST(SceneFile, MistakesAreOneLineErrorsNamingFileLineAndKey) {
+  const std::string body = "[[body]]\nname = \"b\"\ntype = \"affine\"\nshape = \"box\"\n";
+  EXPECT_NE(error_of(body + "size = [0.1, 0.1, 0.1]\ndensty = 3\n")
+                .find("grip_scene_bad.toml:6: unknown key 'body[0].densty'; did you mean "
+                      "'body[0].density'?"),
+            std::string::npos);
+  EXPECT_NE(error_of(body + "size = [0.1, 0.1, -0.1]\n").find("key 'body[0].size' must hold three positive"),
+            std::string::npos);
+  EXPECT_NE(error_of(body + "size = [0.1, 0.1, 0.1]\nyoungs = 1e6\n")
+                .find("key 'body[0].youngs' applies to FEM bodies only"),
+            std::string::npos);
+  EXPECT_NE(error_of("[sim]\ndt = 0\n" + body + "size = [0.1, 0.1, 0.1]\n")
+                .find("grip_scene_bad.toml:2: key 'sim.dt' must be positive"),
+            std::string::npos);
+  EXPECT_NE(error_of(body + "size = [0.1, 0.1, 0.1]\n[[contact]]\nbodies = [\"b\", \"c\"]\nfriction = 1\n")
+                .find("names no body: \"c\""),
+            std::string::npos);
+  EXPECT_NE(error_of("[[body]]\nname = \"m\"\ntype = \"affine\"\nshape = \"mesh\"\nfile = \"nope.obj\"\n")
+                .find("key 'body[0].file' cannot be used"),
+            std::string::npos);
+  EXPECT_NE(error_of("[sim]\ndt = 0.01\n").find("a scene needs at least one [[body]]"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace grip::scene
