@@ -287,7 +287,6 @@ bool Environment::newton(StepTargets& targets, double& progress) {
   Eigen::VectorXd gradient;
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<Eigen::Triplet<double>> free_triplets;
-  Eigen::SparseMatrix<double> matrix(n, n);
 
   Eigen::VectorXd kinematic_force;
   double first_residual = 0.0;
@@ -338,9 +337,7 @@ bool Environment::newton(StepTargets& targets, double& progress) {
     // the dynamic bodies, so a body resting in equilibrium is not asked for round-off.
     if (iteration == 0) first_residual = std::max(residual, weight * h * h);
     diagnostics_.residual = residual / (h * h);
-    matrix.setFromTriplets(free_triplets.begin(), free_triplets.end());
-    matrix.makeCompressed();
-    if (!cholesky_.factorize(matrix)) return fail("Newton matrix is not positive definite");
+    if (!cholesky_.factorize(assembly_.assemble(n, free_triplets))) return fail("Newton matrix is not positive definite");
     const Eigen::VectorXd p = cholesky_.solve(rhs);
     if (!p.allFinite()) return fail("non-finite Newton step");
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/linear/sparse_assembly.hpp"
 #include "solver/linear/sparse_cholesky.hpp"
 #include "solver/model.hpp"
 #include "solver/newton/incremental_potential.hpp"
@@ -85,6 +86,7 @@ class Environment {
   std::string failure_;
   StepDiagnostics diagnostics_;
   IncrementalPotential potential_;
+  SparseAssembly assembly_;
   SparseCholesky cholesky_;
 };
 
