@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "src/config/config.hpp"
 
@@ -132,7 +133,8 @@ TEST(ConfigReader, SyntaxErrorNamesLine) {
 }
 
 TEST(ConfigReader, LoadsFilesAndKeepsTheirText) {
-  const auto path = std::filesystem::temp_directory_path() / "grip_config_test_job.toml";
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("grip_config_test_job_" + std::to_string(::getpid()) + ".toml");
   const std::string text = "seed = 7\n# a comment\n";
   std::ofstream(path) << text;
   const auto doc = Document::load(path);

@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <unistd.h>
 
 #include "src/config/config.hpp"
 #include "src/scene/scene_file.hpp"
@@ -11,8 +13,9 @@
 namespace grip::scene {
 namespace {
 
+// Per process: ctest runs each test case as its own process, possibly in parallel.
 std::filesystem::path write_scene(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / name;
+  const auto path = std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + name);
   std::ofstream(path) << text;
   return path;
 }
