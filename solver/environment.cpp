@@ -341,7 +341,6 @@ bool Environment::newton(StepTargets& targets, double& progress) {
     const Eigen::VectorXd p = cholesky_.solve(rhs);
     if (!p.allFinite()) return fail("non-finite Newton step");
 
-    const Vertices x_end = positions_at(q_ + p, targets, 1.0);
     // Converged: the residual fell by newton_tol against its scale, or the step would change
     // no vertex's velocity by more than newton_velocity_tol. A test on the step's length alone
     // is not enough: near d_hat the barrier (and sticking friction) is so stiff that a
@@ -353,6 +352,7 @@ bool Environment::newton(StepTargets& targets, double& progress) {
 
     // Line search: CCD's safe fraction of the step, then positive volumes, then (once the
     // prescribed motion is done) Armijo on the incremental potential.
+    const Vertices x_end = positions_at(q_ + p, targets, 1.0);
     const std::vector<ContactPair> swept = find_contact_pairs(*model_, x, x_end, sim.d_hat);
     double alpha = 1.0;
     for (const ContactPair& pair : swept) {

@@ -5,6 +5,7 @@
 // apart (distance > 0) and every tet positively oriented; a step that cannot do so fails the
 // environment with a reason, and a failed environment stays failed.
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>

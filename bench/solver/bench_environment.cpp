@@ -8,7 +8,6 @@
 #include <benchmark/benchmark.h>
 
 #include "solver/environment.hpp"
-#include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/primitives.hpp"
 #include "src/scene/primitives.hpp"
 
@@ -30,15 +29,10 @@ BodyDescription surface_body(const std::string& name, BodyType type,
 // pressed by a plate coming down at 5 cm/s.
 SceneDescription soft_body_in_contact() {
   SceneDescription scene;
-  const geometry::TetMesh tets = scene::box_tets({0.06, 0.06, 0.06}, 0.005);
-  Eigen::VectorXi to_tet;
-  const geometry::SurfaceMesh surface = geometry::boundary_surface(tets, &to_tet);
   BodyDescription cube;
   cube.name = "cube";
   cube.type = BodyType::kFem;
-  cube.vertices = tets.vertices;
-  cube.tets = tets.tets;
-  cube.triangles = surface.triangles.unaryExpr([&](int v) { return to_tet[v]; });
+  scene::set_fem_mesh(cube, scene::box_tets({0.06, 0.06, 0.06}, 0.005));
   cube.pose.position = {0, 0, 0.0305};
   cube.material.youngs = 1e5;
   scene.bodies.push_back(cube);

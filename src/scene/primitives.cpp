@@ -2,7 +2,17 @@
 
 #include <Eigen/Geometry>
 
+#include "src/geometry/boundary_surface.hpp"
+
 namespace grip::scene {
+
+void set_fem_mesh(solver::BodyDescription& body, const geometry::TetMesh& tets) {
+  Eigen::VectorXi to_tet;
+  const geometry::SurfaceMesh boundary = geometry::boundary_surface(tets, &to_tet);
+  body.vertices = tets.vertices;
+  body.tets = tets.tets;
+  body.triangles = boundary.triangles.unaryExpr([&](int v) { return to_tet[v]; });
+}
 
 geometry::TetMesh box_tets(const Eigen::Vector3d& size, double cell) {
   const Eigen::Vector3i n = (size / cell).array().round().max(1.0).cast<int>();

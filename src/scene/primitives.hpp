@@ -1,9 +1,14 @@
 #pragma once
-// A soft box for scene files: a structured tet grid (exact volume, no meshing needed). The
-// other primitive shapes come from src/geometry/primitives.hpp.
+// Soft bodies for scene files: a tet mesh made an FEM body's mesh, and a box as a structured
+// tet grid (exact volume, no meshing needed). Surface shapes come from src/geometry/primitives.hpp.
+#include "solver/scene.hpp"
 #include "src/geometry/mesh.hpp"
 
 namespace grip::scene {
+
+// Gives an FEM body a tet mesh: its vertices, its tets and its boundary triangles (indexing
+// the tet mesh's vertices, as the solver wants them).
+void set_fem_mesh(solver::BodyDescription& body, const geometry::TetMesh& tets);
 
 // A box of full extents `size` split into cells of about `cell` (at least one per axis), six
 // positively oriented tets per cell (Kuhn's split, conforming across cells).

@@ -6,7 +6,6 @@
 
 #include "solver/model.hpp"
 #include "src/config/config.hpp"
-#include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/mesh_io.hpp"
 #include "src/geometry/primitives.hpp"
 #include "src/geometry/tetrahedralize.hpp"
@@ -83,12 +82,7 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir,
     if ((size.array() <= 0).any()) body.fail("size", "must hold three positive extents (m)");
     if (soft) {
       // A structured grid: exact volume, no CGAL meshing needed for boxes.
-      const geometry::TetMesh tets = box_tets(size, resolution);
-      Eigen::VectorXi to_tet;
-      const geometry::SurfaceMesh boundary = geometry::boundary_surface(tets, &to_tet);
-      out.vertices = tets.vertices;
-      out.tets = tets.tets;
-      out.triangles = boundary.triangles.unaryExpr([&](int v) { return to_tet[v]; });
+      set_fem_mesh(out, box_tets(size, resolution));
       return;
     }
     surface = geometry::make_box(size);
@@ -123,11 +117,7 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir,
     } catch (const std::exception& e) {
       body.fail("shape", std::string("could not be tetrahedralized: ") + e.what());
     }
-    Eigen::VectorXi to_tet;
-    const geometry::SurfaceMesh boundary = geometry::boundary_surface(tets, &to_tet);
-    out.vertices = tets.vertices;
-    out.tets = tets.tets;
-    out.triangles = boundary.triangles.unaryExpr([&](int v) { return to_tet[v]; });
+    set_fem_mesh(out, tets);
   } else {
     out.vertices = surface.vertices;
     out.triangles = surface.triangles;

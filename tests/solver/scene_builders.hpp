@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include "solver/environment.hpp"
-#include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/primitives.hpp"
 #include "src/scene/invariants.hpp"
 #include "src/scene/primitives.hpp"
@@ -25,15 +24,10 @@ inline BodyDescription rigid_box(const std::string& name, BodyType type,
 
 inline BodyDescription soft_box(const std::string& name, const Eigen::Vector3d& size, double cell,
                                 const Eigen::Vector3d& position, double youngs) {
-  const geometry::TetMesh tets = scene::box_tets(size, cell);
-  Eigen::VectorXi to_tet;
-  const geometry::SurfaceMesh surface = geometry::boundary_surface(tets, &to_tet);
   BodyDescription body;
   body.name = name;
   body.type = BodyType::kFem;
-  body.vertices = tets.vertices;
-  body.tets = tets.tets;
-  body.triangles = surface.triangles.unaryExpr([&](int v) { return to_tet[v]; });
+  scene::set_fem_mesh(body, scene::box_tets(size, cell));
   body.pose.position = position;
   body.material.youngs = youngs;
   body.material.poisson = 0.4;
