@@ -4,12 +4,15 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <mutex>
+#include <stdexcept>
 
 #include "solver/contact/candidates.hpp"
 #include "solver/contact/contact_frame.hpp"
 #include "solver/kernels/accd.hpp"
 #include "solver/kernels/affine_body.hpp"
 #include "solver/kernels/neo_hookean.hpp"
+#include "solver/linear/blas_threads.hpp"
 
 namespace grip::solver {
 
@@ -22,6 +25,21 @@ struct Environment::StepTargets {
   Vertices kinematic_start;           // valid at kinematic collision vertices
   Vertices kinematic_target;
   std::vector<Pose> pose_target;
+};
+
+// Where a step under way stands: its targets, how much of the prescribed motion is done, which
+// friction lag and Newton iteration it is in, and the residual scale of the current solve.
+struct Environment::StepState {
+  StepTargets targets;
+  double progress = 0.0;
+  int lag = 0;
+  int iteration = 0;        // within the current lag's solve
+  double first_residual = 0.0;
+  double weight = 0.0;      // N, of the dynamic bodies under the current gravity
+  Eigen::VectorXd gradient;
+  Eigen::VectorXd kinematic_force;
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<Eigen::Triplet<double>> free_triplets;
 };
 
 namespace {
@@ -118,7 +136,12 @@ Environment::Environment(std::shared_ptr<const Model> model)
     : model_(std::move(model)),
       gravity_(model_->sim().gravity),
       kappa_(model_->sim().kappa),
-      potential_(*model_) {
+      potential_(*model_),
+      cholesky_(model_->ordering()) {
+  // Environments run side by side on threads of their own (solver/batch); a BLAS threading
+  // inside each factorization would oversubscribe the cores.
+  static std::once_flag blas_configured;
+  std::call_once(blas_configured, use_single_threaded_blas);
   const SceneDescription& scene = model_->scene();
   q_.setZero(model_->dof_count());
   v_.setZero(model_->dof_count());
@@ -153,13 +176,47 @@ Environment::Environment(std::shared_ptr<const Model> model)
   }
 }
 
+Environment::~Environment() = default;
+Environment::Environment(Environment&&) noexcept = default;
+
+void Environment::place(int index, const Eigen::Isometry3d& motion) {
+  if (time_ != 0.0 || step_) throw std::logic_error("Environment::place after the first step");
+  const BodyModel& body = model_->bodies().at(static_cast<std::size_t>(index));
+  const Eigen::Matrix3d r = motion.linear();
+  const Eigen::Vector3d t = motion.translation();
+  switch (body.type) {
+    case BodyType::kFem:
+      for (Eigen::Index v = 0; v < body.rest.rows(); ++v) {
+        const int o = body.dof_offset + 3 * static_cast<int>(v);
+        q_.segment<3>(o) = r * q_.segment<3>(o) + t;
+        v_.segment<3>(o) = r * v_.segment<3>(o);
+      }
+      break;
+    case BodyType::kAffine: {
+      const Vector12d q = q_.segment<12>(body.dof_offset), v = v_.segment<12>(body.dof_offset);
+      q_.segment<12>(body.dof_offset) =
+          kernels::affine_body_dofs(r * kernels::affine_body_matrix(q), r * q.segment<3>(0) + t);
+      v_.segment<12>(body.dof_offset) =
+          kernels::affine_body_dofs(r * kernels::affine_body_matrix(v), r * v.segment<3>(0));
+      break;
+    }
+    case BodyType::kKinematic:
+      poses_[index].position = r * poses_[index].position + t;
+      poses_[index].rotation = Eigen::Quaterniond(r) * poses_[index].rotation;
+      poses_[index].rotation.normalize();
+      kinematic_velocity_[index] = r * kinematic_velocity_[index];
+      break;
+  }
+}
+
 void Environment::set_script(int body, const Script& script) {
   scripts_.at(static_cast<std::size_t>(body)) = script;
 }
 
-bool Environment::fail(const std::string& reason) {
+Environment::Progress Environment::fail(const std::string& reason) {
   failure_ = "t = " + std::to_string(time_) + " s: " + reason;
-  return false;
+  step_.reset();
+  return Progress::kFailed;
 }
 
 Vertices Environment::positions_at(const Eigen::VectorXd& q, const StepTargets& targets,
@@ -279,115 +336,125 @@ std::vector<FrictionContact> Environment::lag_friction(const Vertices& positions
   return contacts;
 }
 
-bool Environment::newton(StepTargets& targets, double& progress) {
+Environment::NewtonOutcome Environment::newton_iteration(StepState& state) {
   const SimParameters& sim = model_->sim();
+  if (state.iteration == sim.max_newton_iters) {
+    fail("Newton did not converge in " + std::to_string(sim.max_newton_iters) + " iterations");
+    return NewtonOutcome::kFailed;
+  }
+  const int iteration = state.iteration++;
+  auto give_up = [this](const std::string& reason) {
+    fail(reason);
+    return NewtonOutcome::kFailed;
+  };
   const int n = model_->dof_count();
   const std::vector<char>& prescribed = model_->prescribed();
   const double h = sim.dt;
-  Eigen::VectorXd gradient;
-  std::vector<Eigen::Triplet<double>> triplets;
-  std::vector<Eigen::Triplet<double>> free_triplets;
+  StepTargets& targets = state.targets;
+  double& progress = state.progress;
 
-  Eigen::VectorXd kinematic_force;
-  double first_residual = 0.0;
-  double weight = 0.0;  // N
-  for (const BodyModel& body : model_->bodies()) {
-    const double mass = body.type == BodyType::kFem      ? body.vertex_mass.sum()
-                        : body.type == BodyType::kAffine ? body.mass_matrix(0, 0)
-                                                         : 0.0;
-    weight += mass * gravity_.norm();
-  }
-  for (int iteration = 0; iteration < sim.max_newton_iters; ++iteration) {
-    ++diagnostics_.newton_iterations;
-    const Vertices x = positions_at(q_, targets, progress);
-    const std::vector<ContactPair> near = find_contact_pairs(*model_, x, x, sim.d_hat);
-    // Prescribed motion still to come: pinned DOFs (`lift`) and kinematic vertices. Pinned
-    // DOFs are eliminated, H_ff p_f = -(g_f + H_fp lift_p + H_fk dk), p_p = lift_p.
-    const bool moving = progress < 1.0;
-    const Vertices kinematic_motion = positions_at(q_, targets, 1.0) - x;
-    potential_.derivatives(q_, x, near, gradient, triplets, moving ? &kinematic_motion : nullptr,
-                           &kinematic_force);
-    if (!gradient.allFinite()) return fail("non-finite gradient in Newton iteration");
-    Eigen::VectorXd lift = Eigen::VectorXd::Zero(n);
-    if (moving) {
-      for (int i = 0; i < n; ++i) {
-        if (prescribed[i]) lift[i] = targets.prescribed_target[i] - q_[i];
-      }
-    }
-    Eigen::VectorXd rhs = -gradient - kinematic_force;
-    free_triplets.clear();
-    for (const auto& e : triplets) {
-      const int r = static_cast<int>(e.row()), c = static_cast<int>(e.col());
-      if (moving) {
-        rhs[r] -= e.value() * lift[c];
-        if (r != c) rhs[c] -= e.value() * lift[r];
-      }
-      if (!prescribed[r] && !prescribed[c]) free_triplets.push_back(e);
-    }
-    double residual = 0.0;
+  ++diagnostics_.newton_iterations;
+  ++statistics_.newton_iterations;
+  statistics_.max_step_iterations =
+      std::max(statistics_.max_step_iterations, diagnostics_.newton_iterations);
+  const Vertices x = positions_at(q_, targets, progress);
+  const std::vector<ContactPair> near = find_contact_pairs(*model_, x, x, sim.d_hat);
+  // Prescribed motion still to come: pinned DOFs (`lift`) and kinematic vertices. Pinned
+  // DOFs are eliminated, H_ff p_f = -(g_f + H_fp lift_p + H_fk dk), p_p = lift_p.
+  const bool moving = progress < 1.0;
+  const Vertices kinematic_motion = positions_at(q_, targets, 1.0) - x;
+  Eigen::VectorXd& gradient = state.gradient;
+  potential_.derivatives(q_, x, near, gradient, state.triplets,
+                         moving ? &kinematic_motion : nullptr, &state.kinematic_force);
+  if (!gradient.allFinite()) return give_up("non-finite gradient in Newton iteration");
+  Eigen::VectorXd lift = Eigen::VectorXd::Zero(n);
+  if (moving) {
     for (int i = 0; i < n; ++i) {
-      if (prescribed[i]) {
-        free_triplets.emplace_back(i, i, 1.0);
-        rhs[i] = lift[i];
-      } else {
-        residual = std::max(residual, std::abs(gradient[i]));
+      if (prescribed[i]) lift[i] = targets.prescribed_target[i] - q_[i];
+    }
+  }
+  Eigen::VectorXd rhs = -gradient - state.kinematic_force;
+  std::vector<Eigen::Triplet<double>>& free_triplets = state.free_triplets;
+  free_triplets.clear();
+  for (const auto& e : state.triplets) {
+    const int r = static_cast<int>(e.row()), c = static_cast<int>(e.col());
+    if (moving) {
+      rhs[r] -= e.value() * lift[c];
+      if (r != c) rhs[c] -= e.value() * lift[r];
+    }
+    if (!prescribed[r] && !prescribed[c]) free_triplets.push_back(e);
+  }
+  double residual = 0.0;
+  for (int i = 0; i < n; ++i) {
+    if (prescribed[i]) {
+      free_triplets.emplace_back(i, i, 1.0);
+      rhs[i] = lift[i];
+    } else {
+      residual = std::max(residual, std::abs(gradient[i]));
+    }
+  }
+  // The residual's scale: this solve's first residual, and never less than the weight of
+  // the dynamic bodies, so a body resting in equilibrium is not asked for round-off.
+  if (iteration == 0) state.first_residual = std::max(residual, state.weight * h * h);
+  diagnostics_.residual = residual / (h * h);
+  if (!cholesky_.factorize(assembly_.assemble(n, free_triplets))) {
+    return give_up("Newton matrix is not positive definite");
+  }
+  const Eigen::VectorXd p = cholesky_.solve(rhs);
+  if (!p.allFinite()) return give_up("non-finite Newton step");
+
+  // Converged: the residual fell by newton_tol against its scale, or the step would change
+  // no vertex's velocity by more than newton_velocity_tol. A test on the step's length alone
+  // is not enough: near d_hat the barrier (and sticking friction) is so stiff that a
+  // micrometre off leaves the normal force, and friction's lagged lambda, wrong.
+  if (!moving && (residual <= sim.newton_tol * state.first_residual ||
+                  max_vertex_displacement(*model_, p) <= sim.newton_velocity_tol * h)) {
+    return NewtonOutcome::kConverged;
+  }
+
+  // Line search: CCD's safe fraction of the step, then positive volumes, then (once the
+  // prescribed motion is done) Armijo on the incremental potential.
+  const Vertices x_end = positions_at(q_ + p, targets, 1.0);
+  const std::vector<ContactPair> swept = find_contact_pairs(*model_, x, x_end, sim.d_hat);
+  double alpha = 1.0;
+  for (const ContactPair& pair : swept) {
+    const kernels::AccdResult impact = time_of_impact(pair, x, x_end, sim.ccd_rescaling);
+    if (impact.impact) alpha = std::min(alpha, impact.toi);
+  }
+  if (!(alpha > 0.0)) return give_up("continuous collision detection allows no motion");
+  while (min_volume_ratio_of(*model_, q_ + alpha * p) <= 0.0) {
+    alpha *= 0.5;
+    ++diagnostics_.line_search_steps;
+    if (alpha < 1e-12) return give_up("no step keeps every tetrahedron positively oriented");
+  }
+  if (!moving) {
+    const double energy = potential_.energy(q_, x, swept);
+    const double slope = gradient.dot(p);
+    for (;;) {
+      const Eigen::VectorXd trial = q_ + alpha * p;
+      if (potential_.energy(trial, positions_at(trial, targets, 1.0), swept) <=
+          energy + 1e-4 * alpha * slope) {
+        break;
       }
-    }
-    // The residual's scale: this solve's first residual, and never less than the weight of
-    // the dynamic bodies, so a body resting in equilibrium is not asked for round-off.
-    if (iteration == 0) first_residual = std::max(residual, weight * h * h);
-    diagnostics_.residual = residual / (h * h);
-    if (!cholesky_.factorize(assembly_.assemble(n, free_triplets))) return fail("Newton matrix is not positive definite");
-    const Eigen::VectorXd p = cholesky_.solve(rhs);
-    if (!p.allFinite()) return fail("non-finite Newton step");
-
-    // Converged: the residual fell by newton_tol against its scale, or the step would change
-    // no vertex's velocity by more than newton_velocity_tol. A test on the step's length alone
-    // is not enough: near d_hat the barrier (and sticking friction) is so stiff that a
-    // micrometre off leaves the normal force, and friction's lagged lambda, wrong.
-    if (!moving && (residual <= sim.newton_tol * first_residual ||
-                    max_vertex_displacement(*model_, p) <= sim.newton_velocity_tol * h)) {
-      return true;
-    }
-
-    // Line search: CCD's safe fraction of the step, then positive volumes, then (once the
-    // prescribed motion is done) Armijo on the incremental potential.
-    const Vertices x_end = positions_at(q_ + p, targets, 1.0);
-    const std::vector<ContactPair> swept = find_contact_pairs(*model_, x, x_end, sim.d_hat);
-    double alpha = 1.0;
-    for (const ContactPair& pair : swept) {
-      const kernels::AccdResult impact = time_of_impact(pair, x, x_end, sim.ccd_rescaling);
-      if (impact.impact) alpha = std::min(alpha, impact.toi);
-    }
-    if (!(alpha > 0.0)) return fail("continuous collision detection allows no motion");
-    while (min_volume_ratio_of(*model_, q_ + alpha * p) <= 0.0) {
       alpha *= 0.5;
       ++diagnostics_.line_search_steps;
-      if (alpha < 1e-12) return fail("no step keeps every tetrahedron positively oriented");
+      if (alpha < 1e-12) return give_up("line search cannot decrease the incremental potential");
     }
-    if (!moving) {
-      const double energy = potential_.energy(q_, x, swept);
-      const double slope = gradient.dot(p);
-      for (;;) {
-        const Eigen::VectorXd trial = q_ + alpha * p;
-        if (potential_.energy(trial, positions_at(trial, targets, 1.0), swept) <=
-            energy + 1e-4 * alpha * slope) {
-          break;
-        }
-        alpha *= 0.5;
-        ++diagnostics_.line_search_steps;
-        if (alpha < 1e-12) return fail("line search cannot decrease the incremental potential");
-      }
-    }
-    q_ += alpha * p;
-    progress = alpha >= 1.0 ? 1.0 : progress + alpha * (1.0 - progress);
   }
-  return fail("Newton did not converge in " + std::to_string(sim.max_newton_iters) +
-              " iterations");
+  q_ += alpha * p;
+  progress = alpha >= 1.0 ? 1.0 : progress + alpha * (1.0 - progress);
+  return NewtonOutcome::kContinue;
 }
 
 bool Environment::step() {
-  if (failed()) return false;
+  Progress progress = begin_step();
+  while (progress == Progress::kIterating) progress = iterate();
+  return progress == Progress::kStepDone;
+}
+
+Environment::Progress Environment::begin_step() {
+  if (failed()) return Progress::kFailed;
+  if (step_) throw std::logic_error("Environment::begin_step while a step is under way");
   const SimParameters& sim = model_->sim();
   const double h = sim.dt;
   const CollisionMesh& mesh = model_->collision();
@@ -395,7 +462,8 @@ bool Environment::step() {
   diagnostics_ = StepDiagnostics{};
   diagnostics_.kappa = kappa_;
 
-  StepTargets targets;
+  step_ = std::make_unique<StepState>();
+  StepTargets& targets = step_->targets;
   targets.q_start = q_;
   targets.pose_target.resize(body_count);
   for (int b = 0; b < body_count; ++b) {
@@ -434,23 +502,46 @@ bool Environment::step() {
       for (Eigen::Index v = 0; v < body.rest.rows(); ++v) {
         q_tilde.segment<3>(body.dof_offset + 3 * v) += h * h * gravity_;
       }
+      step_->weight += body.vertex_mass.sum() * gravity_.norm();
     } else if (body.type == BodyType::kAffine) {
       const Vector12d force = body.material.density * body.volume *
                               kernels::affine_body_jacobian(Eigen::Vector3d::Zero()).transpose() *
                               gravity_;
       q_tilde.segment<12>(body.dof_offset) += h * h * body.mass_matrix_inverse * force;
+      step_->weight += body.mass_matrix(0, 0) * gravity_.norm();
     }
   }
 
   potential_.begin_step(q_tilde, start, kappa_);
-  double progress = 0.0;
-  for (int lag = 0; lag < std::max(1, sim.friction_lag_iterations); ++lag) {
-    potential_.set_friction(lag_friction(lag == 0 ? start : positions_at(q_, targets, progress)));
-    if (!newton(targets, progress)) return false;
-  }
+  potential_.set_friction(lag_friction(start));
+  return Progress::kIterating;
+}
 
+Environment::Progress Environment::iterate() {
+  if (failed()) return Progress::kFailed;
+  if (!step_) throw std::logic_error("Environment::iterate without begin_step");
+  StepState& state = *step_;
+  switch (newton_iteration(state)) {
+    case NewtonOutcome::kFailed: return Progress::kFailed;
+    case NewtonOutcome::kContinue: return Progress::kIterating;
+    case NewtonOutcome::kConverged: break;
+  }
+  // Each further friction lag re-linearizes friction at the current positions and solves again.
+  if (++state.lag < std::max(1, model_->sim().friction_lag_iterations)) {
+    potential_.set_friction(lag_friction(positions_at(q_, state.targets, state.progress)));
+    state.iteration = 0;
+    return Progress::kIterating;
+  }
+  finish_step();
+  return Progress::kStepDone;
+}
+
+void Environment::finish_step() {
+  const SimParameters& sim = model_->sim();
+  const StepTargets& targets = step_->targets;
+  const double h = sim.dt;
   v_ = (q_ - targets.q_start) / h;
-  for (int b = 0; b < body_count; ++b) {
+  for (std::size_t b = 0; b < model_->bodies().size(); ++b) {
     if (model_->bodies()[b].type != BodyType::kKinematic) continue;
     kinematic_velocity_[b] = (targets.pose_target[b].position - poses_[b].position) / h;
     poses_[b] = targets.pose_target[b];
@@ -458,7 +549,25 @@ bool Environment::step() {
   time_ += h;
   record_diagnostics(targets);
   if (sim.adaptive_kappa && diagnostics_.min_distance < 0.1 * sim.d_hat) kappa_ *= 2.0;
-  return true;
+  ++statistics_.steps;
+  step_.reset();
+}
+
+VertexContactForces Environment::vertex_contact_forces() const {
+  const CollisionMesh& mesh = model_->collision();
+  const Vertices x = collision_positions();
+  VertexContactForces forces{Vertices::Zero(mesh.size(), 3), Vertices::Zero(mesh.size(), 3)};
+  auto add = [](Vertices& to, const std::array<int, 4>& vertex, const Eigen::Matrix<double, 12, 1>& f) {
+    for (int i = 0; i < 4; ++i) to.row(vertex[i]) += f.segment<3>(3 * i).transpose();
+  };
+  for (const ContactPair& pair : find_contact_pairs(*model_, x, x, model_->sim().d_hat)) {
+    const ContactForce force = potential_.contact_force(pair, x);
+    if (force.magnitude > 0.0) add(forces.normal, pair.vertex, force.force);
+  }
+  for (const FrictionContact& contact : potential_.friction()) {
+    add(forces.friction, contact.vertex, potential_.friction_force(contact, x));
+  }
+  return forces;
 }
 
 void Environment::record_diagnostics(const StepTargets& targets) {

@@ -5,6 +5,7 @@
 // apart (distance > 0) and every tet positively oriented; a step that cannot do so fails the
 // environment with a reason, and a failed environment stays failed.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <limits>
 #include <memory>
 #include <string>
@@ -25,6 +26,12 @@ struct PairForce {
   double normal_force = 0.0;  // sum of the contacts' barrier force magnitudes, N
 };
 
+// Contact forces on each collision vertex (rows follow Model::collision()), N.
+struct VertexContactForces {
+  Vertices normal;    // barrier (normal) force
+  Vertices friction;  // lagged friction force of the last step
+};
+
 struct StepDiagnostics {
   int newton_iterations = 0;
   int line_search_steps = 0;  // Armijo halvings and inversion halvings
@@ -35,22 +42,45 @@ struct StepDiagnostics {
   std::vector<PairForce> contact_forces;
 };
 
+// Totals over every step an environment has taken.
+struct EnvironmentStatistics {
+  long steps = 0;
+  long newton_iterations = 0;
+  int max_step_iterations = 0;  // most Newton iterations in one step
+};
+
 class Environment {
  public:
   explicit Environment(std::shared_ptr<const Model> model);
+  ~Environment();
+  Environment(Environment&&) noexcept;
+
+  // Before the first step: moves a body rigidly by `motion` from where the scene starts it
+  // (its velocities turn with it; scripts are left as they are). Environments of one model
+  // start apart this way, e.g. a gripper at each candidate's pose. A pinned FEM body and its
+  // mount must be moved together. Throws std::logic_error after the first step.
+  void place(int body, const Eigen::Isometry3d& motion);
 
   // Advances one time step; false when the environment failed (now or before).
   bool step();
+
+  // The same step in parts, for a batch that runs the Newton iterations of many environments
+  // in rounds: begin_step(), then iterate() until it no longer returns kIterating.
+  enum class Progress { kIterating, kStepDone, kFailed };
+  Progress begin_step();
+  Progress iterate();
 
   // Between steps, the caller may redirect gravity and change kinematic scripts.
   void set_gravity(const Eigen::Vector3d& gravity) { gravity_ = gravity; }
   void set_script(int body, const Script& script);
 
   const Model& model() const { return *model_; }
+  const std::shared_ptr<const Model>& shared_model() const { return model_; }
   double time() const { return time_; }
   bool failed() const { return !failure_.empty(); }
   const std::string& failure() const { return failure_; }
   const StepDiagnostics& last_step() const { return diagnostics_; }
+  const EnvironmentStatistics& statistics() const { return statistics_; }
 
   const Eigen::VectorXd& dofs() const { return q_; }
   const Eigen::VectorXd& velocities() const { return v_; }
@@ -66,13 +96,18 @@ class Environment {
   Eigen::Matrix3d rotation(int body) const;
   // The smallest det F over the tets of every FEM body (1 without FEM).
   double min_volume_ratio() const;
+  // The contact forces on every collision vertex at the current state (between steps).
+  VertexContactForces vertex_contact_forces() const;
 
  private:
   struct StepTargets;
+  struct StepState;
+  enum class NewtonOutcome { kContinue, kConverged, kFailed };
   Vertices positions_at(const Eigen::VectorXd& q, const StepTargets& targets, double progress) const;
   std::vector<FrictionContact> lag_friction(const Vertices& positions) const;
-  bool newton(StepTargets& targets, double& progress);
-  bool fail(const std::string& reason);
+  NewtonOutcome newton_iteration(StepState& state);
+  void finish_step();
+  Progress fail(const std::string& reason);
   void record_diagnostics(const StepTargets& targets);
 
   std::shared_ptr<const Model> model_;
@@ -86,6 +121,8 @@ class Environment {
   double time_ = 0.0;
   std::string failure_;
   StepDiagnostics diagnostics_;
+  EnvironmentStatistics statistics_;
+  std::unique_ptr<StepState> step_;  // while a step is under way
   IncrementalPotential potential_;
   SparseAssembly assembly_;
   SparseCholesky cholesky_;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "solver/kernels/affine_body.hpp"
+#include "solver/linear/block_ordering.hpp"
 
 namespace grip::solver {
 namespace {
@@ -58,6 +59,33 @@ void check_surface(const BodyDescription& body) {
   if (body.triangles.minCoeff() < 0 || body.triangles.maxCoeff() >= body.vertices.rows()) {
     invalid(body, "has a triangle index outside its vertices");
   }
+}
+
+// Blocks of the Newton matrix: one per FEM vertex (3 DOFs) and per affine body (12), coupled
+// by the tets; a pinned vertex is solved for by an identity row, so it couples to nothing.
+BlockGraph block_graph(const Model& model) {
+  BlockGraph graph;
+  std::vector<int> first_block;  // per body
+  for (const BodyModel& body : model.bodies()) {
+    first_block.push_back(static_cast<int>(graph.block_offset.size()));
+    const int size = body.type == BodyType::kFem ? 3 : 12;
+    for (int d = 0; d < body.dof_count; d += size) graph.block_offset.push_back(body.dof_offset + d);
+  }
+  graph.block_offset.push_back(model.dof_count());
+  graph.neighbours.resize(graph.block_offset.size() - 1);
+  const std::vector<char>& prescribed = model.prescribed();
+  for (std::size_t b = 0; b < model.bodies().size(); ++b) {
+    const BodyModel& body = model.bodies()[b];
+    auto free = [&](int v) { return !prescribed[body.dof_offset + 3 * v]; };
+    for (const FemTet& tet : body.tets) {
+      for (int i : tet.vertices) {
+        for (int j : tet.vertices) {
+          if (i != j && free(i) && free(j)) graph.neighbours[first_block[b] + i].push_back(first_block[b] + j);
+        }
+      }
+    }
+  }
+  return graph;
 }
 
 }  // namespace
@@ -183,6 +211,9 @@ std::shared_ptr<const Model> Model::build(const SceneDescription& scene) {
       model->pair_friction_[pin.kinematic_body * body_count + index] = -1.0;
     }
   }
+
+  model->ordering_ = std::make_shared<const std::vector<int>>(
+      nested_dissection_ordering(block_graph(*model)));
 
   // The collision mesh: every surface vertex, edge and face of every body.
   CollisionMesh& mesh = model->collision_;

@@ -86,6 +86,11 @@ class Model {
   // The initial description, for initial poses, velocities and scripts.
   const SceneDescription& scene() const { return scene_; }
 
+  // A fill-reducing ordering of the Newton matrix's contact-free pattern (inertia, elasticity,
+  // pins), computed once and shared by every environment's factorizations: contacts add
+  // couplings, but re-ordering for each new contact set costs more than the extra fill.
+  const std::shared_ptr<const std::vector<int>>& ordering() const { return ordering_; }
+
  private:
   SceneDescription scene_;
   SimParameters sim_;
@@ -94,6 +99,7 @@ class Model {
   std::vector<PinnedVertex> pins_;
   std::vector<char> prescribed_;
   std::vector<double> pair_friction_;
+  std::shared_ptr<const std::vector<int>> ordering_;
   int dof_count_ = 0;
 };
 

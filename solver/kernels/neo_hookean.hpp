@@ -172,9 +172,11 @@ GRIP_HD inline Vector12d tet_stable_neo_hookean_gradient(const Vector12d& x,
   return rest_volume * deformation_gradient_jacobian(rest_shape_inverse).transpose() * vec_p;
 }
 
-// d^2 energy / dx^2 = V B^T (dP/dF) B. With project_psd, the 12x12 matrix is replaced by its
-// nearest positive semi-definite matrix (numerical eigen-decomposition of the 12x12 Hessian,
-// negative eigenvalues clamped to zero), as projected Newton needs.
+// d^2 energy / dx^2 = V B^T (dP/dF) B. With project_psd, dP/dF is replaced by its nearest
+// positive semi-definite matrix (negative eigenvalues clamped to zero), as projected Newton
+// needs. B (9 x 12) has full rank 9, so the 12x12 Hessian is PSD exactly when the 9x9 dP/dF
+// is: projecting the smaller matrix gives a PSD Hessian, leaves a PSD one unchanged, and
+// costs less than half as much.
 GRIP_HD inline Matrix12d tet_stable_neo_hookean_hessian(const Vector12d& x,
                                                         const Eigen::Matrix3d& rest_shape_inverse,
                                                         double rest_volume,
@@ -183,8 +185,7 @@ GRIP_HD inline Matrix12d tet_stable_neo_hookean_hessian(const Vector12d& x,
   const Eigen::Matrix<double, 9, 12> b = deformation_gradient_jacobian(rest_shape_inverse);
   const Matrix9d dpdf =
       stable_neo_hookean_stress_derivative(deformation_gradient(x, rest_shape_inverse), m);
-  const Matrix12d h = rest_volume * b.transpose() * dpdf * b;
-  return project_psd ? project_to_psd<12>(h) : h;
+  return rest_volume * b.transpose() * (project_psd ? project_to_psd<9>(dpdf) : dpdf) * b;
 }
 
 // Cauchy stress sigma = P F^T / J = (mu F F^T + (lambda (J - 1) - mu) J I) / J (Pa, symmetric);

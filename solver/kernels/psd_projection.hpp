@@ -3,6 +3,7 @@
 // the Frobenius norm): eigen-decompose and clamp negative eigenvalues to zero, as projected
 // Newton does per element before assembly.
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
@@ -14,6 +15,9 @@ namespace grip::solver::kernels {
 // batched symmetric eigen-solver (e.g. cuSOLVER's syevjBatched) for this step.
 template <int N>
 inline Eigen::Matrix<double, N, N> project_to_psd(const Eigen::Matrix<double, N, N>& H) {
+  // Most element Hessians are positive definite already; a Cholesky factorization proves it
+  // at a tenth of the eigen-decomposition's cost.
+  if (Eigen::LLT<Eigen::Matrix<double, N, N>>(H).info() == Eigen::Success) return H;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(H);
   if (eig.eigenvalues().minCoeff() >= 0.0) return H;
   const Eigen::Matrix<double, N, 1> clamped = eig.eigenvalues().cwiseMax(0.0);

@@ -1,33 +1,71 @@
 #include "solver/linear/sparse_cholesky.hpp"
 
-#include <Eigen/CholmodSupport>
+#include <cholmod.h>
+
 #include <algorithm>
 #include <stdexcept>
-#include <vector>
+#include <string>
 
 namespace grip::solver {
 
+namespace {
+
+// A CHOLMOD view of Eigen's compressed lower triangle (no copy).
+cholmod_sparse view_lower(const Eigen::SparseMatrix<double>& m) {
+  cholmod_sparse a{};
+  a.nrow = static_cast<std::size_t>(m.rows());
+  a.ncol = static_cast<std::size_t>(m.cols());
+  a.nzmax = static_cast<std::size_t>(m.nonZeros());
+  a.p = const_cast<int*>(m.outerIndexPtr());
+  a.i = const_cast<int*>(m.innerIndexPtr());
+  a.x = const_cast<double*>(m.valuePtr());
+  a.stype = -1;  // symmetric, lower triangle stored
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
+}  // namespace
+
 struct SparseCholesky::Impl {
-  Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> cholmod;
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  std::shared_ptr<const std::vector<int>> permutation;  // empty: CHOLMOD orders
   std::vector<int> outer;  // the analysed pattern, to detect a change
   std::vector<int> inner;
   int analyses = 0;
 
+  Impl() { cholmod_start(&common); }
+  ~Impl() {
+    if (factor != nullptr) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+
   bool same_pattern(const Eigen::SparseMatrix<double>& m) const {
-    return m.outerSize() + 1 == static_cast<Eigen::Index>(outer.size()) &&
+    return factor != nullptr && m.outerSize() + 1 == static_cast<Eigen::Index>(outer.size()) &&
            std::equal(outer.begin(), outer.end(), m.outerIndexPtr()) &&
            std::equal(inner.begin(), inner.end(), m.innerIndexPtr());
   }
 };
 
 SparseCholesky::SparseCholesky(Ordering ordering) : impl_(std::make_unique<Impl>()) {
-  cholmod_common& common = impl_->cholmod.cholmod();
+  cholmod_common& common = impl_->common;
   common.nmethods = 1;  // exactly the ordering asked for, not CHOLMOD's try-several default
   common.method[0].ordering = ordering == Ordering::kMetis ? CHOLMOD_METIS : CHOLMOD_AMD;
-  impl_->cholmod.setMode(Eigen::CholmodAuto);  // supernodal or simplicial by flop count
+  common.supernodal = CHOLMOD_AUTO;  // supernodal or simplicial by flop count
   // LL' also in the simplicial case: LDL' would "succeed" on an indefinite matrix.
   common.final_ll = 1;
   common.print = 1;  // errors only: a non-positive-definite matrix is reported by factorize()
+}
+
+SparseCholesky::SparseCholesky(std::shared_ptr<const std::vector<int>> permutation)
+    : SparseCholesky(Ordering::kMetis) {
+  if (!permutation) throw std::invalid_argument("SparseCholesky: null permutation");
+  impl_->permutation = std::move(permutation);
+  impl_->common.method[0].ordering = CHOLMOD_GIVEN;
 }
 
 SparseCholesky::~SparseCholesky() = default;
@@ -38,18 +76,45 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
   if (!lower.isCompressed()) {
     throw std::invalid_argument("SparseCholesky::factorize needs a compressed matrix");
   }
-  if (!impl_->same_pattern(lower)) {
-    impl_->cholmod.analyzePattern(lower);
-    impl_->outer.assign(lower.outerIndexPtr(), lower.outerIndexPtr() + lower.outerSize() + 1);
-    impl_->inner.assign(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros());
-    ++impl_->analyses;
+  Impl& impl = *impl_;
+  cholmod_sparse a = view_lower(lower);
+  if (!impl.same_pattern(lower)) {
+    if (impl.factor != nullptr) cholmod_free_factor(&impl.factor, &impl.common);
+    int* perm = nullptr;
+    if (impl.permutation) {
+      if (impl.permutation->size() != static_cast<std::size_t>(lower.rows())) {
+        throw std::invalid_argument("SparseCholesky: the permutation has " +
+                                    std::to_string(impl.permutation->size()) +
+                                    " entries for a matrix of size " +
+                                    std::to_string(lower.rows()));
+      }
+      perm = const_cast<int*>(impl.permutation->data());
+    }
+    impl.factor = cholmod_analyze_p(&a, perm, nullptr, 0, &impl.common);
+    if (impl.factor == nullptr) throw std::runtime_error("CHOLMOD analysis failed");
+    impl.outer.assign(lower.outerIndexPtr(), lower.outerIndexPtr() + lower.outerSize() + 1);
+    impl.inner.assign(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros());
+    ++impl.analyses;
   }
-  impl_->cholmod.factorize(lower);
-  return impl_->cholmod.info() == Eigen::Success;
+  cholmod_factorize(&a, impl.factor, &impl.common);
+  return impl.common.status == CHOLMOD_OK && impl.factor->minor == impl.factor->n;
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
-  return impl_->cholmod.solve(rhs);
+  Impl& impl = *impl_;
+  cholmod_dense b{};
+  b.nrow = static_cast<std::size_t>(rhs.size());
+  b.ncol = 1;
+  b.nzmax = b.nrow;
+  b.d = b.nrow;
+  b.x = const_cast<double*>(rhs.data());
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl.factor, &b, &impl.common);
+  if (x == nullptr) throw std::runtime_error("CHOLMOD solve failed");
+  Eigen::VectorXd result = Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(x->x), rhs.size());
+  cholmod_free_dense(&x, &impl.common);
+  return result;
 }
 
 int SparseCholesky::analyses() const { return impl_->analyses; }

@@ -1,20 +1,27 @@
 #pragma once
 // Sparse symmetric positive-definite solves for one environment's Newton systems, by CHOLMOD.
-// The symbolic analysis (fill-reducing ordering, supernodal structure) is done once per
+// The symbolic analysis (supernodal structure for a fill-reducing ordering) is done once per
 // sparsity pattern and reused by every numeric factorization with that pattern.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <vector>
 
 namespace grip::solver {
 
 class SparseCholesky {
  public:
-  // METIS (nested dissection) suits the large FEM systems of soft fingers and objects;
-  // AMD is cheaper to compute for small or very sparse systems.
+  // CHOLMOD computes the ordering at each analysis: METIS (nested dissection) suits the large
+  // FEM systems of soft fingers and objects; AMD is cheaper to compute for small or very
+  // sparse systems.
   enum class Ordering { kMetis, kAmd };
 
   explicit SparseCholesky(Ordering ordering = Ordering::kMetis);
+  // Every analysis uses this permutation (new-to-old, as CHOLMOD's UserPerm) instead of
+  // computing one: environments of one model share the ordering of its contact-free pattern
+  // (Model::ordering), and a changed contact pattern then costs only the symbolic
+  // factorization, not a new METIS call.
+  explicit SparseCholesky(std::shared_ptr<const std::vector<int>> permutation);
   ~SparseCholesky();
   SparseCholesky(SparseCholesky&&) noexcept;
   SparseCholesky& operator=(SparseCholesky&&) noexcept;

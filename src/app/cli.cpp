@@ -48,10 +48,76 @@ int main(int argc, char** argv) {
 
   // subcommands:
 
-  grip::commands::SimulateArgs simulate_args;
-  CLI::App* simulate = app.add_subcommand("simulate", "Simulate one scene file (TOML) and report");
-  simulate->add_option("scene", simulate_args.scene, "Scene file (docs/scene-format.md)")
+  grip::commands::TrialArgs trial_args;
+  CLI::App* trial = app.add_subcommand(
+      "trial", "Grasp trials of candidates as one batch: close, settle, six-axis gravity (docs/trial.md)");
+  trial->add_option("--object", trial_args.object,
+                    "Object category name (shape drawn from --seed) or surface mesh file")
       ->required();
+  trial->add_option("--seed", trial_args.seed, "The seed the candidates were synthesized with")
+      ->capture_default_str();
+  trial->add_option("--scale", trial_args.scale, "Multiply a mesh file's coordinates by this")
+      ->capture_default_str();
+  trial->add_flag("--soft", trial_args.soft, "Simulate the object as FEM (tetrahedralized)");
+  trial->add_option("--tet-edge", trial_args.tet_edge, "Soft object: target tet edge length (m)")
+      ->capture_default_str();
+  trial->add_option("--density", trial_args.density, "Object density (kg/m^3)")->capture_default_str();
+  trial->add_option("--youngs", trial_args.youngs, "Soft object: Young's modulus (Pa)")
+      ->capture_default_str();
+  trial->add_option("--poisson", trial_args.poisson, "Soft object: Poisson's ratio")
+      ->capture_default_str();
+  trial->add_option("--friction", trial_args.friction, "Object friction coefficient")
+      ->capture_default_str();
+  trial->add_option("--gripper", trial_args.gripper, "Gripper: fin-ray or parallel-jaw")
+      ->required()
+      ->check(CLI::IsMember({"fin-ray", "parallel-jaw"}));
+  trial->add_option("--candidates", trial_args.candidates, "Candidate file from grip synth")
+      ->required();
+  trial->add_option("--index", trial_args.index, "Candidate I, or A-B (inclusive) as one batch")
+      ->capture_default_str();
+  trial->add_option("--report", trial_args.report, "Write the JSON report here (default: stdout)");
+  trial->add_option("--vtk", trial_args.vtk, "Write each candidate's frames as a VTK series here");
+  trial->add_option("--threads", trial_args.threads, "Threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  trial->add_option("--closing-speed", trial_args.closing_speed, "Jaw closing speed (m/s)")
+      ->capture_default_str();
+  trial->add_option("--squeeze-speed", trial_args.squeeze_speed,
+                    "Jaw speed once its finger touches the object (m/s)")
+      ->capture_default_str();
+  trial->add_flag("--compare-solo", trial_args.compare_solo,
+                  "Also run each candidate alone: batch speedup and bit-identity");
+  trial->callback([&] { run = [&] { return grip::commands::trial(trial_args); }; });
+
+  grip::commands::SynthArgs synth_args;
+  CLI::App* synth = app.add_subcommand(
+      "synth", "Synthesize candidate grasps for one object and gripper (docs/synthesis.md)");
+  synth->add_option("--object", synth_args.object,
+                    "Object category name (shape drawn from --seed) or surface mesh file")
+      ->required();
+  synth->add_option("--scale", synth_args.scale, "Multiply a mesh file's coordinates by this")
+      ->capture_default_str();
+  synth->add_option("--gripper", synth_args.gripper, "Gripper: fin-ray, parallel-jaw or leap")
+      ->required()
+      ->check(CLI::IsMember({"fin-ray", "parallel-jaw", "leap"}));
+  synth->add_flag("--bimanual", synth_args.bimanual, "Two hands: compose right and left candidates");
+  synth->add_option("--count", synth_args.count, "Number of candidates")->required();
+  synth->add_option("--seed", synth_args.seed, "Random seed")->required();
+  synth->add_option("--out", synth_args.out, "Candidate file to write")->required();
+  synth->add_option("--steps", synth_args.steps, "Annealing steps per hand attempt (leap)")
+      ->capture_default_str();
+  synth->add_option("--d-hat", synth_args.d_hat, "IPC barrier activation distance (m)")
+      ->capture_default_str();
+  synth->add_option("--margin", synth_args.margin, "Clearance kept beyond d-hat (m)")
+      ->capture_default_str();
+  synth->callback([&] { run = [&] { return grip::commands::synth(synth_args); }; });
+
+  grip::commands::SimulateArgs simulate_args;
+  CLI::App* simulate = app.add_subcommand(
+      "simulate", "Simulate scene files (TOML) as one batch of environments and report");
+  simulate->add_option("scenes", simulate_args.scenes, "Scene files (docs/scene-format.md)")
+      ->required();
+  simulate->add_option("--threads", simulate_args.threads, "Threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
   simulate->add_option("--report", simulate_args.report, "Write the JSON report here (default: stdout)");
   simulate->add_flag("--trace", simulate_args.trace, "Add per-step centres of mass to the report");
   simulate->callback([&] { run = [&] { return grip::commands::simulate(simulate_args); }; });
@@ -71,6 +137,24 @@ int main(int argc, char** argv) {
   ccd_file->needs(ccd_type);
   ccd_write->excludes(ccd_file)->excludes(ccd_type);
   ccd_bench->callback([&] { run = [&] { return grip::commands::ccd_bench(ccd_bench_args); }; });
+
+  // `bench` groups the benchmarks that time whole subsystems.
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks of whole subsystems");
+  bench->require_subcommand(1);
+  grip::commands::BenchBatchArgs bench_batch_args;
+  CLI::App* bench_batch = bench->add_subcommand(
+      "batch", "N copies of a scene one after another and as one batch: speedup, memory");
+  bench_batch->add_option("--scene", bench_batch_args.scene, "Scene file (docs/scene-format.md)")
+      ->required();
+  bench_batch->add_option("--envs", bench_batch_args.envs, "Environment counts, e.g. 1,2,4,8")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  bench_batch->add_option("--threads", bench_batch_args.threads, "Threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  bench_batch->add_option("--jitter", bench_batch_args.jitter,
+                          "Seed: move each copy's free bodies by up to d_hat/4 per axis")
+      ->check(CLI::NonNegativeNumber);
+  bench_batch->callback([&] { run = [&] { return grip::commands::bench_batch(bench_batch_args); }; });
 
   // `asset` groups object-asset work; other helpers add their subcommands to it.
   CLI::App* asset = app.add_subcommand("asset", "Prepare object and gripper assets");

@@ -1,6 +1,7 @@
 #pragma once
 // The work behind each `grip` subcommand, one function per subcommand, called by cli.cpp.
 // Each returns the process exit code.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -39,13 +40,65 @@ struct AssetGalleryArgs {
 };
 int asset_gallery(const AssetGalleryArgs& args);
 
-// grip simulate SCENE.toml [--report FILE] [--trace]: run one scene file for its duration
-// (src/app/commands/simulate.cpp).
+// grip simulate SCENE.toml... [--threads T] [--report FILE] [--trace]: run scene files for their
+// durations as one batch (src/app/commands/simulate.cpp).
 struct SimulateArgs {
-  std::string scene;
+  std::vector<std::string> scenes;
+  int threads = 0;     // 0: all cores
   std::string report;  // JSON report file; stdout when empty
   bool trace = false;  // add each step's time and centres of mass to the report
 };
 int simulate(const SimulateArgs& args);
+
+// grip bench batch --scene S.toml [--envs 1,2,4,...] [--threads T] [--jitter SEED]: N copies
+// of a scene one after another and as one batch (src/app/commands/bench_batch.cpp).
+struct BenchBatchArgs {
+  std::string scene;
+  std::vector<int> envs{1, 2, 4, 8, 16, 32, 64};
+  int threads = 0;             // 0: all cores
+  std::int64_t jitter = -1;    // seed; < 0: no jitter
+};
+int bench_batch(const BenchBatchArgs& args);
+
+// grip synth --object SPEC --gripper fin-ray|leap|parallel-jaw [--bimanual] --count N --seed S
+// --out FILE: candidate grasps written to a candidate file (src/app/commands/synth.cpp).
+struct SynthArgs {
+  std::string object;      // an object category name or a surface mesh file
+  double scale = 1.0;      // multiplies a mesh file's coordinates
+  std::string gripper;     // fin-ray, parallel-jaw or leap
+  bool bimanual = false;
+  int count = 0;
+  std::uint64_t seed = 0;
+  std::string out;         // candidate file (docs/synthesis.md)
+  int steps = 1500;        // annealing steps per hand attempt
+  double d_hat = 1e-3;     // m, IPC barrier activation distance
+  double margin = 5e-4;    // m, clearance kept beyond d_hat
+};
+int synth(const SynthArgs& args);
+
+// grip trial --object SPEC --gripper fin-ray|parallel-jaw --candidates FILE --index I|A-B
+// [--report FILE] [--vtk DIR] [--soft] [--compare-solo]: grasp trials of candidates as one
+// batch (src/app/commands/trial.cpp, docs/trial.md).
+struct TrialArgs {
+  std::string object;          // an object category name (shape from --seed) or a mesh file
+  double scale = 1.0;          // multiplies a mesh file's coordinates
+  std::uint64_t seed = 0;      // the category's shape, as given to grip synth
+  bool soft = false;           // FEM object (tetrahedralized) instead of one affine body
+  double tet_edge = 0.008;     // m, target tet edge length of a soft object
+  double density = 1000.0;     // kg/m^3
+  double youngs = 1e6;         // Pa, soft objects
+  double poisson = 0.4;        // soft objects
+  double friction = 3.5;       // the object's mu; a pair's mu is sqrt(mu_object mu_finger)
+  std::string gripper;         // fin-ray or parallel-jaw
+  std::string candidates;      // candidate file (docs/synthesis.md)
+  std::string index = "0";     // one candidate "I" or a range "A-B", run as one batch
+  std::string report;          // JSON report file; stdout when empty
+  std::string vtk;             // folder for per-candidate VTK series; none when empty
+  int threads = 0;             // 0: all cores
+  double closing_speed = 0.05;  // m/s per jaw, before its finger touches the object
+  double squeeze_speed = 0.01;  // m/s per jaw, once it does
+  bool compare_solo = false;   // also run each candidate alone: speedup and identity
+};
+int trial(const TrialArgs& args);
 
 }  // namespace grip::commands

@@ -8,14 +8,16 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
-#include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/exude_mesh_3.h>
 #include <CGAL/make_mesh_3.h>
 #include <CGAL/perturb_mesh_3.h>
-#include <spdlog/spdlog.h>
+#include <CGAL/refine_mesh_3.h>
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <unordered_map>
 #include <vector>
@@ -34,6 +36,87 @@ using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation, Domain::C
                                                         Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
 namespace pmp = CGAL::Polygon_mesh_processing;
+namespace params = CGAL::parameters;
+
+// Surface points that seed the Delaunay refinement where protected features alone do not (a
+// smooth shape has no features). Mesh_3's own seeds come from rays shot from the bounding-box
+// centre; for a torus that centre lies in the hole and every seed lands on the inner rim, and
+// the refinement then finds no surface at all. Farthest-point sampling over the face centroids
+// spreads the seeds over every part of the surface instead, starting from face `seed` modulo
+// the face count.
+constexpr int kSeedPoints = 24;
+
+std::vector<std::pair<Point, Domain::Index>> spread_surface_points(const SurfaceMesh& surface,
+                                                                   const Domain& domain,
+                                                                   double edge_length,
+                                                                   std::uint32_t seed) {
+  const Eigen::Index faces = surface.triangles.rows();
+  Eigen::MatrixX3d centroids(faces, 3);
+  Eigen::MatrixX3d normals(faces, 3);
+  for (Eigen::Index f = 0; f < faces; ++f) {
+    const Eigen::Vector3d a = surface.vertices.row(surface.triangles(f, 0));
+    const Eigen::Vector3d b = surface.vertices.row(surface.triangles(f, 1));
+    const Eigen::Vector3d c = surface.vertices.row(surface.triangles(f, 2));
+    centroids.row(f) = (a + b + c) / 3.0;
+    normals.row(f) = (b - a).cross(c - a).normalized();
+  }
+  std::vector<double> distance(static_cast<std::size_t>(faces),
+                               std::numeric_limits<double>::infinity());
+  const auto intersection = domain.construct_intersection_object();
+  std::vector<std::pair<Point, Domain::Index>> seeds;
+  Eigen::Index next = static_cast<Eigen::Index>(seed % static_cast<std::uint64_t>(faces));
+  for (int k = 0; k < std::min<Eigen::Index>(kSeedPoints, faces); ++k) {
+    // A short segment through the centroid along the normal meets the surface at (or next to)
+    // the face; the domain's intersection supplies the surface patch index with the point.
+    const Eigen::Index current = next;
+    const Eigen::Vector3d c = centroids.row(current);
+    const Eigen::Vector3d d = 0.1 * edge_length * normals.row(current);
+    const auto hit = intersection(Kernel::Segment_3(Point(c.x() + d.x(), c.y() + d.y(), c.z() + d.z()),
+                                                    Point(c.x() - d.x(), c.y() - d.y(), c.z() - d.z())));
+    if (std::get<2>(hit) != 0) seeds.emplace_back(std::get<0>(hit), std::get<1>(hit));
+    double farthest = -1.0;
+    for (Eigen::Index f = 0; f < faces; ++f) {
+      auto& nearest = distance[static_cast<std::size_t>(f)];
+      nearest = std::min(nearest, (centroids.row(f) - centroids.row(current)).squaredNorm());
+      if (nearest > farthest) {
+        farthest = nearest;
+        next = f;
+      }
+    }
+  }
+  return seeds;
+}
+
+// Mesh_3's initialization (as make_mesh_3 does it) with two changes: protecting balls on
+// sharp features never shrink below `minimal_ball_radius` (without that floor, the
+// near-zero-length seam edges of a sampled mug kept the protection running for minutes), and
+// smooth surfaces are seeded by spread_surface_points.
+Complex initial_complex(const SurfaceMesh& surface, const Domain& domain, const Criteria& criteria,
+                        const TetOptions& options) {
+  Complex complex;
+  using Sizing = CGAL::Mesh_3::internal::Edge_criteria_sizing_field_wrapper<Criteria::Edge_criteria>;
+  CGAL::Mesh_3::Protect_edges_sizing_field<Complex, Domain, Sizing> protect(
+      complex, domain, Sizing(criteria.edge_criteria_object()),
+      options.minimal_ball_ratio * options.edge_length);
+  protect(true);
+  bool seeded = complex.triangulation().dimension() == 3;
+  if (seeded) {
+    CGAL::Mesh_3::C3T3_helpers<Complex, Domain> helper(complex, domain);
+    helper.update_restricted_facets();
+    seeded = complex.number_of_facets() > 0;
+  }
+  if (!seeded) {
+    const auto weighted = complex.triangulation().geom_traits().construct_weighted_point_3_object();
+    for (const auto& [point, index] : spread_surface_points(surface, domain, options.edge_length,
+                                                                options.seed)) {
+      const auto vertex = complex.triangulation().insert(weighted(point));
+      if (vertex == Triangulation::Vertex_handle()) continue;  // hidden by a protecting ball
+      complex.set_dimension(vertex, 2);
+      complex.set_index(vertex, index);
+    }
+  }
+  return complex;
+}
 
 CgalMesh to_cgal_mesh(const SurfaceMesh& surface, const std::string& source) {
   std::vector<Point> points;
@@ -83,30 +166,24 @@ TetMesh tetrahedralize(const SurfaceMesh& closed_surface, const TetOptions& opti
                                 "inward); repair it first");
   }
 
-  CGAL::Random random(options.seed);
-  Domain domain(mesh, &random);
+  Domain domain(mesh);
   domain.detect_features(options.feature_angle_deg);
   const double h = options.edge_length;
-  namespace params = CGAL::parameters;
   const Criteria criteria(params::edge_size = h, params::facet_angle = options.facet_angle_deg,
                           params::facet_size = h,
                           params::facet_distance = options.facet_distance_ratio * h,
                           params::cell_radius_edge_ratio = options.cell_radius_edge_ratio,
                           params::cell_size = h);
-  Complex complex = CGAL::make_mesh_3<Complex>(domain, criteria, params::no_odt(),
-                                               params::no_lloyd(), params::no_perturb(),
-                                               params::no_exude());
-  if (options.perturb_time_limit_s > 0.0) {
-    const CGAL::Mesh_optimization_return_code code =
-        CGAL::perturb_mesh_3(complex, domain, params::sliver_bound = options.sliver_bound_deg,
-                             params::time_limit = options.perturb_time_limit_s);
-    if (code == CGAL::TIME_LIMIT_REACHED) {
-      spdlog::warn("tetrahedralizing {}: sliver perturbation stopped at its {} s limit, so this "
-                   "mesh may differ on a faster or slower machine; keep the written mesh",
-                   source, options.perturb_time_limit_s);
-    }
-  }
-  // Exudation only changes weights and always terminates: no time limit, deterministic.
+  Complex complex = initial_complex(closed_surface, domain, criteria, options);
+  CGAL::refine_mesh_3(complex, domain, criteria, params::no_odt(), params::no_lloyd(),
+                      params::no_perturb(), params::no_exude(), params::no_reset_c3t3());
+  // Perturbation moves the vertices of slivers; exudation then re-weights what is left. With
+  // no time limit both are functions of the mesh alone (perturbation's random moves come from
+  // a generator with a fixed seed, its queue is ordered by vertex index), so the result does
+  // not depend on the machine. Both stop by themselves: perturbation when every tet is above
+  // the bound or no move improves any more, exudation when no re-weighting does.
+  CGAL::perturb_mesh_3(complex, domain, params::sliver_bound = options.sliver_bound_deg,
+                       params::time_limit = 0);
   CGAL::exude_mesh_3(complex, params::sliver_bound = options.sliver_bound_deg,
                      params::time_limit = 0);
 

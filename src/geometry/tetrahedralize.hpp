@@ -16,13 +16,16 @@ struct TetOptions {
   double facet_distance_ratio = 0.1;    // surface approximation error, times edge_length
   double cell_radius_edge_ratio = 3.0;  // upper bound on circumradius / shortest edge
   double feature_angle_deg = 60.0;      // surface creases sharper than this are kept sharp
-  double sliver_bound_deg = 10.0;       // perturbation and exudation aim above this dihedral
-  // Sliver perturbation lifts the worst dihedral angles (exudation alone leaves 2-5 degree
-  // tets next to the surface) but has no iteration cap and on some inputs runs for tens of
-  // seconds, so it stops after this many seconds. It is deterministic unless it hits the cap;
-  // then the mesh can depend on the machine's speed and a warning is logged. 0 disables it.
-  double perturb_time_limit_s = 10.0;
-  std::uint32_t seed = 0;               // Mesh_3's random generator: same seed, same mesh
+  // Sliver perturbation and exudation lift every dihedral angle above this where they can;
+  // both run until they cannot improve any more (no time limit), so the mesh is the same on
+  // every machine.
+  double sliver_bound_deg = 12.0;
+  // Protecting balls on sharp features shrink where two features come close, but not below
+  // this fraction of edge_length; features closer than that are not kept apart.
+  double minimal_ball_ratio = 0.05;
+  // Where the surface seeding of a smooth shape (one without sharp features) starts: a
+  // different seed gives a different but equally valid mesh; the same seed, the same mesh.
+  std::uint32_t seed = 0;
 };
 
 // Tetrahedralizes the volume bounded by `closed_surface`, which must be closed, manifold and

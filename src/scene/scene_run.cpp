@@ -4,7 +4,10 @@
 #include <cmath>
 #include <iomanip>
 
-#include "solver/environment.hpp"
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "solver/batch/batch.hpp"
 #include "src/scene/invariants.hpp"
 
 namespace grip::scene {
@@ -43,43 +46,75 @@ void write_string(std::ostream& out, const std::string& s) {
 
 }  // namespace
 
-SceneReport run_scene(const SceneFile& file, bool trace) {
+BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<std::string>& names,
+                       bool trace, int threads) {
   const auto start = std::chrono::steady_clock::now();
-  solver::Environment env(solver::Model::build(file.scene));
-  SceneReport report;
-  const int body_count = static_cast<int>(file.scene.bodies.size());
-  const int steps = static_cast<int>(std::llround(file.duration / file.scene.sim.dt));
-  for (int s = 0; s < steps; ++s) {
-    if (!env.step()) {
-      report.ok = false;
-      report.failure = env.failure();
-      break;
+  solver::Batch batch(threads);
+  BatchReport report;
+  report.threads = batch.threads();
+  report.scenes.resize(files.size());
+  std::vector<int> steps(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    batch.add(solver::Model::build(files[i].scene));
+    report.scenes[i].scene = names.at(i);
+    steps[i] = static_cast<int>(std::llround(files[i].duration / files[i].scene.sim.dt));
+    if (steps[i] == 0) batch.retire(static_cast<int>(i));
+  }
+  tbb::task_arena checks(batch.threads());
+  std::vector<int> stepped;
+  while (batch.any_active()) {
+    stepped.clear();
+    for (int i = 0; i < batch.size(); ++i) {
+      if (batch.active(i)) stepped.push_back(i);
     }
-    ++report.steps;
-    const solver::StepDiagnostics& d = env.last_step();
-    report.min_distance = std::min(report.min_distance, d.min_distance);
-    report.min_volume_ratio = std::min(report.min_volume_ratio, d.min_volume_ratio);
-    report.newton_total += d.newton_iterations;
-    report.newton_max_per_step = std::max(report.newton_max_per_step, d.newton_iterations);
-    if (count_intersections(env) != 0) report.intersection_free = false;
-    if (trace) {
-      TraceRow row{env.time(), {}};
-      for (int b = 0; b < body_count; ++b) row.com.push_back(env.center_of_mass(b));
-      report.trace.push_back(std::move(row));
+    batch.step();
+    // The exact intersection check costs more than a step of a small scene: in parallel too.
+    checks.execute([&] { tbb::parallel_for(std::size_t{0}, stepped.size(), [&](std::size_t k) {
+      const int i = stepped[k];
+      const solver::Environment& env = batch.environment(i);
+      SceneReport& r = report.scenes[i];
+      if (env.failed()) {
+        r.ok = false;
+        r.failure = env.failure();
+        return;
+      }
+      ++r.steps;
+      const solver::StepDiagnostics& d = env.last_step();
+      r.min_distance = std::min(r.min_distance, d.min_distance);
+      r.min_volume_ratio = std::min(r.min_volume_ratio, d.min_volume_ratio);
+      r.newton_total += d.newton_iterations;
+      r.newton_max_per_step = std::max(r.newton_max_per_step, d.newton_iterations);
+      if (count_intersections(env) != 0) r.intersection_free = false;
+      if (trace) {
+        TraceRow row{env.time(), {}};
+        for (int b = 0; b < static_cast<int>(env.model().bodies().size()); ++b) {
+          row.com.push_back(env.center_of_mass(b));
+        }
+        r.trace.push_back(std::move(row));
+      }
+    }); });
+    for (int i : stepped) {
+      if (report.scenes[i].steps == steps[i]) batch.retire(i);
     }
   }
-  for (int b = 0; b < body_count; ++b) {
-    report.bodies.push_back({file.scene.bodies[b].name, env.center_of_mass(b),
-                             env.center_of_mass_velocity(b), env.rotation(b)});
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const solver::Environment& env = batch.environment(static_cast<int>(i));
+    for (int b = 0; b < static_cast<int>(files[i].scene.bodies.size()); ++b) {
+      report.scenes[i].bodies.push_back({files[i].scene.bodies[b].name, env.center_of_mass(b),
+                                         env.center_of_mass_velocity(b), env.rotation(b)});
+    }
   }
   report.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
 
-void write_json(std::ostream& out, const SceneReport& report, bool trace) {
-  out << std::setprecision(17);
-  out << "{\n  \"status\": " << (report.ok ? "\"ok\"" : "\"failed\"") << ",\n  \"failure\": ";
+namespace {
+
+void write_scene(std::ostream& out, const SceneReport& report, bool trace) {
+  out << "{\n  \"scene\": ";
+  write_string(out, report.scene);
+  out << ",\n  \"status\": " << (report.ok ? "\"ok\"" : "\"failed\"") << ",\n  \"failure\": ";
   if (report.ok) {
     out << "null";
   } else {
@@ -107,8 +142,7 @@ void write_json(std::ostream& out, const SceneReport& report, bool trace) {
   write_number(out, report.min_volume_ratio);
   out << ",\n  \"intersection_free\": " << (report.intersection_free ? "true" : "false")
       << ",\n  \"newton_iterations\": {\"total\": " << report.newton_total
-      << ", \"max_per_step\": " << report.newton_max_per_step << "},\n  \"wall_seconds\": ";
-  write_number(out, report.wall_seconds);
+      << ", \"max_per_step\": " << report.newton_max_per_step << "}";
   if (trace) {
     out << ",\n  \"trace\": [";
     for (std::size_t i = 0; i < report.trace.size(); ++i) {
@@ -126,7 +160,21 @@ void write_json(std::ostream& out, const SceneReport& report, bool trace) {
     }
     out << "\n  ]";
   }
-  out << "\n}\n";
+  out << "\n}";
+}
+
+}  // namespace
+
+void write_json(std::ostream& out, const BatchReport& report, bool trace) {
+  out << std::setprecision(17);
+  out << "{\n\"threads\": " << report.threads << ",\n\"wall_seconds\": ";
+  write_number(out, report.wall_seconds);
+  out << ",\n\"scenes\": [";
+  for (std::size_t i = 0; i < report.scenes.size(); ++i) {
+    out << (i ? ",\n" : "\n");
+    write_scene(out, report.scenes[i], trace);
+  }
+  out << "\n]\n}\n";
 }
 
 }  // namespace grip::scene

@@ -1,6 +1,7 @@
 #pragma once
-// Runs a scene file's scene for its duration, checking the exact invariants after every step,
-// and the JSON report `grip simulate` writes (docs/scene-format.md describes its fields).
+// Runs scene files' scenes for their durations as one batch, checking the exact invariants
+// after every step, and the JSON report `grip simulate` writes (docs/scene-format.md describes
+// its fields).
 #include <ostream>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@ struct TraceRow {
 };
 
 struct SceneReport {
+  std::string scene;    // the scene file
   bool ok = true;
   std::string failure;  // empty when ok
   int steps = 0;
@@ -31,12 +33,20 @@ struct SceneReport {
   bool intersection_free = true;
   int newton_total = 0;
   int newton_max_per_step = 0;
-  double wall_seconds = 0.0;
   std::vector<TraceRow> trace;  // filled when asked for
 };
 
-SceneReport run_scene(const SceneFile& scene, bool trace);
+struct BatchReport {
+  int threads = 1;
+  double wall_seconds = 0.0;
+  std::vector<SceneReport> scenes;  // in the order given
+};
 
-void write_json(std::ostream& out, const SceneReport& report, bool trace);
+// Steps every scene in one solver::Batch on `threads` threads (0: all cores) until each has
+// run for its duration or failed. Each scene's result equals a run of it alone.
+BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<std::string>& names,
+                       bool trace, int threads);
+
+void write_json(std::ostream& out, const BatchReport& report, bool trace);
 
 }  // namespace grip::scene

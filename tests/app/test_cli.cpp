@@ -61,6 +61,23 @@ TEST(GripCli, SimulateWritesAReportAndFailsClearlyOnBadScenes) {
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("\"status\": \"ok\""), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("\"steps\": 5"), std::string::npos) << ok.out;
+  // Several scenes: one report entry each, in order.
+  const GripRun two = run_grip("simulate " + scene.string() + " " + scene.string() + " --threads 2");
+  EXPECT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_NE(two.out.find("\"threads\": 2"), std::string::npos) << two.out;
+  const std::size_t first = two.out.find("\"steps\": 5");
+  ASSERT_NE(first, std::string::npos) << two.out;
+  EXPECT_NE(two.out.find("\"steps\": 5", first + 1), std::string::npos) << two.out;
+
+  // The batch benchmark on two jittered copies: the batch ends bit-identical to the copies run
+  // one after another.
+  const GripRun bench = run_grip("bench batch --scene " + scene.string() +
+                                 " --envs 1,2 --threads 2 --jitter 7");
+  EXPECT_EQ(bench.exit_code, 0) << bench.err;
+  EXPECT_NE(bench.out.find("{\"benchmark\": \"batch\""), std::string::npos) << bench.out;
+  EXPECT_NE(bench.out.find("\"identical\": true"), std::string::npos) << bench.out;
+  EXPECT_EQ(bench.out.find("\"identical\": false"), std::string::npos) << bench.out;
+  EXPECT_NE(bench.out.find("\"envs\": 2, \"steps\": 5"), std::string::npos) << bench.out;
 
   std::ofstream(scene) << "[sim]\nduration = 0.05\nfoo = 1\n";
   const GripRun bad = run_grip("simulate " + scene.string());

@@ -1,5 +1,6 @@
 // Every procedural category tetrahedralizes with no inverted tet, no sliver (minimum dihedral
-// angle above kMinDihedralDeg) and a tet volume close to its surface's volume.
+// angle at least kMinDihedralDeg) and a tet volume close to its surface's volume: a small
+// member of each category, and sampled members of a few seeds.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,15 +14,39 @@
 namespace grip::objects {
 namespace {
 
-// The bound promised with exudation alone (perturbation off: it is time-capped, and a test
-// must not depend on the machine's speed). Measured minima here: 2.25 degrees (the mug,
-// where the handle meets the wall) to 10.8 degrees; perturbation lifts them further.
-constexpr double kMinDihedralDeg = 2.0;
+// Perturbation and exudation aim at TetOptions::sliver_bound_deg (12 degrees); the bound
+// promised is lower because a few tets between protected sharp features (vertices that
+// perturbation may not move) can stay under the aim. Measured minima: 12.00 to 12.87 degrees.
+constexpr double kMinDihedralDeg = 10.0;
 // Relative volume difference. Mesh_3 keeps the surface within facet_distance = 0.1 edge of
 // the input, inscribed in curved parts: the volume falls short by up to about
-// area * 0.1 * edge / volume, 2 to 5 percent for round solids at edge = diagonal / 15, and
+// area * 0.1 * edge / volume, 2 to 6 percent for round solids at edge = diagonal / 15, and
 // is exact for flat-faced shapes.
-constexpr double kVolumeTolerance = 0.06;
+constexpr double kVolumeTolerance = 0.07;
+
+// The sizing thinnest_feature recommends (half of it), capped at a fifteenth of the diagonal.
+// A coarser edge, e.g. two thirds of a bottle neck's diameter, leaves the four vertices of a
+// tet on one rim circle, a sliver no vertex move can undo.
+double edge_length(const ObjectShape& shape, const geometry::SurfaceMesh& surface) {
+  return std::min(thinnest_feature(shape) / 2.0,
+                  geometry::bounding_box_diagonal(surface.vertices) / 15.0);
+}
+
+void expect_good_tets(const ObjectShape& shape, const std::string& name) {
+  const geometry::SurfaceMesh surface = generate_surface(shape, 32);
+  geometry::TetOptions options;
+  options.edge_length = edge_length(shape, surface);
+  const geometry::TetMesh mesh = geometry::tetrahedralize(surface, options, name);
+  const geometry::TetQuality quality = geometry::tet_quality(mesh, kMinDihedralDeg);
+  const double relative = quality.total_volume / geometry::surface_volume(surface) - 1.0;
+  std::printf("%-12s edge %.4f m %6ld vertices %7ld tets  min dihedral %5.2f deg  volume %+.4f\n",
+              name.c_str(), options.edge_length, static_cast<long>(mesh.vertices.rows()),
+              static_cast<long>(mesh.tets.rows()), quality.min_dihedral_deg, relative);
+  EXPECT_EQ(quality.inverted_count, 0) << name;
+  EXPECT_EQ(quality.sliver_count, 0) << name;
+  EXPECT_GE(quality.min_dihedral_deg, kMinDihedralDeg) << name;
+  EXPECT_LT(std::abs(relative), kVolumeTolerance) << name;
+}
 
 // Small members of each category (a few thousand tets each at most) to keep the test fast.
 std::vector<ObjectShape> compact_shapes() {
@@ -43,22 +68,21 @@ TEST(ObjectsObjectTetrahedralizeTest, EveryCategoryMeshesWithoutInvertedOrSliver
   const auto shapes = compact_shapes();
   ASSERT_EQ(shapes.size(), all_object_categories().size()) << "one shape per category";
   for (const ObjectShape& shape : shapes) {
-    const std::string name(category_name(shape.category));
-    const geometry::SurfaceMesh surface = generate_surface(shape, 32);
-    geometry::TetOptions options;
-    options.edge_length = std::min(thinnest_feature(shape) / 1.5,
-                                   geometry::bounding_box_diagonal(surface.vertices) / 15.0);
-    options.perturb_time_limit_s = 0.0;
-    const geometry::TetMesh mesh = geometry::tetrahedralize(surface, options, name);
-    const geometry::TetQuality quality = geometry::tet_quality(mesh, kMinDihedralDeg);
-    const double relative = quality.total_volume / geometry::surface_volume(surface) - 1.0;
-    std::printf("%-10s %6ld vertices %7ld tets  min dihedral %5.2f deg  volume %+.4f\n",
-                name.c_str(), static_cast<long>(mesh.vertices.rows()),
-                static_cast<long>(mesh.tets.rows()), quality.min_dihedral_deg, relative);
-    EXPECT_EQ(quality.inverted_count, 0) << name;
-    EXPECT_EQ(quality.sliver_count, 0) << name;
-    EXPECT_GT(quality.min_dihedral_deg, kMinDihedralDeg) << name;
-    EXPECT_LT(std::abs(relative), kVolumeTolerance) << name;
+    expect_good_tets(shape, std::string(category_name(shape.category)));
+  }
+}
+
+// Sampled shapes cover the parameter ranges: thin necks and cone tops, a torus whose
+// bounding-box centre lies in its hole, walls a few millimetres thick. The mug is left out
+// here: sampled mugs' surfaces (boolean_union of body and handle) carry near-zero-length
+// edges along the handle seam, on which Mesh_3's feature protection degenerates.
+TEST(ObjectsObjectTetrahedralizeTest, SampledShapesMeshWithoutInvertedOrSliverTets) {
+  for (const ObjectCategory category : all_object_categories()) {
+    if (category == ObjectCategory::kMug) continue;
+    for (const std::uint64_t seed : {1, 2}) {
+      expect_good_tets(sample_shape(category, seed),
+                       std::string(category_name(category)) + "/" + std::to_string(seed));
+    }
   }
 }
 

@@ -74,8 +74,11 @@ TEST(SceneFile, BuildsBodiesParametersAndContacts) {
 }
 
 TEST(SceneFile, RunsAndReportsTheInvariants) {
-  const SceneReport report =
-      run_scene(load_scene_file(write_scene("grip_scene_drop.toml", kDrop)), true);
+  const std::string path = write_scene("grip_scene_drop.toml", kDrop);
+  const BatchReport batch = run_scenes({load_scene_file(path)}, {path}, true, 1);
+  ASSERT_EQ(batch.scenes.size(), 1u);
+  const SceneReport& report = batch.scenes[0];
+  EXPECT_EQ(report.scene, path);
   EXPECT_TRUE(report.ok) << report.failure;
   EXPECT_EQ(report.steps, 20);
   EXPECT_TRUE(report.intersection_free);
@@ -84,9 +87,29 @@ TEST(SceneFile, RunsAndReportsTheInvariants) {
   // The ball fell onto the ground and rests on it.
   EXPECT_NEAR(report.bodies[1].com.z(), 0.02, 2e-3);
   std::ostringstream json;
-  write_json(json, report, true);
+  write_json(json, batch, true);
   EXPECT_NE(json.str().find("\"status\": \"ok\""), std::string::npos);
+  EXPECT_NE(json.str().find("\"threads\": 1"), std::string::npos);
   EXPECT_NE(json.str().find("\"trace\""), std::string::npos);
+}
+
+TEST(SceneFile, ScenesRunAsOneBatchReportInOrderAndMatchTheirSoloRuns) {
+  // Two scenes of different lengths: the short one retires while the long one goes on.
+  const std::string drop = write_scene("grip_scene_drop.toml", kDrop);
+  std::string short_text = kDrop;
+  short_text.replace(short_text.find("duration = 0.2"), 14, "duration = 0.1");
+  const std::string shorter = write_scene("grip_scene_short.toml", short_text);
+  const BatchReport together =
+      run_scenes({load_scene_file(shorter), load_scene_file(drop)}, {shorter, drop}, false, 2);
+  ASSERT_EQ(together.scenes.size(), 2u);
+  EXPECT_EQ(together.scenes[0].scene, shorter);
+  EXPECT_EQ(together.scenes[0].steps, 10);
+  EXPECT_EQ(together.scenes[1].steps, 20);
+  const BatchReport alone = run_scenes({load_scene_file(drop)}, {drop}, false, 1);
+  for (std::size_t b = 0; b < alone.scenes[0].bodies.size(); ++b) {
+    EXPECT_TRUE(alone.scenes[0].bodies[b].com == together.scenes[1].bodies[b].com) << b;
+  }
+  EXPECT_EQ(alone.scenes[0].newton_total, together.scenes[1].newton_total);
 }
 
 std::string error_of(const std::string& text) {

@@ -34,6 +34,27 @@ inline BodyDescription soft_box(const std::string& name, const Eigen::Vector3d& 
   return body;
 }
 
+// A 4 cm affine box resting on a kinematic ramp tilted by theta about y (gravity along -z),
+// 0.2 mm above the reach of the barrier so it settles onto it. Body 0 is the ramp, body 1 the
+// box; downhill is tilt * x.
+inline SceneDescription box_on_ramp(double theta, double mu, double density, double dt) {
+  SceneDescription scene;
+  scene.sim.gravity = Eigen::Vector3d(0, 0, -9.81);
+  scene.sim.dt = dt;
+  const Eigen::Quaterniond tilt(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()));
+  const Eigen::Vector3d normal = tilt * Eigen::Vector3d::UnitZ();
+  BodyDescription ramp = rigid_box("ramp", BodyType::kKinematic, {2.0, 0.5, 0.02}, -0.01 * normal);
+  ramp.pose.rotation = tilt;
+  ramp.material.friction = mu;
+  BodyDescription box =
+      rigid_box("box", BodyType::kAffine, {0.04, 0.04, 0.04}, (0.02 + 1.2e-3) * normal);
+  box.pose.rotation = tilt;
+  box.material.friction = mu;
+  box.material.density = density;
+  scene.bodies = {ramp, box};
+  return scene;
+}
+
 // Steps `steps` times; after each step checks that the step succeeded, that every contact
 // distance is positive, that no tet is inverted and that no surfaces intersect (exactly).
 // `each` runs after every step for test-specific checks.

@@ -20,23 +20,9 @@ struct Incline {
 };
 
 Incline make_incline(double theta, double mu) {
-  SceneDescription scene;
-  scene.sim.gravity = Eigen::Vector3d(0, 0, -kGravity);
-  scene.sim.dt = 0.005;
   const Eigen::Quaterniond tilt(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()));
-  const Eigen::Vector3d normal = tilt * Eigen::Vector3d::UnitZ();
-  BodyDescription ramp = rigid_box("ramp", BodyType::kKinematic, {2.0, 0.5, 0.02},
-                                   -0.01 * normal);
-  ramp.pose.rotation = tilt;
-  ramp.material.friction = mu;
-  // The box starts 0.2 mm above the reach of the barrier (d_hat = 1 mm) and settles onto it.
-  BodyDescription box = rigid_box("box", BodyType::kAffine, {0.04, 0.04, 0.04},
-                                  (0.02 + 1.2e-3) * normal);
-  box.pose.rotation = tilt;
-  box.material.friction = mu;
-  box.material.density = 500.0;
-  scene.bodies = {ramp, box};
-  return {std::make_unique<Environment>(Model::build(scene)), tilt * Eigen::Vector3d::UnitX()};
+  return {std::make_unique<Environment>(Model::build(box_on_ramp(theta, mu, 500.0, 0.005))),
+          tilt * Eigen::Vector3d::UnitX()};
 }
 
 TEST(Friction, BoxSticksWhenMuExceedsTanTheta) {

@@ -1,5 +1,5 @@
-// grip simulate SCENE.toml [--report out.json] [--trace]: one scene, run for its duration,
-// with the JSON report on stdout or in a file.
+// grip simulate SCENE.toml... [--threads T] [--report out.json] [--trace]: scenes run for their
+// durations as one batch, with the JSON report on stdout or in a file.
 #include <spdlog/spdlog.h>
 
 #include <fstream>
@@ -12,14 +12,14 @@
 namespace grip::commands {
 
 int simulate(const SimulateArgs& args) {
-  scene::SceneFile file;
+  std::vector<scene::SceneFile> files;
   try {
-    file = scene::load_scene_file(args.scene);
+    for (const std::string& path : args.scenes) files.push_back(scene::load_scene_file(path));
   } catch (const config::ConfigError& e) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  const scene::SceneReport report = scene::run_scene(file, args.trace);
+  const scene::BatchReport report = scene::run_scenes(files, args.scenes, args.trace, args.threads);
   if (args.report.empty()) {
     scene::write_json(std::cout, report, args.trace);
   } else {
@@ -29,14 +29,20 @@ int simulate(const SimulateArgs& args) {
       return 1;
     }
     scene::write_json(out, report, args.trace);
-    spdlog::info("{}: {} steps, {} Newton iterations, {:.2f} s; report in {}", args.scene,
-                 report.steps, report.newton_total, report.wall_seconds, args.report);
+    spdlog::info("{} scene(s) on {} thread(s) in {:.2f} s; report in {}", report.scenes.size(),
+                 report.threads, report.wall_seconds, args.report);
   }
-  if (!report.ok) {
-    spdlog::error("{}: simulation failed: {}", args.scene, report.failure);
-    return 1;
+  int status = 0;
+  for (const scene::SceneReport& scene : report.scenes) {
+    if (scene.ok) {
+      spdlog::info("{}: {} steps, {} Newton iterations", scene.scene, scene.steps,
+                   scene.newton_total);
+    } else {
+      spdlog::error("{}: simulation failed: {}", scene.scene, scene.failure);
+      status = 1;
+    }
   }
-  return 0;
+  return status;
 }
 
 }  // namespace grip::commands

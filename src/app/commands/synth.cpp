@@ -1,0 +1,58 @@
+// grip synth: candidate grasps for one object and gripper, written to a candidate file
+// (docs/synthesis.md), with the attempt statistics the synthesis figures are built from.
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "src/app/commands.hpp"
+#include "src/synth/candidate_file.hpp"
+#include "src/synth/object_spec.hpp"
+#include "src/synth/synthesize.hpp"
+
+namespace grip::commands {
+
+int synth(const SynthArgs& args) {
+  if (args.count < 1) throw std::invalid_argument("--count must be at least 1");
+  if (args.steps < 1) throw std::invalid_argument("--steps must be at least 1");
+  if (!(args.d_hat > 0.0) || !(args.margin >= 0.0)) {
+    throw std::invalid_argument("--d-hat must be positive and --margin non-negative (m)");
+  }
+  const std::filesystem::path folder = std::filesystem::path(args.out).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+    throw std::invalid_argument("--out: the folder '" + folder.string() +
+                                "' does not exist; create it first");
+  }
+  const synth::GripperKind gripper = synth::parse_gripper_kind(args.gripper);
+  const synth::PreparedObject object(synth::load_object(args.object, args.seed, args.scale));
+  spdlog::info("object '{}': {} vertices, {} triangles", args.object,
+               object.surface().vertices.rows(), object.surface().triangles.rows());
+
+  synth::SynthesisParams params;
+  params.antipodal.d_hat = params.hand.clearance.d_hat = args.d_hat;
+  params.antipodal.margin = params.hand.clearance.margin = args.margin;
+  params.bimanual.hand_clearance = args.d_hat + args.margin;
+  params.hand.steps = args.steps;
+  const synth::SynthesisResult result =
+      synth::synthesize(object, gripper, args.bimanual, params, args.seed, args.count);
+  synth::write_candidates(args.out, result.candidates);
+
+  for (const auto& [reason, n] : result.rejections) {
+    spdlog::info("rejected {}: {}", n, reason);
+  }
+  std::printf("%s %s%s: %zu candidates in %.3f s (%.2f candidates/s); %lld attempts, accepted "
+              "fraction %.3f; wrote %s\n",
+              args.object.c_str(), args.gripper.c_str(), args.bimanual ? " bimanual" : "",
+              result.candidates.size(), result.seconds,
+              static_cast<double>(result.candidates.size()) / result.seconds,
+              static_cast<long long>(result.attempts), result.accepted_fraction(), args.out.c_str());
+  if (static_cast<int>(result.candidates.size()) < args.count) {
+    spdlog::warn("only {} of {} candidates after {} attempts: the object may not fit the gripper",
+                 result.candidates.size(), args.count, result.attempts);
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace grip::commands

@@ -1,0 +1,189 @@
+// grip trial: grasp trials of candidates from a candidate file, as one batch, with a JSON
+// report, optional VTK frame series and an optional check against solo runs (docs/trial.md).
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "src/app/commands.hpp"
+#include "src/geometry/boundary_surface.hpp"
+#include "src/geometry/tetrahedralize.hpp"
+#include "src/grippers/parallel_gripper.hpp"
+#include "src/synth/candidate_file.hpp"
+#include "src/synth/object_spec.hpp"
+#include "solver/batch/batch.hpp"
+#include "src/trial/grasp_trial.hpp"
+#include "src/trial/same_result.hpp"
+#include "src/trial/vtk_series.hpp"
+
+namespace grip::commands {
+
+namespace {
+
+// "I" or "A-B" (inclusive) into candidate indices below `count`.
+std::vector<std::size_t> parse_indices(const std::string& text, std::size_t count) {
+  std::size_t first = 0, last = 0;
+  char dash = 0;
+  std::istringstream in(text);
+  bool ok = static_cast<bool>(in >> first);
+  if (ok && in >> dash) ok = dash == '-' && static_cast<bool>(in >> last) && (in >> std::ws).eof();
+  else last = first;
+  if (!ok || text.find_first_not_of("0123456789-") != std::string::npos || last < first) {
+    throw std::invalid_argument("--index '" + text + "': expected I or A-B (e.g. 0-63)");
+  }
+  if (last >= count) {
+    throw std::invalid_argument("--index " + text + ": the candidate file has " +
+                                std::to_string(count) + " candidates (0-" +
+                                std::to_string(count - 1) + ")");
+  }
+  std::vector<std::size_t> indices;
+  for (std::size_t i = first; i <= last; ++i) indices.push_back(i);
+  return indices;
+}
+
+grippers::ParallelGripper make_gripper(const std::string& name) {
+  if (name == "fin-ray") return grippers::make_umi_soft_gripper();
+  if (name == "parallel-jaw") return grippers::make_rigid_jaw_gripper();
+  throw std::invalid_argument("--gripper '" + name +
+                              "': grip trial runs parallel grippers (fin-ray, parallel-jaw); "
+                              "the hand's trial is not implemented yet");
+}
+
+void write_number(std::ostream& out, double value) {
+  if (std::isfinite(value)) out << value;
+  else out << "null";
+}
+
+void write_report(std::ostream& out, const TrialArgs& args, const std::vector<trial::TrialOutcome>& outcomes,
+                  double seconds, int threads, double solo_seconds, bool identical) {
+  out.precision(17);
+  out << "{\n\"object\": \"" << args.object << "\",\n\"gripper\": \"" << args.gripper
+      << "\",\n\"soft\": " << (args.soft ? "true" : "false") << ",\n\"threads\": " << threads
+      << ",\n\"candidates\": " << outcomes.size() << ",\n\"wall_seconds\": ";
+  write_number(out, seconds);
+  if (args.compare_solo) {
+    out << ",\n\"solo_wall_seconds\": ";
+    write_number(out, solo_seconds);
+    out << ",\n\"speedup\": ";
+    write_number(out, solo_seconds / seconds);
+    out << ",\n\"identical_to_solo\": " << (identical ? "true" : "false");
+  }
+  out << ",\n\"trials\": [";
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    const io::CandidateRecord& r = outcomes[i].result.record;
+    out << (i ? ",\n" : "\n") << "  {\"id\": " << r.id << ", \"status\": \"" << io::to_string(r.status)
+        << "\", \"failure\": \"" << io::to_string(r.failure) << "\", \"reason\": \"";
+    for (char c : outcomes[i].failure_reason) out << (c == '"' || c == '\\' ? '\'' : c);
+    out << "\", \"d1\": ";
+    write_number(out, r.d1);
+    out << ", \"d2\": ";
+    write_number(out, r.d2);
+    out << ", \"displacement\": [";
+    for (std::size_t k = 0; k < r.displacement.size(); ++k) {
+      if (k) out << ", ";
+      write_number(out, r.displacement[k]);
+    }
+    out << "], \"closing_forces\": [";
+    for (std::size_t k = 0; k < r.closing_forces.size(); ++k) {
+      if (k) out << ", ";
+      write_number(out, r.closing_forces[k]);
+    }
+    out << "], \"newton\": {\"steps\": " << r.newton.steps << ", \"iterations\": " << r.newton.iterations
+        << ", \"max_iterations\": " << r.newton.max_iterations << "}, \"wall_time\": ";
+    write_number(out, r.wall_time);
+    out << "}";
+  }
+  out << "\n]\n}\n";
+}
+
+}  // namespace
+
+int trial(const TrialArgs& args) {
+  const grippers::ParallelGripper gripper = make_gripper(args.gripper);
+  const std::vector<synth::Candidate> candidates = synth::read_candidates(args.candidates);
+  if (candidates.empty()) throw std::invalid_argument(args.candidates + ": no candidates");
+  const std::vector<std::size_t> indices = parse_indices(args.index, candidates.size());
+
+  std::vector<trial::ParallelGrasp> grasps;
+  std::vector<std::uint64_t> ids;
+  for (std::size_t i : indices) {
+    const synth::Candidate& c = candidates[i];
+    if (synth::gripper_name(c.gripper) != args.gripper || c.hands.size() != 1 ||
+        c.hands.front().joints.size() != 1) {
+      throw std::invalid_argument(args.candidates + ": candidate " + std::to_string(i) + " is for '" +
+                                  std::string(synth::gripper_name(c.gripper)) + "' with " +
+                                  std::to_string(c.hands.size()) + " hand(s), not one '" +
+                                  args.gripper + "'; synthesize with the same --gripper");
+    }
+    grasps.push_back({c.hands.front().pose, c.hands.front().joints[0]});
+    ids.push_back(i);
+  }
+
+  trial::TrialObject object;
+  object.name = args.object;
+  object.surface = synth::load_object(args.object, args.seed, args.scale);
+  object.material = {args.density, args.youngs, args.poisson, args.friction};
+  if (args.soft) {
+    geometry::TetOptions options;
+    options.edge_length = args.tet_edge;
+    object.tets = geometry::tetrahedralize(object.surface, options, args.object);
+    object.surface = geometry::boundary_surface(*object.tets);
+    spdlog::info("soft object: {} vertices, {} tets", object.tets->vertices.rows(),
+                 object.tets->tets.rows());
+  }
+  trial::TrialParameters parameters;
+  parameters.closing_speed = args.closing_speed;
+  parameters.squeeze_speed = args.squeeze_speed;
+  const trial::TrialScene scene(object, gripper, parameters);
+
+  trial::TrialRunOptions options;
+  options.threads = args.threads;
+  options.ids = ids;
+  options.body_frames = !args.vtk.empty();
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<trial::TrialOutcome> outcomes = trial::run_trials(scene, grasps, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  spdlog::info("{} trial(s) in {:.3f} s", outcomes.size(), seconds);
+
+  double solo_seconds = 0.0;
+  bool identical = true;
+  if (args.compare_solo) {
+    for (std::size_t k = 0; k < grasps.size(); ++k) {
+      trial::TrialRunOptions solo = options;
+      solo.threads = 1;
+      solo.ids = {ids[k]};
+      solo.body_frames = false;
+      const auto solo_start = std::chrono::steady_clock::now();
+      const trial::TrialOutcome alone = trial::run_trials(scene, {grasps[k]}, solo).front();
+      solo_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - solo_start).count();
+      if (!trial::same_result(alone.result, outcomes[k].result)) {
+        identical = false;
+        spdlog::error("candidate {}: the solo run differs from the batch", ids[k]);
+      }
+    }
+    spdlog::info("solo runs: {:.3f} s; batch speedup {:.2f}; identical: {}", solo_seconds,
+                 solo_seconds / seconds, identical);
+  }
+
+  if (!args.vtk.empty()) {
+    for (const trial::TrialOutcome& outcome : outcomes) {
+      trial::write_vtk_series(args.vtk, "candidate_" + std::to_string(outcome.result.record.id),
+                              *scene.model(), outcome.body_frames);
+    }
+  }
+  const int threads = solver::Batch(args.threads).threads();
+  if (args.report.empty()) {
+    write_report(std::cout, args, outcomes, seconds, threads, solo_seconds, identical);
+  } else {
+    std::ofstream out(args.report);
+    if (!out) throw std::runtime_error("--report " + args.report + ": cannot write the file");
+    write_report(out, args, outcomes, seconds, threads, solo_seconds, identical);
+  }
+  return identical ? 0 : 1;
+}
+
+}  // namespace grip::commands

@@ -1,0 +1,246 @@
+#include "src/synth/candidate_file.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace grip::synth {
+namespace {
+
+constexpr const char* kMagic = "grip-candidates";
+constexpr int kVersion = 1;
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+// Reads one line's tokens with errors that name the file and line.
+class LineReader {
+ public:
+  LineReader(std::istream& in, std::filesystem::path file) : in_(in), file_(std::move(file)) {}
+
+  // Moves to the next non-empty, non-comment line and checks its first word.
+  void next(const std::string& keyword) {
+    std::string line;
+    while (std::getline(in_, line)) {
+      ++line_number_;
+      if (line.empty() || line[0] == '#') continue;
+      tokens_.clear();
+      tokens_.str(line);
+      std::string word;
+      tokens_ >> word;
+      if (word != keyword) fail("expected '" + keyword + "', found '" + word + "'");
+      return;
+    }
+    fail("expected '" + keyword + "', found the end of the file");
+  }
+
+  double real(const std::string& what) {
+    std::string word;
+    if (!(tokens_ >> word)) fail("missing " + what);
+    try {
+      std::size_t used = 0;
+      const double value = std::stod(word, &used);
+      if (used != word.size()) throw std::invalid_argument(word);
+      return value;
+    } catch (const std::exception&) {
+      fail(what + " '" + word + "' is not a number");
+    }
+  }
+
+  int count(const std::string& what) {
+    const double value = real(what);
+    if (value < 0 || value != std::floor(value) || value > 1e9) {
+      fail(what + " must be a non-negative integer");
+    }
+    return static_cast<int>(value);
+  }
+
+  std::string word(const std::string& what) {
+    std::string word;
+    if (!(tokens_ >> word)) fail("missing " + what);
+    return word;
+  }
+
+  void expect(const std::string& keyword) {
+    if (word(keyword) != keyword) fail("expected '" + keyword + "'");
+  }
+
+  void end() {
+    std::string extra;
+    if (tokens_ >> extra) fail("unexpected '" + extra + "' at the end of the line");
+  }
+
+  // Fails if anything but blank lines and comments follows.
+  void finish() {
+    std::string line;
+    while (std::getline(in_, line)) {
+      ++line_number_;
+      if (!line.empty() && line[0] != '#') fail("more lines than the header's count");
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& message) const {
+    throw std::runtime_error(file_.string() + ":" + std::to_string(line_number_) + ": " + message +
+                             " (a candidate file written by 'grip synth' was expected; see "
+                             "docs/synthesis.md)");
+  }
+
+ private:
+  std::istream& in_;
+  std::filesystem::path file_;
+  std::istringstream tokens_;
+  int line_number_ = 0;
+};
+
+}  // namespace
+
+void write_candidates(const std::filesystem::path& file, const std::vector<Candidate>& candidates) {
+  const GripperKind gripper = candidates.empty() ? GripperKind::kFinRay : candidates[0].gripper;
+  const std::size_t hands = candidates.empty() ? 1 : candidates[0].hands.size();
+  const std::vector<EnergyTerm> first_terms =
+      candidates.empty() ? std::vector<EnergyTerm>{} : candidates[0].energies;
+  for (const Candidate& c : candidates) {
+    bool same_names = c.energies.size() == first_terms.size();
+    for (std::size_t i = 0; same_names && i < first_terms.size(); ++i) {
+      same_names = c.energies[i].name == first_terms[i].name;
+    }
+    if (c.gripper != gripper || c.hands.size() != hands || !same_names) {
+      throw std::invalid_argument("write_candidates: all candidates of one file must share the "
+                                  "gripper, the hand count and the energy terms");
+    }
+  }
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error(file.string() + ": cannot open for writing");
+  out << "# grip synthesized grasp candidates (docs/synthesis.md)\n";
+  out << kMagic << ' ' << kVersion << '\n';
+  out << "gripper " << gripper_name(gripper) << '\n';
+  out << "hands " << hands << '\n';
+  out << "joints " << joints_per_hand(gripper) << '\n';
+  out << "energies " << first_terms.size();
+  for (const EnergyTerm& term : first_terms) out << ' ' << term.name;
+  out << '\n';
+  out << "count " << candidates.size() << '\n';
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const Candidate& c = candidates[i];
+    out << "candidate " << i << " min_distance " << number(c.min_distance) << " energy";
+    for (const EnergyTerm& term : c.energies) out << ' ' << number(term.value);
+    out << '\n';
+    for (const HandGrasp& hand : c.hands) {
+      if (hand.joints.size() != joints_per_hand(gripper) ||
+          hand.contacts.rows() != hand.contact_normals.rows()) {
+        throw std::invalid_argument("write_candidates: candidate " + std::to_string(i) +
+                                    " has the wrong number of joints or contact normals");
+      }
+      const Eigen::Quaterniond q(hand.pose.linear());
+      const Eigen::Quaterniond unit = (q.w() < 0 ? Eigen::Quaterniond(-q.coeffs()) : q).normalized();
+      out << "hand position";
+      for (int k = 0; k < 3; ++k) out << ' ' << number(hand.pose.translation()(k));
+      out << " quaternion " << number(unit.w()) << ' ' << number(unit.x()) << ' '
+          << number(unit.y()) << ' ' << number(unit.z()) << " matrix";
+      for (const double v : pose_row_major(hand.pose)) out << ' ' << number(v);
+      out << " joints";
+      for (int k = 0; k < hand.joints.size(); ++k) out << ' ' << number(hand.joints(k));
+      out << " contacts " << hand.contacts.rows();
+      for (int r = 0; r < hand.contacts.rows(); ++r) {
+        for (int k = 0; k < 3; ++k) out << ' ' << number(hand.contacts(r, k));
+        for (int k = 0; k < 3; ++k) out << ' ' << number(hand.contact_normals(r, k));
+      }
+      out << '\n';
+    }
+  }
+  if (!out.flush()) throw std::runtime_error(file.string() + ": write failed");
+}
+
+std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file.string() + ": cannot open the candidate file");
+  LineReader reader(in, file);
+  reader.next(kMagic);
+  if (reader.count("format version") != kVersion) {
+    reader.fail("unsupported format version (this grip reads version " + std::to_string(kVersion) + ")");
+  }
+  reader.end();
+  reader.next("gripper");
+  GripperKind gripper{};
+  try {
+    gripper = parse_gripper_kind(reader.word("gripper name"));
+  } catch (const std::invalid_argument& e) {
+    reader.fail(e.what());
+  }
+  reader.end();
+  reader.next("hands");
+  const int hands = reader.count("hand count");
+  if (hands < 1 || hands > 2) reader.fail("hands must be 1 or 2");
+  reader.end();
+  reader.next("joints");
+  if (reader.count("joint count") != joints_per_hand(gripper)) {
+    reader.fail("joints must be " + std::to_string(joints_per_hand(gripper)) + " for " +
+                std::string(gripper_name(gripper)));
+  }
+  reader.end();
+  reader.next("energies");
+  std::vector<std::string> names(static_cast<std::size_t>(reader.count("energy count")));
+  for (std::string& name : names) name = reader.word("energy name");
+  reader.end();
+  reader.next("count");
+  const int count = reader.count("candidate count");
+  reader.end();
+
+  std::vector<Candidate> candidates(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    Candidate& c = candidates[static_cast<std::size_t>(i)];
+    c.gripper = gripper;
+    reader.next("candidate");
+    if (reader.count("candidate index") != i) reader.fail("candidate index must be " + std::to_string(i));
+    reader.expect("min_distance");
+    c.min_distance = reader.real("min_distance");
+    reader.expect("energy");
+    for (const std::string& name : names) c.energies.push_back({name, reader.real("energy " + name)});
+    reader.end();
+    for (int h = 0; h < hands; ++h) {
+      HandGrasp hand;
+      reader.next("hand");
+      reader.expect("position");
+      Eigen::Vector3d position;
+      for (int k = 0; k < 3; ++k) position(k) = reader.real("position");
+      reader.expect("quaternion");
+      Eigen::Vector4d wxyz;
+      for (int k = 0; k < 4; ++k) wxyz(k) = reader.real("quaternion");
+      if (std::abs(wxyz.norm() - 1.0) > 1e-9) reader.fail("the quaternion is not a unit quaternion");
+      reader.expect("matrix");
+      for (int r = 0; r < 3; ++r) {
+        for (int k = 0; k < 3; ++k) hand.pose.linear()(r, k) = reader.real("matrix entry");
+        hand.pose.translation()(r) = reader.real("matrix entry");
+      }
+      const Eigen::Matrix3d from_quaternion =
+          Eigen::Quaterniond(wxyz(0), wxyz(1), wxyz(2), wxyz(3)).toRotationMatrix();
+      if ((from_quaternion - hand.pose.linear()).norm() > 1e-9 ||
+          (position - hand.pose.translation()).norm() > 1e-12) {
+        reader.fail("the matrix disagrees with the position and quaternion");
+      }
+      reader.expect("joints");
+      hand.joints.resize(joints_per_hand(gripper));
+      for (int k = 0; k < hand.joints.size(); ++k) hand.joints(k) = reader.real("joint value");
+      reader.expect("contacts");
+      const int contacts = reader.count("contact count");
+      hand.contacts.resize(contacts, 3);
+      hand.contact_normals.resize(contacts, 3);
+      for (int r = 0; r < contacts; ++r) {
+        for (int k = 0; k < 3; ++k) hand.contacts(r, k) = reader.real("contact point");
+        for (int k = 0; k < 3; ++k) hand.contact_normals(r, k) = reader.real("contact normal");
+      }
+      reader.end();
+      c.hands.push_back(std::move(hand));
+    }
+  }
+  reader.finish();
+  return candidates;
+}
+
+}  // namespace grip::synth

@@ -1,0 +1,36 @@
+#include "src/synth/object_spec.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "src/geometry/mesh_io.hpp"
+#include "src/geometry/repair.hpp"
+#include "src/objects/object_library.hpp"
+
+namespace grip::synth {
+
+geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, double scale) {
+  if (!(scale > 0.0) || !std::isfinite(scale)) {
+    throw std::invalid_argument("--scale must be a positive factor (got " + std::to_string(scale) + ")");
+  }
+  for (const objects::ObjectCategory category : objects::all_object_categories()) {
+    if (objects::category_name(category) == spec) {
+      return objects::generate_surface(objects::sample_shape(category, seed));
+    }
+  }
+  if (!std::filesystem::is_regular_file(spec)) {
+    std::string names;
+    for (const objects::ObjectCategory category : objects::all_object_categories()) {
+      names += (names.empty() ? "" : ", ") + std::string(objects::category_name(category));
+    }
+    throw std::invalid_argument("--object '" + spec +
+                                "' is neither an object category (" + names +
+                                ") nor an existing mesh file (.obj, .stl, .ply, .off)");
+  }
+  geometry::SurfaceMesh mesh = geometry::read_surface_mesh(spec);
+  mesh.vertices *= scale;
+  return geometry::repair_surface(mesh, {}, spec).mesh;
+}
+
+}  // namespace grip::synth

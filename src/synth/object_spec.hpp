@@ -1,0 +1,17 @@
+#pragma once
+// The object a `grip synth` run grasps, from its command-line spec: a procedural category name
+// (the shape drawn from the seed) or the path of a surface mesh (repaired into a closed solid).
+#include <cstdint>
+#include <string>
+
+#include "src/geometry/mesh.hpp"
+
+namespace grip::synth {
+
+// A mesh file's coordinates are multiplied by `scale` (meshes often come in other units).
+// Throws std::invalid_argument naming the spec when it is neither a known category nor an
+// existing file or when scale is not positive, and whatever reading or repairing the mesh
+// throws (naming the file).
+geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, double scale = 1.0);
+
+}  // namespace grip::synth

@@ -1,0 +1,28 @@
+#pragma once
+// What one grasp trial produced: the dataset's result for the candidate (record, trajectory,
+// the soft object's stress at the settled grasp), the solver's reason when it failed, and,
+// when asked for, every body's vertices and stress at each recorded frame (for VTK files).
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "io/candidate_record.hpp"
+#include "src/geometry/mesh.hpp"
+
+namespace grip::trial {
+
+// Every body of the trial's scene at one recorded frame.
+struct BodyFrame {
+  double time = 0.0;                          // s
+  std::vector<geometry::Vertices> vertices;   // per body, all its vertices (world, m)
+  std::vector<Eigen::VectorXd> stress;        // per body: von Mises per tet (Pa); empty if not FEM
+};
+
+struct TrialOutcome {
+  io::CandidateResult result;
+  std::string failure_reason;         // the solver's message for kNewtonLimit / kNumerical
+  std::vector<BodyFrame> body_frames;  // closing then validation frames, when asked for
+};
+
+}  // namespace grip::trial

@@ -1,0 +1,39 @@
+#include "src/trial/trial_parameters.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace grip::trial {
+
+namespace {
+
+void require(bool ok, const std::string& name, const std::string& what) {
+  if (!ok) throw std::invalid_argument("trial parameter " + name + " must be " + what);
+}
+
+}  // namespace
+
+void validate(const TrialParameters& p) {
+  require(p.sim.dt > 0.0 && std::isfinite(p.sim.dt), "sim.dt", "a positive time step (s)");
+  require(p.sim.eps_v > 0.0, "sim.eps_v", "positive (m/s)");
+  require(p.closing_speed > 0.0 && std::isfinite(p.closing_speed), "closing_speed",
+          "positive (m/s)");
+  require(p.squeeze_speed > 0.0 && p.squeeze_speed <= p.closing_speed, "squeeze_speed",
+          "positive and at most closing_speed (m/s)");
+  require(p.stop_force > 0.0, "stop_force", "positive (N)");
+  require(p.final_opening >= 0.0, "final_opening", ">= 0 (m)");
+  require(p.settle_speed > 0.0, "settle_speed", "positive (m/s)");
+  require(p.settle_steps >= 1, "settle_steps", "at least 1");
+  require(p.settle_max_steps >= p.settle_steps, "settle_max_steps", "at least settle_steps");
+  require(p.gravity_magnitude >= 0.0, "gravity_magnitude", ">= 0 (m/s^2)");
+  require(p.phase_duration >= p.sim.dt, "phase_duration", "at least one time step (s)");
+  require(p.displacement_factor > 0.0, "displacement_factor", "positive");
+  require(p.closing_frames >= 2, "closing_frames", "at least 2");
+  require(p.validation_frames >= 6 && p.validation_frames % 6 == 0, "validation_frames",
+          "a positive multiple of 6 (equal parts per gravity phase)");
+  require(p.metric_samples >= 1, "metric_samples", "at least 1");
+  require(p.rigid_finger_friction >= 0.0, "rigid_finger_friction", ">= 0");
+}
+
+}  // namespace grip::trial

@@ -1,0 +1,97 @@
+#pragma once
+// The static part shared by every trial of one object and one parallel gripper: the solver
+// scene in gripper-canonical placement (object at the world origin, gripper frame = world,
+// jaws at the widest opening), its Model, which body plays which role, and how one candidate
+// places the gripper in an environment of that Model.
+#include <array>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "solver/environment.hpp"
+#include "solver/model.hpp"
+#include "src/geometry/mesh.hpp"
+#include "src/geometry/signed_distance.hpp"
+#include "src/grippers/parallel_gripper.hpp"
+#include "src/metrics/distance_metrics.hpp"
+#include "src/metrics/surface_points.hpp"
+#include "src/trial/trial_object.hpp"
+#include "src/trial/trial_parameters.hpp"
+
+namespace grip::trial {
+
+// One candidate of a parallel gripper: world from gripper frame, and the jaw opening (m).
+struct ParallelGrasp {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  double opening = 0.0;
+};
+
+// Body roles per jaw, in grippers::Jaw order (kPositive, kNegative).
+struct JawBodies {
+  int jaw = -1;     // the kinematic body that moves (rigid: the finger itself)
+  int finger = -1;  // the body whose contact force with the object stops the jaw
+};
+
+class TrialScene {
+ public:
+  // Builds the scene and its Model. Soft fingers are FEM bodies pinned by their mount
+  // vertices to a kinematic jaw block behind the mount; rigid fingers are kinematic.
+  // Throws std::invalid_argument (naming the object) for an unusable object or parameters.
+  TrialScene(const TrialObject& object, const grippers::ParallelGripper& gripper,
+             const TrialParameters& parameters);
+  ~TrialScene();
+  TrialScene(const TrialScene&) = delete;
+  TrialScene& operator=(const TrialScene&) = delete;
+
+  const std::shared_ptr<const solver::Model>& model() const { return model_; }
+  const grippers::ParallelGripper& gripper() const { return gripper_; }
+  const TrialParameters& parameters() const { return parameters_; }
+  bool soft_object() const { return soft_object_; }
+  int object_body() const { return 0; }
+  const std::array<JawBodies, 2>& jaws() const { return jaws_; }
+
+  // Moves the gripper's bodies of a fresh environment to the candidate's pose and opening
+  // (Environment::place) and holds its jaws still. Throws std::out_of_range for an opening
+  // outside the gripper's range.
+  void place(solver::Environment& environment, const ParallelGrasp& grasp) const;
+
+  // World velocity of a jaw closing at `speed` (m/s) along the candidate's closing axis.
+  Eigen::Vector3d closing_velocity(const ParallelGrasp& grasp, grippers::Jaw jaw,
+                                   double speed) const;
+
+  // The gripper's surface vertices in the dataset's order (gripper.surface(): positive finger,
+  // then negative), gathered from the environment's finger bodies.
+  geometry::Vertices gripper_surface_vertices(const solver::Environment& environment) const;
+  int gripper_surface_vertex_count() const;
+
+  // The object's pose as a row-major 3x4 [A | t], world from object frame (A: the affine
+  // body's matrix; a soft object's best-fit rotation).
+  std::array<double, 12> object_pose(const solver::Environment& environment) const;
+
+  // D1/D2 now: the object's signed distance (its current surface) at the D1/D2 points, which
+  // are sampled once on the fingers' rest surfaces and follow the fingers.
+  metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const;
+
+  // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
+  Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const;
+
+ private:
+  geometry::Vertices finger_vertices(const solver::Environment& environment) const;
+
+  grippers::ParallelGripper gripper_;
+  TrialParameters parameters_;
+  bool soft_object_ = false;
+  std::array<JawBodies, 2> jaws_;
+  std::array<Eigen::Isometry3d, 2> canonical_;  // finger frames at the widest opening
+  Eigen::VectorXi surface_to_body_;  // finger_surface vertex -> finger body vertex
+  std::shared_ptr<const solver::Model> model_;
+  std::unique_ptr<metrics::SurfacePoints> finger_points_;
+  std::unique_ptr<geometry::SignedDistance> rigid_object_distance_;  // object frame
+  geometry::SurfaceMesh soft_object_surface_;  // soft: boundary over its own vertices
+  Eigen::VectorXi soft_surface_to_body_;
+  std::vector<geometry::TetMesh> rest_tets_;  // per body; empty for non-FEM bodies
+  Eigen::Vector3d object_rest_center_ = Eigen::Vector3d::Zero();  // soft: rest centre of mass
+};
+
+}  // namespace grip::trial

@@ -1,0 +1,101 @@
+// Tests of the candidate file: exact round trips and errors that name the file and line.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include "src/synth/candidate_file.hpp"
+
+namespace grip::synth {
+namespace {
+
+std::filesystem::path scratch(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("grip_synth_" + std::to_string(::getpid()) + "_" + name);
+}
+
+Candidate hand_candidate(double shift) {
+  Candidate c;
+  c.gripper = GripperKind::kLeap;
+  for (int h = 0; h < 2; ++h) {
+    HandGrasp hand;
+    hand.pose.linear() = Eigen::AngleAxisd(0.3 + h + shift, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    hand.pose.translation() = Eigen::Vector3d(0.1 / 3.0, -0.2 + shift, 1e-17);
+    hand.joints = Eigen::VectorXd::LinSpaced(16, -0.3, 1.7 + shift);
+    hand.contacts = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>::Random(4, 3);
+    hand.contact_normals = hand.contacts.rowwise().normalized();
+    c.hands.push_back(hand);
+  }
+  c.energies = {{"fc", 0.1 + shift}, {"total", 1.0 / 7.0}};
+  c.min_distance = 0.0015 + shift;
+  return c;
+}
+
+TEST(SynthCandidateFileTest, RoundTripIsExact) {
+  const std::vector<Candidate> written{hand_candidate(0.0), hand_candidate(0.25)};
+  const auto file = scratch("round_trip.txt");
+  write_candidates(file, written);
+  const std::vector<Candidate> read = read_candidates(file);
+  ASSERT_EQ(read.size(), written.size());
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    EXPECT_EQ(read[i].gripper, written[i].gripper);
+    EXPECT_EQ(read[i].energies, written[i].energies);
+    EXPECT_EQ(read[i].min_distance, written[i].min_distance);
+    ASSERT_EQ(read[i].hands.size(), 2u);
+    for (std::size_t h = 0; h < 2; ++h) {
+      EXPECT_EQ(read[i].hands[h].pose.matrix(), written[i].hands[h].pose.matrix());
+      EXPECT_EQ(read[i].hands[h].joints, written[i].hands[h].joints);
+      EXPECT_EQ(read[i].hands[h].contacts, written[i].hands[h].contacts);
+      EXPECT_EQ(read[i].hands[h].contact_normals, written[i].hands[h].contact_normals);
+    }
+  }
+  std::filesystem::remove(file);
+}
+
+TEST(SynthCandidateFileTest, EmptySetRoundTrips) {
+  const auto file = scratch("empty.txt");
+  write_candidates(file, {});
+  EXPECT_TRUE(read_candidates(file).empty());
+  std::filesystem::remove(file);
+}
+
+TEST(SynthCandidateFileTest, RefusesMixedSets) {
+  Candidate other = hand_candidate(0.0);
+  other.hands.pop_back();
+  EXPECT_THROW(write_candidates(scratch("mixed.txt"), {hand_candidate(0.0), other}),
+               std::invalid_argument);
+}
+
+std::string read_error(const std::filesystem::path& file) {
+  try {
+    read_candidates(file);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SynthCandidateFileTest, ErrorsNameFileAndLine) {
+  const auto file = scratch("bad.txt");
+  write_candidates(file, {hand_candidate(0.0)});
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  in.close();
+  // Break the joint values of the first hand (line 9: comment, 6 header lines, candidate line).
+  const std::size_t joints = text.find(" joints ", text.find("hand position"));
+  text.replace(joints + 8, 1, "x");
+  std::ofstream(file) << text;
+  const std::string error = read_error(file);
+  EXPECT_NE(error.find(file.string() + ":9:"), std::string::npos) << error;
+  EXPECT_NE(error.find("joint value"), std::string::npos) << error;
+
+  std::ofstream(file) << "grip-candidates 1\ngripper claw\n";
+  EXPECT_NE(read_error(file).find(":2: unknown gripper 'claw'"), std::string::npos) << read_error(file);
+  EXPECT_NE(read_error(scratch("missing.txt")).find("cannot open"), std::string::npos);
+  std::filesystem::remove(file);
+}
+
+}  // namespace
+}  // namespace grip::synth

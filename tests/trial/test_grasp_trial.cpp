@@ -1,0 +1,280 @@
+// Known outcomes of the grasp trial (GRIP, Sec. III-D) on a coarse fin-ray gripper and on
+// rigid jaws: a centred antipodal grasp of a cylinder holds, a ball held with friction is lost
+// without it, a grasp closing on air fails, a squeezed soft box is stressed under the fingers,
+// IPC leaves D1 = 0 and D2 within d_hat, and a batch matches solo runs for any thread count.
+#include "src/trial/grasp_trial.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "src/geometry/boundary_surface.hpp"
+#include "src/geometry/primitives.hpp"
+#include "src/scene/primitives.hpp"
+#include "src/trial/same_result.hpp"
+
+namespace grip::trial {
+namespace {
+
+// A fin-ray finger with one tet layer across its depth instead of eight (same profile).
+const grippers::ParallelGripper& fin_ray() {
+  static const grippers::ParallelGripper gripper = [] {
+    grippers::FinRayOptions options;
+    options.layers = 1;
+    return grippers::make_umi_soft_gripper(options);
+  }();
+  return gripper;
+}
+
+const grippers::ParallelGripper& rigid_jaws() {
+  static const grippers::ParallelGripper gripper = grippers::make_rigid_jaw_gripper();
+  return gripper;
+}
+
+// The paper's protocol with shorter gravity phases (5 steps), fewer recorded frames and D1/D2
+// points, so that every trial takes seconds.
+TrialParameters parameters() {
+  TrialParameters p;
+  p.phase_duration = 0.05;
+  p.closing_frames = 8;
+  p.validation_frames = 12;
+  p.metric_samples = 20000;
+  return p;
+}
+
+// For the rigid jaws: they approach at the squeeze speed too.
+TrialParameters rigid_parameters() {
+  TrialParameters p = parameters();
+  p.closing_speed = p.squeeze_speed;
+  return p;
+}
+
+// For the fin-ray gripper: its compliant fingers squeeze at 2 mm/s and close at most 7.5 mm
+// past the object per jaw (they wrap it before 50 N).
+TrialParameters fin_ray_parameters(double width) {
+  TrialParameters p = parameters();
+  p.squeeze_speed = 0.02;
+  p.final_opening = width - 0.015;
+  return p;
+}
+
+// A rigid cylinder of radius 2 cm along the approach axis (z), 3 cm long: the jaws meet it
+// along lines, 4 cm apart across the closing axis.
+TrialObject rigid_cylinder(double friction) {
+  TrialObject object;
+  object.name = "cylinder";
+  object.surface = geometry::make_cylinder(0.02, 0.03, 24);
+  object.material.density = 500.0;
+  object.material.friction = friction;
+  return object;
+}
+
+// The object's centre 5 cm along the approach axis, jaws open 2.3 mm beyond its width.
+ParallelGrasp centred(double width) {
+  ParallelGrasp grasp;
+  grasp.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);
+  grasp.opening = width + 0.0046;
+  return grasp;
+}
+
+double largest(const std::array<double, 6>& values) {
+  return *std::max_element(values.begin(), values.end());
+}
+
+TEST(GraspTrial, CentredFinRayGraspHoldsACylinder) {
+  const TrialScene scene(rigid_cylinder(3.5), fin_ray(), fin_ray_parameters(0.04));
+  const TrialOutcome outcome = run_trials(scene, {centred(0.04)}).front();
+  const io::CandidateRecord& r = outcome.result.record;
+  EXPECT_EQ(r.status, io::Status::kSuccess) << io::to_string(r.failure) << " " << outcome.failure_reason;
+  EXPECT_EQ(r.failure, io::FailureKind::kNone);
+  // The compliant fingers wrap the box: the jaws reach the final opening before 50 N, and
+  // the symmetric grasp squeezes equally from both sides.
+  ASSERT_EQ(r.closing_forces.size(), 2u);
+  EXPECT_GT(r.closing_forces[0], 1.0);
+  EXPECT_NEAR(r.closing_forces[0], r.closing_forces[1], 0.01 * r.closing_forces[0]);
+  EXPECT_LT(largest(r.displacement), scene.parameters().displacement_threshold());
+  EXPECT_EQ(r.d1, 0.0);  // IPC never penetrates
+  EXPECT_GT(r.d2, 0.0);
+  EXPECT_LT(r.d2, scene.parameters().sim.d_hat);  // held within the barrier's reach
+  EXPECT_GT(r.newton.steps, 30u);  // closing, settling and 6 x 5 gravity steps
+  EXPECT_FALSE(outcome.result.stress.has_value());  // a rigid object has no stress
+}
+
+TEST(GraspTrial, RigidJawsHoldABallWithFrictionAndLoseItWithout) {
+  TrialObject ball = rigid_cylinder(1.0);
+  ball.name = "ball";
+  ball.surface = geometry::make_sphere(0.02, 16, 8);
+  const TrialScene held(ball, rigid_jaws(), rigid_parameters());
+  const io::CandidateRecord with = run_trials(held, {centred(0.04)}).front().result.record;
+  EXPECT_EQ(with.failure, io::FailureKind::kNone);
+  EXPECT_LT(largest(with.displacement), held.parameters().displacement_threshold());
+  EXPECT_EQ(with.d1, 0.0);
+
+  // mu = 0: nothing holds the ball in the squeeze. It leaves the jaws (squeezed out while
+  // settling, or dropped or displaced by gravity): a physical failure, not a solver one.
+  ball.material.friction = 0.0;
+  const TrialScene scene(ball, rigid_jaws(), rigid_parameters());
+  const TrialOutcome outcome = run_trials(scene, {centred(0.04)}).front();
+  const io::CandidateRecord& r = outcome.result.record;
+  EXPECT_EQ(r.status, io::Status::kFailure);
+  EXPECT_TRUE(r.failure == io::FailureKind::kNoContact ||
+              r.failure == io::FailureKind::kLostContact ||
+              r.failure == io::FailureKind::kDisplaced)
+      << io::to_string(r.failure) << " " << outcome.failure_reason;
+  EXPECT_EQ(r.d1, 0.0);
+  // The ball touched both jaws hard before it went.
+  for (double f : r.closing_forces) EXPECT_GT(f, scene.parameters().stop_force);
+}
+
+TEST(GraspTrial, ClosingOnAirFindsNoContact) {
+  const TrialScene scene(rigid_cylinder(3.5), fin_ray(), fin_ray_parameters(0.04));
+  ParallelGrasp air = centred(0.04);
+  air.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.05);  // the fingers miss the object
+  const TrialOutcome outcome = run_trials(scene, {air}).front();
+  const io::CandidateRecord& r = outcome.result.record;
+  EXPECT_EQ(r.status, io::Status::kFailure);
+  EXPECT_EQ(r.failure, io::FailureKind::kNoContact);
+  EXPECT_EQ(r.closing_forces, (std::vector<double>{0.0, 0.0}));
+  // The jaws closed all the way: the last closing frame's opening is final_opening (within
+  // one step of travel per jaw).
+  const io::TrajectoryRecord& t = *outcome.result.trajectory;
+  const double last_opening = t.joints[scene.parameters().closing_frames - 1];
+  EXPECT_NEAR(last_opening, scene.parameters().final_opening,
+              2 * scene.parameters().closing_speed * scene.parameters().sim.dt);
+}
+
+TEST(GraspTrial, StartingInsideTheObjectIsAnInitialPenetration) {
+  const TrialScene scene(rigid_cylinder(3.5), rigid_jaws(), rigid_parameters());
+  ParallelGrasp inside = centred(0.04);
+  inside.opening = 0.03;  // narrower than the cylinder: the fingers start inside it
+  const io::CandidateRecord r = run_trials(scene, {inside}).front().result.record;
+  EXPECT_EQ(r.failure, io::FailureKind::kInitialPenetration);
+}
+
+TEST(GraspTrial, RecordsTheDatasetTrajectory) {
+  const TrialScene scene(rigid_cylinder(3.5), rigid_jaws(), rigid_parameters());
+  const ParallelGrasp grasp = centred(0.04);
+  const TrialOutcome outcome = run_trials(scene, {grasp}).front();
+  ASSERT_TRUE(outcome.result.trajectory.has_value());
+  const io::TrajectoryRecord& t = *outcome.result.trajectory;
+  const std::size_t frames = 8 + 12, g = 16;  // two box fingers of 8 vertices
+  const auto n = static_cast<std::size_t>(geometry::make_cylinder(0.02, 0.03, 24).vertices.rows());
+  EXPECT_EQ(t.object_vertices.size(), frames * n * 3);
+  EXPECT_EQ(t.gripper_vertices.size(), frames * g * 3);
+  EXPECT_EQ(t.contact_forces.size(), frames * n * 3);
+  EXPECT_EQ(t.object_poses.size(), frames * 12);
+  EXPECT_EQ(t.hand_poses.size(), frames * 12);
+  ASSERT_EQ(t.joints.size(), frames);
+  // The first frame is the candidate: its opening, the object at rest at the origin, the
+  // gripper's vertices where gripper.surface(opening) puts them in the world.
+  EXPECT_EQ(t.joints.front(), grasp.opening);
+  EXPECT_TRUE(std::is_sorted(t.joints.begin(), t.joints.begin() + 8, std::greater<>()));
+  // Rigid jaws stop on the force threshold, well before the final opening.
+  const io::CandidateRecord& r = outcome.result.record;
+  EXPECT_EQ(r.failure, io::FailureKind::kNone) << outcome.failure_reason;
+  for (double f : r.closing_forces) EXPECT_GT(f, scene.parameters().stop_force);
+  EXPECT_GT(t.joints[7], 0.035);
+  const std::vector<double> identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  for (int k = 0; k < 12; ++k) EXPECT_NEAR(t.object_poses[k], identity[k], 1e-12);
+  // The settled frame (the last closing frame): the object's per-vertex normal forces add up
+  // to at least the two fingers' stop forces in magnitude and cancel as vectors (no gravity).
+  const std::size_t settled = 7 * n * 3;
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  double magnitude = 0.0;
+  for (std::size_t v = 0; v < n; ++v) {
+    const Eigen::Vector3d f(t.contact_forces[settled + 3 * v], t.contact_forces[settled + 3 * v + 1],
+                            t.contact_forces[settled + 3 * v + 2]);
+    total += f;
+    magnitude += f.norm();
+  }
+  EXPECT_GT(magnitude, 2.0 * scene.parameters().stop_force);
+  EXPECT_LT(total.norm(), 0.05 * magnitude);
+  const geometry::SurfaceMesh surface = rigid_jaws().surface(grasp.opening);
+  for (std::size_t v = 0; v < g; ++v) {
+    const Eigen::Vector3d expected = grasp.pose * surface.vertices.row(v).transpose();
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.gripper_vertices[3 * v + c], expected[c], 1e-6);
+  }
+}
+
+TEST(GraspTrial, SqueezedSoftBoxIsStressedUnderTheFingers) {
+  // A soft box 6 cm long across the fingers' 2.2 cm width: the fingers press its middle.
+  TrialObject soft;
+  soft.name = "soft box";
+  soft.tets = scene::box_tets(Eigen::Vector3d(0.06, 0.03, 0.02), 0.005);
+  soft.surface = geometry::boundary_surface(*soft.tets);
+  soft.material = {500.0, 1e6, 0.4, 3.5};
+  // The stress is taken at the settled grasp: one step per gravity phase is enough here.
+  TrialParameters p = fin_ray_parameters(0.03);
+  p.phase_duration = p.sim.dt;
+  p.validation_frames = 6;
+  const TrialScene scene(soft, fin_ray(), p);
+  const TrialOutcome outcome = run_trials(scene, {centred(0.03)}).front();
+  const io::CandidateRecord& r = outcome.result.record;
+  EXPECT_NE(r.failure, io::FailureKind::kNoContact) << outcome.failure_reason;
+  EXPECT_EQ(r.d1, 0.0);
+  ASSERT_TRUE(outcome.result.stress.has_value());
+  const std::vector<float>& stress = *outcome.result.stress;
+  ASSERT_EQ(stress.size(), static_cast<std::size_t>(soft.tets->tets.rows()));
+  // Mean von Mises stress of the tets under the fingers (|x| < half the finger width)
+  // against the tets of the free ends (|x| > 2 cm).
+  const double half_width = 0.5 * grippers::FinRayOptions{}.depth;
+  double under = 0, ends = 0;
+  int n_under = 0, n_ends = 0;
+  for (Eigen::Index t = 0; t < soft.tets->tets.rows(); ++t) {
+    double x = 0;
+    for (int c = 0; c < 4; ++c) x += 0.25 * soft.tets->vertices(soft.tets->tets(t, c), 0);
+    if (std::abs(x) < half_width) under += stress[t], ++n_under;
+    if (std::abs(x) > 0.02) ends += stress[t], ++n_ends;
+  }
+  ASSERT_GT(n_under, 0);
+  ASSERT_GT(n_ends, 0);
+  EXPECT_GT(under / n_under, 5.0 * (ends / n_ends));
+  const auto peak = std::max_element(stress.begin(), stress.end()) - stress.begin();
+  double peak_x = 0;
+  for (int c = 0; c < 4; ++c) peak_x += 0.25 * soft.tets->vertices(soft.tets->tets(peak, c), 0);
+  EXPECT_LT(std::abs(peak_x), half_width + 0.005);
+}
+
+TEST(GraspTrial, BatchMatchesSoloRunsForAnyThreadCount) {
+  // Candidates that hold, slip, miss and start inside, on rigid jaws, as one batch (two
+  // threads) and one by one (one thread): the same results bit for bit, wall time aside.
+  const TrialScene scene(rigid_cylinder(1.0), rigid_jaws(), rigid_parameters());
+  std::vector<ParallelGrasp> grasps;
+  for (int k = 0; k < 6; ++k) {
+    ParallelGrasp g = centred(0.04);
+    g.pose.rotate(Eigen::AngleAxisd(0.1 * k, Eigen::Vector3d::UnitZ()));
+    g.pose.pretranslate(Eigen::Vector3d(0.0, 0.0, -0.003 * k));
+    grasps.push_back(g);
+  }
+  grasps[4].pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.05);  // on air
+  grasps[5] = centred(0.04);
+  grasps[5].opening = 0.03;  // inside the cylinder
+  TrialRunOptions batch_options;
+  batch_options.threads = 2;
+  const std::vector<TrialOutcome> batch = run_trials(scene, grasps, batch_options);
+  ASSERT_EQ(batch.size(), grasps.size());
+  std::vector<io::FailureKind> kinds;
+  for (std::size_t k = 0; k < grasps.size(); ++k) {
+    TrialRunOptions solo_options;
+    solo_options.threads = 1;
+    solo_options.ids = {k};
+    const TrialOutcome solo = run_trials(scene, {grasps[k]}, solo_options).front();
+    EXPECT_TRUE(same_result(batch[k].result, solo.result)) << "candidate " << k;
+    kinds.push_back(batch[k].result.record.failure);
+    if (k != 5) EXPECT_EQ(batch[k].result.record.d1, 0.0) << "candidate " << k;
+  }
+  EXPECT_EQ(kinds[0], io::FailureKind::kNone);
+  EXPECT_EQ(kinds[4], io::FailureKind::kNoContact);
+  EXPECT_EQ(kinds[5], io::FailureKind::kInitialPenetration);
+}
+
+TEST(GraspTrial, RejectsAnOpeningTheGripperCannotTake) {
+  const TrialScene scene(rigid_cylinder(1.0), rigid_jaws(), rigid_parameters());
+  ParallelGrasp wide = centred(0.04);
+  wide.opening = 0.2;
+  EXPECT_THROW(run_trials(scene, {wide}), std::out_of_range);
+}
+
+}  // namespace
+}  // namespace grip::trial
