@@ -7,6 +7,7 @@
 #include <string>
 
 #include "solver/batch/batch.hpp"
+#include "src/scene/invariants.hpp"
 #include "src/trial/frame_recorder.hpp"
 
 namespace grip::trial {
@@ -134,6 +135,15 @@ class TrialRunner {
       if (state.moving[j]) move_jaw(env, state, j, p_.closing_speed);
     }
     state.recorder.add_closing(frame(i));
+    // The solver refuses a start whose contact pairs within d_hat touch, but a finger that
+    // pierces the object with every vertex far from its surface, or lies wholly inside it, forms
+    // no such pair. So the start is checked here: exact edge-triangle intersections (CGAL) and
+    // gripper surface points inside the object (D1 > 0).
+    if (scene::count_intersections(env) > 0 || scene_.grasp_distances(env).d1 > 0.0) {
+      state.outcome.failure_reason = "the gripper intersects the object at the candidate's pose";
+      record.d1 = record.d2 = std::numeric_limits<double>::quiet_NaN();
+      finish(i, io::FailureKind::kInitialPenetration);
+    }
   }
 
   void move_jaw(solver::Environment& env, TrialState& state, int j, double speed) const {

@@ -152,6 +152,24 @@ TEST(GraspTrial, StartingInsideTheObjectIsAnInitialPenetration) {
   EXPECT_EQ(r.failure, io::FailureKind::kInitialPenetration);
 }
 
+// Starts the solver's own check cannot see (no contact pair within d_hat): the jaws' fingers
+// piercing a thin plate with every vertex far from it, and lying wholly inside a large box.
+TEST(GraspTrial, PiercingOrContainedFingersAreAnInitialPenetration) {
+  for (const Eigen::Vector3d size : {Eigen::Vector3d(0.3, 0.3, 0.004), Eigen::Vector3d(0.3, 0.3, 0.3)}) {
+    TrialObject object;
+    object.name = "slab";
+    object.surface = geometry::make_box(size);
+    const TrialScene scene(object, rigid_jaws(), rigid_parameters());
+    ParallelGrasp grasp;
+    grasp.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.03);
+    grasp.opening = 0.04;
+    const TrialOutcome outcome = run_trials(scene, {grasp}).front();
+    EXPECT_EQ(outcome.result.record.failure, io::FailureKind::kInitialPenetration)
+        << "object " << size.transpose() << ": " << io::to_string(outcome.result.record.failure);
+    EXPECT_EQ(outcome.result.record.newton.steps, 0u);
+  }
+}
+
 TEST(GraspTrial, RecordsTheDatasetTrajectory) {
   const TrialScene scene(rigid_cylinder(3.5), rigid_jaws(), rigid_parameters());
   const ParallelGrasp grasp = centred(0.04);
