@@ -4,9 +4,11 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -48,6 +50,15 @@ SurfaceMesh boolean_union(const SurfaceMesh& a, const SurfaceMesh& b, const std:
     throw std::invalid_argument(what + ": the union is not a valid solid (an operand "
                                        "intersects itself or is not outward oriented)");
   }
+  // Corefinement leaves slivers of triangles along the intersection curve (edges down to
+  // 1e-18 m, angles near 0 or 180 degrees), on which tetrahedralization degenerates. Needles
+  // whose short edge is under 0.2 mm are collapsed and caps flipped; nothing an object's
+  // shape depends on is that small.
+  pmp::experimental::remove_almost_degenerate_faces(faces(result), result,
+                                                    /*cap_threshold=*/std::cos(160.0 * CGAL_PI / 180.0),
+                                                    /*needle_threshold=*/100.0,
+                                                    /*collapse_length_threshold=*/2e-4);
+  result.collect_garbage();
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
   pmp::polygon_mesh_to_polygon_soup(result, points, polygons);
