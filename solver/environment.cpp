@@ -33,9 +33,9 @@ struct Environment::StepState {
   StepTargets targets;
   double progress = 0.0;
   int lag = 0;
-  int iteration = 0;        // within the current lag's solve
+  int iteration = 0;  // within the current lag's solve
   double first_residual = 0.0;
-  double weight = 0.0;      // N, of the dynamic bodies under the current gravity
+  double weight = 0.0;  // N, of the dynamic bodies under the current gravity
   Eigen::VectorXd gradient;
   Eigen::VectorXd kinematic_force;
   std::vector<Eigen::Triplet<double>> triplets;
@@ -86,7 +86,8 @@ Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& m) {
 
 double tet_volume_ratio(const Eigen::VectorXd& q, const BodyModel& body, const FemTet& tet) {
   Eigen::Matrix<double, 12, 1> x;
-  for (int i = 0; i < 4; ++i) x.segment<3>(3 * i) = q.segment<3>(body.dof_offset + 3 * tet.vertices[i]);
+  for (int i = 0; i < 4; ++i)
+    x.segment<3>(3 * i) = q.segment<3>(body.dof_offset + 3 * tet.vertices[i]);
   return kernels::deformation_gradient(x, tet.rest_shape_inverse).determinant();
 }
 
@@ -264,36 +265,46 @@ Vertices Environment::body_vertices(int index) const {
   for (Eigen::Index v = 0; v < body.rest.rows(); ++v) {
     const Eigen::Vector3d rest = body.rest.row(v);
     switch (body.type) {
-      case BodyType::kFem: x.row(v) = q_.segment<3>(body.dof_offset + 3 * v); break;
+      case BodyType::kFem:
+        x.row(v) = q_.segment<3>(body.dof_offset + 3 * v);
+        break;
       case BodyType::kAffine:
         x.row(v) = kernels::affine_body_position(q_.segment<12>(body.dof_offset), rest);
         break;
-      case BodyType::kKinematic: x.row(v) = apply(poses_[index], rest); break;
+      case BodyType::kKinematic:
+        x.row(v) = apply(poses_[index], rest);
+        break;
     }
   }
   return x;
 }
 
+namespace {
+
+// The lumped-mass-weighted mean of an FEM body's per-vertex 3-vectors in `values` (positions
+// or velocities).
+Eigen::Vector3d mass_weighted_mean(const BodyModel& body, const Eigen::VectorXd& values) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (Eigen::Index v = 0; v < body.rest.rows(); ++v) {
+    sum += body.vertex_mass[v] * values.segment<3>(body.dof_offset + 3 * v);
+  }
+  return sum / body.vertex_mass.sum();
+}
+
+}  // namespace
+
 Eigen::Vector3d Environment::center_of_mass(int index) const {
   const BodyModel& body = model_->bodies()[index];
   if (body.type == BodyType::kAffine) return q_.segment<3>(body.dof_offset);
   if (body.type == BodyType::kKinematic) return poses_[index].position;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (Eigen::Index v = 0; v < body.rest.rows(); ++v) {
-    sum += body.vertex_mass[v] * q_.segment<3>(body.dof_offset + 3 * v);
-  }
-  return sum / body.vertex_mass.sum();
+  return mass_weighted_mean(body, q_);
 }
 
 Eigen::Vector3d Environment::center_of_mass_velocity(int index) const {
   const BodyModel& body = model_->bodies()[index];
   if (body.type == BodyType::kAffine) return v_.segment<3>(body.dof_offset);
   if (body.type == BodyType::kKinematic) return kinematic_velocity_[index];
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (Eigen::Index v = 0; v < body.rest.rows(); ++v) {
-    sum += body.vertex_mass[v] * v_.segment<3>(body.dof_offset + 3 * v);
-  }
-  return sum / body.vertex_mass.sum();
+  return mass_weighted_mean(body, v_);
 }
 
 Eigen::Matrix3d Environment::rotation(int index) const {
@@ -483,7 +494,8 @@ Environment::Progress Environment::begin_step() {
   targets.prescribed_target = q_;
   for (const PinnedVertex& pin : model_->pins()) {
     const int o = model_->bodies()[pin.body].dof_offset + 3 * pin.vertex;
-    targets.prescribed_target.segment<3>(o) = apply(targets.pose_target[pin.kinematic_body], pin.offset);
+    targets.prescribed_target.segment<3>(o) =
+        apply(targets.pose_target[pin.kinematic_body], pin.offset);
   }
 
   const Vertices start = positions_at(q_, targets, 0.0);
@@ -522,9 +534,12 @@ Environment::Progress Environment::iterate() {
   if (!step_) throw std::logic_error("Environment::iterate without begin_step");
   StepState& state = *step_;
   switch (newton_iteration(state)) {
-    case NewtonOutcome::kFailed: return Progress::kFailed;
-    case NewtonOutcome::kContinue: return Progress::kIterating;
-    case NewtonOutcome::kConverged: break;
+    case NewtonOutcome::kFailed:
+      return Progress::kFailed;
+    case NewtonOutcome::kContinue:
+      return Progress::kIterating;
+    case NewtonOutcome::kConverged:
+      break;
   }
   // Each further friction lag re-linearizes friction at the current positions and solves again.
   if (++state.lag < std::max(1, model_->sim().friction_lag_iterations)) {
@@ -557,7 +572,8 @@ VertexContactForces Environment::vertex_contact_forces() const {
   const CollisionMesh& mesh = model_->collision();
   const Vertices x = collision_positions();
   VertexContactForces forces{Vertices::Zero(mesh.size(), 3), Vertices::Zero(mesh.size(), 3)};
-  auto add = [](Vertices& to, const std::array<int, 4>& vertex, const Eigen::Matrix<double, 12, 1>& f) {
+  auto add = [](Vertices& to, const std::array<int, 4>& vertex,
+                const Eigen::Matrix<double, 12, 1>& f) {
     for (int i = 0; i < 4; ++i) to.row(vertex[i]) += f.segment<3>(3 * i).transpose();
   };
   for (const ContactPair& pair : find_contact_pairs(*model_, x, x, model_->sim().d_hat)) {

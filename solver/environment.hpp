@@ -75,7 +75,6 @@ class Environment {
   void set_script(int body, const Script& script);
 
   const Model& model() const { return *model_; }
-  const std::shared_ptr<const Model>& shared_model() const { return model_; }
   double time() const { return time_; }
   bool failed() const { return !failure_.empty(); }
   const std::string& failure() const { return failure_; }

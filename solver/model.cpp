@@ -32,8 +32,8 @@ VolumeMoments volume_moments(const Vertices& v, const Triangles& f) {
     const Eigen::Vector3d s = a + b + c;
     m.volume += vol;
     m.first += vol * s / 4.0;
-    m.second += vol / 20.0 * (a * a.transpose() + b * b.transpose() + c * c.transpose() +
-                              s * s.transpose());
+    m.second += vol / 20.0 *
+                (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
   }
   return m;
 }
@@ -69,7 +69,8 @@ BlockGraph block_graph(const Model& model) {
   for (const BodyModel& body : model.bodies()) {
     first_block.push_back(static_cast<int>(graph.block_offset.size()));
     const int size = body.type == BodyType::kFem ? 3 : 12;
-    for (int d = 0; d < body.dof_count; d += size) graph.block_offset.push_back(body.dof_offset + d);
+    for (int d = 0; d < body.dof_count; d += size)
+      graph.block_offset.push_back(body.dof_offset + d);
   }
   graph.block_offset.push_back(model.dof_count());
   graph.neighbours.resize(graph.block_offset.size() - 1);
@@ -80,7 +81,8 @@ BlockGraph block_graph(const Model& model) {
     for (const FemTet& tet : body.tets) {
       for (int i : tet.vertices) {
         for (int j : tet.vertices) {
-          if (i != j && free(i) && free(j)) graph.neighbours[first_block[b] + i].push_back(first_block[b] + j);
+          if (i != j && free(i) && free(j))
+            graph.neighbours[first_block[b] + i].push_back(first_block[b] + j);
         }
       }
     }
@@ -111,14 +113,14 @@ std::shared_ptr<const Model> Model::build(const SceneDescription& scene) {
       if (body.tets.minCoeff() < 0 || body.tets.maxCoeff() >= body.vertices.rows()) {
         invalid(body, "has a tetrahedron index outside its vertices");
       }
-      if (body.material.density <= 0 || body.material.youngs <= 0 ||
-          body.material.poisson <= -1 || body.material.poisson >= 0.5) {
+      if (body.material.density <= 0 || body.material.youngs <= 0 || body.material.poisson <= -1 ||
+          body.material.poisson >= 0.5) {
         invalid(body, "needs density > 0, youngs > 0 and -1 < poisson < 0.5");
       }
       b.rest = (body.vertices * r.transpose()).rowwise() + body.pose.position.transpose();
       b.vertex_mass = Eigen::VectorXd::Zero(b.rest.rows());
-      b.elasticity = kernels::stable_neo_hookean_parameters(body.material.youngs,
-                                                             body.material.poisson);
+      b.elasticity =
+          kernels::stable_neo_hookean_parameters(body.material.youngs, body.material.poisson);
       for (Eigen::Index t = 0; t < body.tets.rows(); ++t) {
         FemTet tet;
         for (int i = 0; i < 4; ++i) tet.vertices[i] = body.tets(t, i);
@@ -191,7 +193,8 @@ std::shared_ptr<const Model> Model::build(const SceneDescription& scene) {
   model->prescribed_.assign(dofs, 0);
   for (int index = 0; index < body_count; ++index) {
     const BodyDescription& body = scene.bodies[index];
-    if (!body.pins.empty() && body.type != BodyType::kFem) invalid(body, "only FEM bodies have pins");
+    if (!body.pins.empty() && body.type != BodyType::kFem)
+      invalid(body, "only FEM bodies have pins");
     for (const Pin& pin : body.pins) {
       if (pin.kinematic_body < 0 || pin.kinematic_body >= body_count ||
           scene.bodies[pin.kinematic_body].type != BodyType::kKinematic) {
@@ -212,8 +215,8 @@ std::shared_ptr<const Model> Model::build(const SceneDescription& scene) {
     }
   }
 
-  model->ordering_ = std::make_shared<const std::vector<int>>(
-      nested_dissection_ordering(block_graph(*model)));
+  model->ordering_ =
+      std::make_shared<const std::vector<int>>(nested_dissection_ordering(block_graph(*model)));
 
   // The collision mesh: every surface vertex, edge and face of every body.
   CollisionMesh& mesh = model->collision_;
@@ -234,7 +237,8 @@ std::shared_ptr<const Model> Model::build(const SceneDescription& scene) {
       for (int i = 0; i < 3; ++i) face[i] = collision_vertex(body.triangles(t, i));
       mesh.faces.push_back(face);
       for (int i = 0; i < 3; ++i) {
-        const int a = std::min(face[i], face[(i + 1) % 3]), b = std::max(face[i], face[(i + 1) % 3]);
+        const int a = std::min(face[i], face[(i + 1) % 3]),
+                  b = std::max(face[i], face[(i + 1) % 3]);
         if (edge_seen.emplace(std::pair{a, b}, 0).second) mesh.edges.push_back({a, b});
       }
     }

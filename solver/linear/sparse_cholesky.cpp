@@ -34,7 +34,7 @@ struct SparseCholesky::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
   std::shared_ptr<const std::vector<int>> permutation;  // empty: CHOLMOD orders
-  std::vector<int> outer;  // the analysed pattern, to detect a change
+  std::vector<int> outer;                               // the analysed pattern, to detect a change
   std::vector<int> inner;
   int analyses = 0;
 
@@ -83,10 +83,9 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
     int* perm = nullptr;
     if (impl.permutation) {
       if (impl.permutation->size() != static_cast<std::size_t>(lower.rows())) {
-        throw std::invalid_argument("SparseCholesky: the permutation has " +
-                                    std::to_string(impl.permutation->size()) +
-                                    " entries for a matrix of size " +
-                                    std::to_string(lower.rows()));
+        throw std::invalid_argument(
+            "SparseCholesky: the permutation has " + std::to_string(impl.permutation->size()) +
+            " entries for a matrix of size " + std::to_string(lower.rows()));
       }
       perm = const_cast<int*>(impl.permutation->data());
     }
@@ -112,7 +111,8 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
   b.dtype = CHOLMOD_DOUBLE;
   cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl.factor, &b, &impl.common);
   if (x == nullptr) throw std::runtime_error("CHOLMOD solve failed");
-  Eigen::VectorXd result = Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(x->x), rhs.size());
+  Eigen::VectorXd result =
+      Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(x->x), rhs.size());
   cholmod_free_dense(&x, &impl.common);
   return result;
 }

@@ -1,17 +1,14 @@
 #include "src/geometry/repair.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
-#include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/alpha_wrap_3.h>
 
 #include <Eigen/SVD>
@@ -22,14 +19,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "src/geometry/cgal_surface_mesh.hpp"
 #include "src/geometry/mesh_measures.hpp"
 
 namespace grip::geometry {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using CgalMesh = CGAL::Surface_mesh<Point>;
+using Kernel = cgal::Kernel;
+using Point = cgal::Point;
+using CgalMesh = cgal::SurfaceMesh;
 using Polygon = std::vector<std::size_t>;
 namespace pmp = CGAL::Polygon_mesh_processing;
 
@@ -41,26 +39,6 @@ bool is_flat(const Vertices& vertices) {
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(centred);
   const Eigen::Vector3d sigma = svd.singularValues();
   return sigma[2] <= 1e-9 * sigma[0];
-}
-
-SurfaceMesh to_surface_mesh(const CgalMesh& mesh) {
-  std::vector<Point> points;
-  std::vector<Polygon> polygons;
-  pmp::polygon_mesh_to_polygon_soup(mesh, points, polygons);
-  SurfaceMesh result;
-  result.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    result.vertices.row(static_cast<Eigen::Index>(i)) << points[i].x(), points[i].y(),
-        points[i].z();
-  }
-  result.triangles.resize(static_cast<Eigen::Index>(polygons.size()), 3);
-  for (std::size_t f = 0; f < polygons.size(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      result.triangles(static_cast<Eigen::Index>(f), k) =
-          static_cast<int>(polygons[f][static_cast<std::size_t>(k)]);
-    }
-  }
-  return result;
 }
 
 // Counts faces of `after` whose winding is the reverse of the same face in `before` (same
@@ -206,7 +184,7 @@ RepairedSurface repair_surface(const SurfaceMesh& input, const RepairOptions& op
     mesh = std::move(wrapped);
   }
 
-  RepairedSurface result{to_surface_mesh(mesh), report};
+  RepairedSurface result{cgal::from_cgal(mesh), report};
   result.report.volume = surface_volume(result.mesh);
   if (!(result.report.volume > 0.0)) {
     throw std::invalid_argument("mesh " + source +

@@ -3,10 +3,7 @@
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Side_of_triangle_mesh.h>
-#include <CGAL/Surface_mesh.h>
 #include <tbb/parallel_for.h>
 
 #include <array>
@@ -14,16 +11,17 @@
 #include <stdexcept>
 #include <vector>
 
+#include "src/geometry/cgal_surface_mesh.hpp"
+
 namespace grip::geometry {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using CgalMesh = CGAL::Surface_mesh<Point>;
+using Kernel = cgal::Kernel;
+using Point = cgal::Point;
+using CgalMesh = cgal::SurfaceMesh;
 using Primitive = CGAL::AABB_face_graph_triangle_primitive<CgalMesh>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 using Inside = CGAL::Side_of_triangle_mesh<CgalMesh, Kernel, CGAL::Default, Tree>;
-namespace pmp = CGAL::Polygon_mesh_processing;
 
 }  // namespace
 
@@ -34,22 +32,12 @@ struct SignedDistance::Impl {
 };
 
 SignedDistance::SignedDistance(const SurfaceMesh& closed_surface) : impl_(std::make_unique<Impl>()) {
-  std::vector<Point> points;
-  for (Eigen::Index i = 0; i < closed_surface.vertices.rows(); ++i) {
-    points.emplace_back(closed_surface.vertices(i, 0), closed_surface.vertices(i, 1),
-                        closed_surface.vertices(i, 2));
-  }
-  std::vector<std::array<std::size_t, 3>> faces;
-  for (Eigen::Index f = 0; f < closed_surface.triangles.rows(); ++f) {
-    faces.push_back({static_cast<std::size_t>(closed_surface.triangles(f, 0)),
-                     static_cast<std::size_t>(closed_surface.triangles(f, 1)),
-                     static_cast<std::size_t>(closed_surface.triangles(f, 2))});
-  }
-  if (faces.empty() || !pmp::is_polygon_soup_a_polygon_mesh(faces)) {
+  std::optional<CgalMesh> mesh = cgal::to_cgal(closed_surface);
+  if (closed_surface.triangles.rows() == 0 || !mesh) {
     throw std::invalid_argument(
         "signed distance needs a non-empty manifold surface; repair the mesh first");
   }
-  pmp::polygon_soup_to_polygon_mesh(points, faces, impl_->mesh);
+  impl_->mesh = std::move(*mesh);
   if (!CGAL::is_closed(impl_->mesh)) {
     throw std::invalid_argument(
         "signed distance needs a closed surface (inside and outside); this one has open "

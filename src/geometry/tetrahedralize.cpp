@@ -1,14 +1,11 @@
 #include "src/geometry/tetrahedralize.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/exude_mesh_3.h>
 #include <CGAL/make_mesh_3.h>
 #include <CGAL/perturb_mesh_3.h>
@@ -22,14 +19,15 @@
 #include <unordered_map>
 #include <vector>
 
+#include "src/geometry/cgal_surface_mesh.hpp"
 #include "src/geometry/mesh_measures.hpp"
 
 namespace grip::geometry {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using CgalMesh = CGAL::Surface_mesh<Point>;
+using Kernel = cgal::Kernel;
+using Point = cgal::Point;
+using CgalMesh = cgal::SurfaceMesh;
 using Domain = CGAL::Polyhedral_mesh_domain_with_features_3<Kernel, CgalMesh>;
 using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
 using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation, Domain::Corner_index,
@@ -119,26 +117,13 @@ Complex initial_complex(const SurfaceMesh& surface, const Domain& domain, const 
 }
 
 CgalMesh to_cgal_mesh(const SurfaceMesh& surface, const std::string& source) {
-  std::vector<Point> points;
-  points.reserve(static_cast<std::size_t>(surface.vertices.rows()));
-  for (Eigen::Index i = 0; i < surface.vertices.rows(); ++i) {
-    points.emplace_back(surface.vertices(i, 0), surface.vertices(i, 1), surface.vertices(i, 2));
-  }
-  std::vector<std::array<std::size_t, 3>> faces;
-  faces.reserve(static_cast<std::size_t>(surface.triangles.rows()));
-  for (Eigen::Index f = 0; f < surface.triangles.rows(); ++f) {
-    faces.push_back({static_cast<std::size_t>(surface.triangles(f, 0)),
-                     static_cast<std::size_t>(surface.triangles(f, 1)),
-                     static_cast<std::size_t>(surface.triangles(f, 2))});
-  }
-  if (!pmp::is_polygon_soup_a_polygon_mesh(faces)) {
+  std::optional<CgalMesh> mesh = cgal::to_cgal(surface);
+  if (!mesh) {
     throw std::invalid_argument("cannot tetrahedralize " + source +
                                 ": the surface is not manifold; repair it first "
                                 "(geometry::repair_surface or `grip asset prepare`)");
   }
-  CgalMesh mesh;
-  pmp::polygon_soup_to_polygon_mesh(points, faces, mesh);
-  return mesh;
+  return std::move(*mesh);
 }
 
 }  // namespace
