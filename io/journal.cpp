@@ -1,6 +1,7 @@
 #include "io/journal.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -19,6 +20,17 @@ constexpr const char* kMagic = "grip-journal 1";
 
 [[noreturn]] void system_error(const std::filesystem::path& path, const std::string& what) {
   throw DatasetError(path.string() + ": " + what + ": " + std::strerror(errno));
+}
+
+// One writer per dataset: the journal's open file holds an exclusive lock for as long as its
+// run lives (the kernel drops it when the process dies, however it dies). A second run, or the
+// ranks of a killed mpirun that have not noticed yet, cannot write the same dataset at once.
+void lock(int fd, const std::filesystem::path& path) {
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    throw DatasetError(path.string() +
+                       ": another grip run is writing this dataset (it holds the journal's "
+                       "lock); wait until it has ended, or stop it, then resume");
+  }
 }
 
 void write_all(int fd, const std::string& text, const std::filesystem::path& path) {
@@ -68,7 +80,9 @@ Journal Journal::create(const std::filesystem::path& path, const std::string& jo
   const int append_fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   ::close(fd);
   if (append_fd < 0) system_error(path, "cannot open the journal for appending");
-  return Journal(path, append_fd);
+  Journal journal(path, append_fd);
+  lock(append_fd, path);
+  return journal;
 }
 
 Journal::Contents Journal::read(const std::filesystem::path& path) {
@@ -132,6 +146,7 @@ Journal Journal::reopen(const std::filesystem::path& path, std::uint64_t valid_b
   const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd < 0) system_error(path, "cannot open the journal for appending");
   Journal journal(path, fd);
+  lock(fd, path);
   if (::ftruncate(fd, static_cast<off_t>(valid_bytes)) != 0 || ::fsync(fd) != 0) {
     system_error(path, "cannot cut the journal's unfinished last line");
   }

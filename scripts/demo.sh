@@ -1,25 +1,20 @@
 #!/usr/bin/env bash
-# The README's first command: installs what is missing, builds, and runs the most complete job
-# grip can do today: it prepares the assets (every object category and gripper), simulates the
-# example scenes with the IPC solver as one batch of environments (checking the invariants after
-# every step), then synthesizes grasp candidates for a cylinder and runs their trials as one
-# batch. Outputs land in out/ (override with GRIP_OUT).
+# The README's first command: installs what is missing, builds, and runs the demo job
+# (jobs/demo.toml) as one process on all cores: objects prepared, grasp candidates synthesized,
+# every candidate's trial simulated with the IPC solver, all written to one HDF5 dataset, then
+# its summary. Run again, it resumes the same dataset (nothing left: it prints the summary).
+# The dataset goes to out/demo/ (override the folder with GRIP_OUT).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$root/scripts/build.sh"
 grip="$root/build/grip"
-out=${GRIP_OUT:-$root/out}
-mkdir -p "$out/reports" "$out/candidates"
+dataset=${GRIP_OUT:-$root/out}/demo/dataset.h5
 
 "$grip" --version
-"$grip" asset gallery --out "$out/gallery"
-"$grip" simulate "$root"/examples/scenes/*.toml --report "$out/reports/scenes.json"
-"$grip" synth --object cylinder --gripper parallel-jaw --count 8 --seed 1 \
-  --out "$out/candidates/cylinder-parallel-jaw.txt"
-"$grip" trial --object cylinder --seed 1 --gripper parallel-jaw \
-  --candidates "$out/candidates/cylinder-parallel-jaw.txt" --index 0-7 \
-  --report "$out/reports/trials-cylinder-parallel-jaw.json"
+resume=()
+if [ -e "$dataset" ]; then resume=(--resume); fi
+cd "$root"
+"$grip" farm jobs/demo.toml --output "$dataset" "${resume[@]}"
 echo
-echo "Assets in $out/gallery; the simulation report (one entry per scene) is"
-echo "$out/reports/scenes.json; grasp candidates are in $out/candidates and their trials'"
-echo "verdicts, D1/D2 and closing forces in $out/reports/trials-cylinder-parallel-jaw.json"
+echo "The dataset is $dataset; 'build/grip inspect $dataset' summarizes it again and"
+echo "examples/read_dataset.py shows how to read it from Python (h5py)."

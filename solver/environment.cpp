@@ -214,6 +214,11 @@ void Environment::set_script(int body, const Script& script) {
   scripts_.at(static_cast<std::size_t>(body)) = script;
 }
 
+void Environment::use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, int min_dofs) {
+  linear_solver_ = std::move(solver);
+  linear_solver_min_dofs_ = min_dofs;
+}
+
 Environment::Progress Environment::fail(const std::string& reason) {
   failure_ = "t = " + std::to_string(time_) + " s: " + reason;
   step_.reset();
@@ -408,10 +413,18 @@ Environment::NewtonOutcome Environment::newton_iteration(StepState& state) {
   // the dynamic bodies, so a body resting in equilibrium is not asked for round-off.
   if (iteration == 0) state.first_residual = std::max(residual, state.weight * h * h);
   diagnostics_.residual = residual / (h * h);
-  if (!cholesky_.factorize(assembly_.assemble(n, free_triplets))) {
-    return give_up("Newton matrix is not positive definite");
+  Eigen::VectorXd p;
+  if (linear_solver_ && n >= linear_solver_min_dofs_) {
+    LinearSystemSolver& solver = *linear_solver_;
+    if (!solver.factorize(assembly_.assemble(n, free_triplets)) || !solver.solve(rhs, p)) {
+      return give_up("Newton system not solved: " + solver.failure());
+    }
+  } else {
+    if (!cholesky_.factorize(assembly_.assemble(n, free_triplets))) {
+      return give_up("Newton matrix is not positive definite");
+    }
+    p = cholesky_.solve(rhs);
   }
-  const Eigen::VectorXd p = cholesky_.solve(rhs);
   if (!p.allFinite()) return give_up("non-finite Newton step");
 
   // Converged: the residual fell by newton_tol against its scale, or the step would change

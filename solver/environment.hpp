@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/linear/linear_system_solver.hpp"
 #include "solver/linear/sparse_assembly.hpp"
 #include "solver/linear/sparse_cholesky.hpp"
 #include "solver/model.hpp"
@@ -38,7 +39,8 @@ struct StepDiagnostics {
   double min_distance = std::numeric_limits<double>::infinity();  // over pairs within d_hat
   double min_volume_ratio = 1.0;  // smallest det F over all tets (1 without FEM)
   double kappa = 0.0;
-  double residual = 0.0;  // infinity norm of the free DOFs' gradient at the end, scaled by 1/h^2 (N)
+  double residual =
+      0.0;  // infinity norm of the free DOFs' gradient at the end, scaled by 1/h^2 (N)
   std::vector<PairForce> contact_forces;
 };
 
@@ -74,6 +76,12 @@ class Environment {
   void set_gravity(const Eigen::Vector3d& gravity) { gravity_ = gravity; }
   void set_script(int body, const Script& script);
 
+  // Newton systems of at least `min_dofs` rows (all DOFs, prescribed ones included) are solved
+  // by `solver` instead of the environment's own sparse Cholesky; a failure of `solver` fails
+  // the environment with its reason. Null detaches it. The solver must not serve environments
+  // that step at the same time (on other threads).
+  void use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, int min_dofs);
+
   const Model& model() const { return *model_; }
   double time() const { return time_; }
   bool failed() const { return !failure_.empty(); }
@@ -102,7 +110,8 @@ class Environment {
   struct StepTargets;
   struct StepState;
   enum class NewtonOutcome { kContinue, kConverged, kFailed };
-  Vertices positions_at(const Eigen::VectorXd& q, const StepTargets& targets, double progress) const;
+  Vertices positions_at(const Eigen::VectorXd& q, const StepTargets& targets,
+                        double progress) const;
   std::vector<FrictionContact> lag_friction(const Vertices& positions) const;
   NewtonOutcome newton_iteration(StepState& state);
   void finish_step();
@@ -112,7 +121,7 @@ class Environment {
   std::shared_ptr<const Model> model_;
   Eigen::VectorXd q_;
   Eigen::VectorXd v_;
-  std::vector<Pose> poses_;     // kinematic bodies' current poses (others unused)
+  std::vector<Pose> poses_;  // kinematic bodies' current poses (others unused)
   std::vector<Eigen::Vector3d> kinematic_velocity_;  // over the last step
   std::vector<Script> scripts_;
   Eigen::Vector3d gravity_;
@@ -125,6 +134,8 @@ class Environment {
   IncrementalPotential potential_;
   SparseAssembly assembly_;
   SparseCholesky cholesky_;
+  std::shared_ptr<LinearSystemSolver> linear_solver_;  // null: cholesky_ solves every system
+  int linear_solver_min_dofs_ = 0;
 };
 
 }  // namespace grip::solver

@@ -7,18 +7,19 @@
 
 namespace grip::commands {
 
-// grip inspect DATASET.h5 [--job]: provenance and summary of a dataset (src/app/commands/inspect.cpp).
+// grip inspect DATASET.h5 [--job]: provenance and summary of a dataset
+// (src/app/commands/inspect.cpp).
 int inspect(const std::string& dataset, bool show_job);
 
 // grip asset prepare IN --out DIR --edge L: repair, tetrahedralize and write an object mesh
 // (src/app/commands/asset.cpp).
 struct AssetPrepareArgs {
-  std::string input;           // surface mesh: .obj, .stl, .ply, .off
-  std::string out_dir;         // receives <stem>.msh, <stem>.vtu, <stem>_surface.obj
-  double edge_length = 0.0;    // target tet edge length (m)
-  double alpha_ratio = 0.01;   // alpha-wrap fallback: alpha / bounding-box diagonal
+  std::string input;                   // surface mesh: .obj, .stl, .ply, .off
+  std::string out_dir;                 // receives <stem>.msh, <stem>.vtu, <stem>_surface.obj
+  double edge_length = 0.0;            // target tet edge length (m)
+  double alpha_ratio = 0.01;           // alpha-wrap fallback: alpha / bounding-box diagonal
   double offset_ratio = 1.0 / 3000.0;  // alpha-wrap fallback: offset / bounding-box diagonal
-  unsigned seed = 0;           // tetrahedralization seed
+  unsigned seed = 0;                   // tetrahedralization seed
 };
 int asset_prepare(const AssetPrepareArgs& args);
 
@@ -55,24 +56,24 @@ int simulate(const SimulateArgs& args);
 struct BenchBatchArgs {
   std::string scene;
   std::vector<int> envs{1, 2, 4, 8, 16, 32, 64};
-  int threads = 0;             // 0: all cores
-  std::int64_t jitter = -1;    // seed; < 0: no jitter
+  int threads = 0;           // 0: all cores
+  std::int64_t jitter = -1;  // seed; < 0: no jitter
 };
 int bench_batch(const BenchBatchArgs& args);
 
 // grip synth --object SPEC --gripper fin-ray|leap|parallel-jaw [--bimanual] --count N --seed S
 // --out FILE: candidate grasps written to a candidate file (src/app/commands/synth.cpp).
 struct SynthArgs {
-  std::string object;      // an object category name or a surface mesh file
-  double scale = 1.0;      // multiplies a mesh file's coordinates
-  std::string gripper;     // fin-ray, parallel-jaw or leap
+  std::string object;   // an object category name or a surface mesh file
+  double scale = 1.0;   // multiplies a mesh file's coordinates
+  std::string gripper;  // fin-ray, parallel-jaw or leap
   bool bimanual = false;
   int count = 0;
   std::uint64_t seed = 0;
-  std::string out;         // candidate file (docs/synthesis.md)
-  int steps = 1500;        // annealing steps per hand attempt
-  double d_hat = 1e-3;     // m, IPC barrier activation distance
-  double margin = 5e-4;    // m, clearance kept beyond d_hat
+  std::string out;       // candidate file (docs/synthesis.md)
+  int steps = 1500;      // annealing steps per hand attempt
+  double d_hat = 1e-3;   // m, IPC barrier activation distance
+  double margin = 5e-4;  // m, clearance kept beyond d_hat
 };
 int synth(const SynthArgs& args);
 
@@ -80,25 +81,60 @@ int synth(const SynthArgs& args);
 // [--report FILE] [--vtk DIR] [--soft] [--compare-solo]: grasp trials of candidates as one
 // batch (src/app/commands/trial.cpp, docs/trial.md).
 struct TrialArgs {
-  std::string object;          // an object category name (shape from --seed) or a mesh file
-  double scale = 1.0;          // multiplies a mesh file's coordinates
-  std::uint64_t seed = 0;      // the category's shape, as given to grip synth
-  bool soft = false;           // FEM object (tetrahedralized) instead of one affine body
-  double tet_edge = 0.008;     // m, target tet edge length of a soft object
-  double density = 1000.0;     // kg/m^3
-  double youngs = 1e6;         // Pa, soft objects
-  double poisson = 0.4;        // soft objects
-  double friction = 3.5;       // the object's mu; a pair's mu is sqrt(mu_object mu_finger)
-  std::string gripper;         // fin-ray or parallel-jaw
-  std::string candidates;      // candidate file (docs/synthesis.md)
-  std::string index = "0";     // one candidate "I" or a range "A-B", run as one batch
-  std::string report;          // JSON report file; stdout when empty
-  std::string vtk;             // folder for per-candidate VTK series; none when empty
-  int threads = 0;             // 0: all cores
+  std::string object;           // an object category name (shape from --seed) or a mesh file
+  double scale = 1.0;           // multiplies a mesh file's coordinates
+  std::uint64_t seed = 0;       // the category's shape, as given to grip synth
+  bool soft = false;            // FEM object (tetrahedralized) instead of one affine body
+  double tet_edge = 0.008;      // m, target tet edge length of a soft object
+  double density = 1000.0;      // kg/m^3
+  double youngs = 1e6;          // Pa, soft objects
+  double poisson = 0.4;         // soft objects
+  double friction = 3.5;        // the object's mu; a pair's mu is sqrt(mu_object mu_finger)
+  std::string gripper;          // fin-ray or parallel-jaw
+  std::string candidates;       // candidate file (docs/synthesis.md)
+  std::string index = "0";      // one candidate "I" or a range "A-B", run as one batch
+  std::string report;           // JSON report file; stdout when empty
+  std::string vtk;              // folder for per-candidate VTK series; none when empty
+  int threads = 0;              // 0: all cores
   double closing_speed = 0.05;  // m/s per jaw, before its finger touches the object
   double squeeze_speed = 0.01;  // m/s per jaw, once it does
-  bool compare_solo = false;   // also run each candidate alone: speedup and identity
+  bool compare_solo = false;    // also run each candidate alone: speedup and identity
 };
 int trial(const TrialArgs& args);
+
+// grip farm JOB.toml [--output FILE] [--resume] [--threads T] [--batch B]: the dataset farm,
+// under mpirun or as one process (src/app/commands/farm.cpp, docs/farm.md).
+struct FarmArgs {
+  std::string job;     // job file (docs/job-format.md)
+  std::string output;  // the dataset; empty: the job's [job] output
+  bool resume = false;
+  int threads = 0;     // per rank; 0: the node's cores shared by its ranks
+  int batch = 0;       // candidates per batch; 0: the job's [farm] batch, else 4 per thread
+  std::string report;  // JSON summary of the run (rank 0); none when empty
+};
+int farm(const FarmArgs& args);
+
+// grip bench scaling JOB.toml [--ranks 1,2] [--envs 4,8] [--threads T] [--repeats N] --out DIR:
+// the job under mpirun at each rank and batch size; trials per second and speedup as a table
+// and a plot (bench/scaling/, docs/farm.md).
+struct BenchScalingArgs {
+  std::string job;
+  std::vector<int> ranks{1, 2};
+  std::vector<int> envs{0};  // candidates per batch; 0: the farm's default
+  int threads = 0;           // per rank; 0: the farm's default (the node's cores shared)
+  int repeats = 3;           // runs per setting; the table reports the median
+  std::string out = "out/scaling";
+};
+int bench_scaling(const BenchScalingArgs& args);
+
+// grip bench linear [--cells 0.01,0.006,...] [--repeats N] [-- PETSc options]: CHOLMOD against
+// PETSc's KSP on Newton systems of growing size, on the ranks it runs with (bench/linear/,
+// docs/linear-solvers.md).
+struct BenchLinearArgs {
+  std::vector<double> cells{0.01, 0.006, 0.004, 0.003, 0.0025};  // tet cell sizes (m)
+  int repeats = 5;
+  std::vector<std::string> petsc_options;  // after a lone `--`
+};
+int bench_linear(const BenchLinearArgs& args);
 
 }  // namespace grip::commands

@@ -10,6 +10,8 @@
 
 namespace grip {
 
+const char* version() { return GRIP_VERSION; }
+
 std::string version_report() {
   // MPI_Get_library_version may be called before MPI_Init (MPI-3).
   char mpi_library[MPI_MAX_LIBRARY_VERSION_STRING];

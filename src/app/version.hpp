@@ -6,6 +6,7 @@
 namespace grip {
 
 const char* git_revision();  // defined in the generated grip_revision.cpp
+const char* version();       // e.g. "0.1.0"
 std::string version_report();
 
 }  // namespace grip

@@ -10,6 +10,7 @@
 #include "src/geometry/primitives.hpp"
 #include "src/geometry/tetrahedralize.hpp"
 #include "src/scene/primitives.hpp"
+#include "src/scene/sim_parameters.hpp"
 
 namespace grip::scene {
 namespace {
@@ -37,28 +38,9 @@ void read_sim(const Table& sim, SceneFile& out) {
              "newton_velocity_tol", "max_newton_iters", "friction_lag_iterations",
              "ccd_rescaling"});
   solver::SimParameters& p = out.scene.sim;
-  p.dt = positive(sim, "dt", p.dt);
+  read_sim_parameters(sim, p);
   out.duration = positive(sim, "duration", out.duration);
   p.gravity = vec(sim.vec3_or("gravity", {p.gravity.x(), p.gravity.y(), p.gravity.z()}));
-  p.d_hat = positive(sim, "d_hat", p.d_hat);
-  if (sim.is_string("kappa")) {
-    sim.choice("kappa", {"auto"});
-    p.adaptive_kappa = true;
-  } else {
-    p.kappa = positive(sim, "kappa", p.kappa);
-  }
-  p.eps_v = positive(sim, "eps_v", p.eps_v);
-  p.newton_tol = positive(sim, "newton_tol", p.newton_tol);
-  p.newton_velocity_tol = positive(sim, "newton_velocity_tol", p.newton_velocity_tol);
-  p.max_newton_iters = static_cast<int>(sim.integer_or("max_newton_iters", p.max_newton_iters));
-  if (p.max_newton_iters < 1) sim.fail("max_newton_iters", "must be at least 1");
-  p.friction_lag_iterations =
-      static_cast<int>(sim.integer_or("friction_lag_iterations", p.friction_lag_iterations));
-  if (p.friction_lag_iterations < 1) sim.fail("friction_lag_iterations", "must be at least 1");
-  p.ccd_rescaling = sim.number_or("ccd_rescaling", p.ccd_rescaling);
-  if (!(p.ccd_rescaling > 0 && p.ccd_rescaling < 1)) {
-    sim.fail("ccd_rescaling", "must lie strictly between 0 and 1");
-  }
 }
 
 // The body's surface (and tets, for FEM) from its shape keys.
@@ -125,9 +107,27 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir,
 }
 
 solver::BodyDescription read_body(const Table& body, const std::filesystem::path& scene_dir) {
-  body.allow({"name", "type", "shape", "size", "radius", "height", "file", "scale", "segments",
-              "resolution", "position", "rotation", "velocity", "angular_velocity", "density",
-              "youngs", "poisson", "friction", "orthogonality_stiffness", "pin", "keyframe"});
+  body.allow({"name",
+              "type",
+              "shape",
+              "size",
+              "radius",
+              "height",
+              "file",
+              "scale",
+              "segments",
+              "resolution",
+              "position",
+              "rotation",
+              "velocity",
+              "angular_velocity",
+              "density",
+              "youngs",
+              "poisson",
+              "friction",
+              "orthogonality_stiffness",
+              "pin",
+              "keyframe"});
   solver::BodyDescription out;
   out.name = body.string("name");
   const std::string type = body.choice("type", {"kinematic", "affine", "fem"});

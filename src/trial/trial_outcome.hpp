@@ -14,14 +14,14 @@ namespace grip::trial {
 
 // Every body of the trial's scene at one recorded frame.
 struct BodyFrame {
-  double time = 0.0;                          // s
-  std::vector<geometry::Vertices> vertices;   // per body, all its vertices (world, m)
-  std::vector<Eigen::VectorXd> stress;        // per body: von Mises per tet (Pa); empty if not FEM
+  double time = 0.0;                         // s
+  std::vector<geometry::Vertices> vertices;  // per body, all its vertices (world, m)
+  std::vector<Eigen::VectorXd> stress;       // per body: von Mises per tet (Pa); empty if not FEM
 };
 
 struct TrialOutcome {
   io::CandidateResult result;
-  std::string failure_reason;         // the solver's message for kNewtonLimit / kNumerical
+  std::string failure_reason;          // the solver's message for kNewtonLimit / kNumerical
   std::vector<BodyFrame> body_frames;  // closing then validation frames, when asked for
 };
 

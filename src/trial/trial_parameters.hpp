@@ -16,9 +16,9 @@ struct TrialParameters {
   // finger touches the object, until the contact force between its finger and the object
   // exceeds stop_force, or until the opening reaches final_opening (a gripper closing on air
   // stops there).
-  double closing_speed = 0.05;  // m/s per jaw
-  double squeeze_speed = 0.01;  // m/s per jaw
-  double stop_force = 50.0;     // N
+  double closing_speed = 0.05;   // m/s per jaw
+  double squeeze_speed = 0.01;   // m/s per jaw
+  double stop_force = 50.0;      // N
   double final_opening = 0.002;  // m
 
   // Settling, gravity off: done once the object's centre of mass moved slower than

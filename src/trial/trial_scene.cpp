@@ -3,11 +3,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "solver/kernels/affine_body.hpp"
 #include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/primitives.hpp"
 #include "src/metrics/von_mises.hpp"
 #include "src/scene/primitives.hpp"
-#include "solver/kernels/affine_body.hpp"
 
 namespace grip::trial {
 
@@ -27,31 +27,16 @@ solver::Pose to_pose(const Eigen::Isometry3d& isometry) {
   return pose;
 }
 
-solver::BodyDescription describe_object(const TrialObject& object) {
-  solver::BodyDescription body;
-  body.name = object.name.empty() ? "object" : object.name;
-  body.material = object.material;
-  if (object.soft()) {
-    body.type = solver::BodyType::kFem;
-    scene::set_fem_mesh(body, *object.tets);
-  } else {
-    body.type = solver::BodyType::kAffine;
-    body.vertices = object.surface.vertices;
-    body.triangles = object.surface.triangles;
-  }
-  return body;
-}
-
 }  // namespace
 
 TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGripper& gripper,
                        const TrialParameters& parameters)
-    : gripper_(gripper), parameters_(parameters), soft_object_(object.soft()) {
+    : gripper_(gripper), parameters_(parameters), object_(object) {
   validate(parameters);
   solver::SceneDescription scene;
   scene.sim = parameters.sim;
   scene.sim.gravity = Eigen::Vector3d::Zero();
-  scene.bodies.push_back(describe_object(object));
+  scene.bodies.push_back(object_.description());
 
   geometry::SurfaceMesh finger_mesh;  // both fingers over their body vertices
   for (int j = 0; j < 2; ++j) {
@@ -98,8 +83,7 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
     next.vertices.resize(finger_mesh.vertices.rows() + finger.vertices.rows(), 3);
     next.vertices << finger_mesh.vertices, finger.vertices;
     next.triangles.resize(finger_mesh.triangles.rows() + finger.triangles.rows(), 3);
-    next.triangles << finger_mesh.triangles,
-        (finger.triangles.array() + offset).matrix();
+    next.triangles << finger_mesh.triangles, (finger.triangles.array() + offset).matrix();
     finger_mesh = std::move(next);
     scene.bodies.push_back(std::move(finger));
   }
@@ -116,22 +100,10 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
     throw std::invalid_argument("trial of '" + scene.bodies.front().name + "' with gripper '" +
                                 gripper.name + "': " + e.what());
   }
-  finger_points_ = std::make_unique<metrics::SurfacePoints>(
-      finger_mesh, parameters.metric_samples, parameters.metric_seed);
+  finger_points_ = std::make_unique<metrics::SurfacePoints>(finger_mesh, parameters.metric_samples,
+                                                            parameters.metric_seed);
 
-  rest_tets_.resize(scene.bodies.size());
-  if (object.soft()) {
-    rest_tets_[0] = *object.tets;
-    soft_object_surface_ = geometry::boundary_surface(*object.tets, &soft_surface_to_body_);
-    const solver::BodyModel& body = model_->bodies()[0];
-    object_rest_center_ = (body.vertex_mass.transpose() * body.rest).transpose() /
-                          body.vertex_mass.sum();
-  } else {
-    rigid_object_distance_ = std::make_unique<geometry::SignedDistance>(object.surface);
-  }
-  if (gripper.soft_finger) {
-    for (const JawBodies& jaw : jaws_) rest_tets_[jaw.finger] = gripper.soft_finger->mesh;
-  }
+  object_.bind(model_);
 }
 
 TrialScene::~TrialScene() = default;
@@ -170,59 +142,16 @@ int TrialScene::gripper_surface_vertex_count() const {
   return 2 * static_cast<int>(surface_to_body_.size());
 }
 
-std::array<double, 12> TrialScene::object_pose(const solver::Environment& environment) const {
-  Eigen::Matrix3d a;
-  Eigen::Vector3d t;
-  if (soft_object_) {
-    a = environment.rotation(0);
-    t = environment.center_of_mass(0) - a * object_rest_center_;
-  } else {
-    const solver::BodyModel& body = model_->bodies()[0];
-    const solver::Vector12d q = environment.dofs().segment<12>(body.dof_offset);
-    a = solver::kernels::affine_body_matrix(q);
-    t = q.head<3>() - a * body.center_of_mass_offset;
-  }
-  std::array<double, 12> pose;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) pose[4 * r + c] = a(r, c);
-    pose[4 * r + 3] = t[r];
-  }
-  return pose;
-}
-
 metrics::DistanceMetrics TrialScene::grasp_distances(const solver::Environment& environment) const {
-  const geometry::Vertices points = finger_points_->positions(finger_vertices(environment));
-  if (soft_object_) {
-    // The deformed object: its signed distance is built on its current surface.
-    const geometry::Vertices body = environment.body_vertices(0);
-    geometry::SurfaceMesh surface = soft_object_surface_;
-    for (Eigen::Index v = 0; v < surface.vertices.rows(); ++v) {
-      surface.vertices.row(v) = body.row(soft_surface_to_body_[v]);
-    }
-    return metrics::distance_metrics(geometry::SignedDistance(surface), points);
-  }
-  // A rigid object: the points are taken into the object frame (x = A x_object + t).
-  const std::array<double, 12> pose = object_pose(environment);
-  Eigen::Matrix3d a;
-  Eigen::Vector3d t;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) a(r, c) = pose[4 * r + c];
-    t[r] = pose[4 * r + 3];
-  }
-  const Eigen::Matrix3d a_inverse = a.inverse();
-  geometry::Vertices local(points.rows(), 3);
-  for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    local.row(i) = (a_inverse * (points.row(i).transpose() - t)).transpose();
-  }
-  return metrics::distance_metrics(*rigid_object_distance_, local);
+  return object_.distances(environment, finger_points_->positions(finger_vertices(environment)));
 }
 
 Eigen::VectorXd TrialScene::body_stress(const solver::Environment& environment, int body) const {
-  const geometry::TetMesh& rest = rest_tets_.at(static_cast<std::size_t>(body));
-  if (rest.tets.rows() == 0) return {};
+  if (body == object_body()) return object_.stress(environment);
+  if (!gripper_.soft_finger || (body != jaws_[0].finger && body != jaws_[1].finger)) return {};
   const solver::Material& material = model_->bodies()[body].material;
-  return metrics::von_mises_stress(rest, environment.body_vertices(body), material.youngs,
-                                   material.poisson);
+  return metrics::von_mises_stress(gripper_.soft_finger->mesh, environment.body_vertices(body),
+                                   material.youngs, material.poisson);
 }
 
 geometry::Vertices TrialScene::finger_vertices(const solver::Environment& environment) const {

@@ -16,6 +16,7 @@
 #include "src/grippers/parallel_gripper.hpp"
 #include "src/metrics/distance_metrics.hpp"
 #include "src/metrics/surface_points.hpp"
+#include "src/trial/object_body.hpp"
 #include "src/trial/trial_object.hpp"
 #include "src/trial/trial_parameters.hpp"
 
@@ -47,7 +48,7 @@ class TrialScene {
   const std::shared_ptr<const solver::Model>& model() const { return model_; }
   const grippers::ParallelGripper& gripper() const { return gripper_; }
   const TrialParameters& parameters() const { return parameters_; }
-  bool soft_object() const { return soft_object_; }
+  bool soft_object() const { return object_.soft(); }
   int object_body() const { return 0; }
   const std::array<JawBodies, 2>& jaws() const { return jaws_; }
 
@@ -67,7 +68,9 @@ class TrialScene {
 
   // The object's pose as a row-major 3x4 [A | t], world from object frame (A: the affine
   // body's matrix; a soft object's best-fit rotation).
-  std::array<double, 12> object_pose(const solver::Environment& environment) const;
+  std::array<double, 12> object_pose(const solver::Environment& environment) const {
+    return object_.pose(environment);
+  }
 
   // D1/D2 now: the object's signed distance (its current surface) at the D1/D2 points, which
   // are sampled once on the fingers' rest surfaces and follow the fingers.
@@ -81,17 +84,12 @@ class TrialScene {
 
   grippers::ParallelGripper gripper_;
   TrialParameters parameters_;
-  bool soft_object_ = false;
+  ObjectBody object_;  // body 0
   std::array<JawBodies, 2> jaws_;
   std::array<Eigen::Isometry3d, 2> canonical_;  // finger frames at the widest opening
-  Eigen::VectorXi surface_to_body_;  // finger_surface vertex -> finger body vertex
+  Eigen::VectorXi surface_to_body_;             // finger_surface vertex -> finger body vertex
   std::shared_ptr<const solver::Model> model_;
   std::unique_ptr<metrics::SurfacePoints> finger_points_;
-  std::unique_ptr<geometry::SignedDistance> rigid_object_distance_;  // object frame
-  geometry::SurfaceMesh soft_object_surface_;  // soft: boundary over its own vertices
-  Eigen::VectorXi soft_surface_to_body_;
-  std::vector<geometry::TetMesh> rest_tets_;  // per body; empty for non-FEM bodies
-  Eigen::Vector3d object_rest_center_ = Eigen::Vector3d::Zero();  // soft: rest centre of mass
 };
 
 }  // namespace grip::trial

@@ -57,7 +57,8 @@ void write_frame(const std::filesystem::path& file, const solver::Model& model,
       << "\">\n<Points>\n"
       << "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (const geometry::Vertices& v : frame.vertices) {
-    for (Eigen::Index r = 0; r < v.rows(); ++r) out << v(r, 0) << ' ' << v(r, 1) << ' ' << v(r, 2) << '\n';
+    for (Eigen::Index r = 0; r < v.rows(); ++r)
+      out << v(r, 0) << ' ' << v(r, 1) << ' ' << v(r, 2) << '\n';
   }
   out << "</DataArray>\n</Points>\n<Cells>\n"
       << "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
@@ -81,7 +82,8 @@ void write_vtk_series(const std::filesystem::path& dir, const std::string& stem,
                       const solver::Model& model, const std::vector<BodyFrame>& frames) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
-  if (error) throw std::runtime_error(dir.string() + ": cannot create the folder: " + error.message());
+  if (error)
+    throw std::runtime_error(dir.string() + ": cannot create the folder: " + error.message());
   std::ofstream pvd = open_for_writing(dir / (stem + ".pvd"));
   pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (std::size_t f = 0; f < frames.size(); ++f) {

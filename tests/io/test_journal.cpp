@@ -90,6 +90,26 @@ TEST_F(JournalTest, AMissingOrHeaderlessJournalSaysTheDatasetWasNotFinished) {
   }
 }
 
+// While one run holds its journal open, another cannot take it (a second resume, or the
+// ranks of a killed mpirun still writing); once the first lets go, it can, the bytes unchanged.
+TEST_F(JournalTest, OneWriterAtATime) {
+  std::string bytes;
+  {
+    Journal first = Journal::create(path_, "feed", 10);
+    first.append(std::vector<std::uint64_t>{2});
+    bytes = testing::file_bytes(path_);
+    try {
+      Journal::reopen(path_, Journal::read(path_).valid_bytes);
+      ADD_FAILURE() << "a second writer took the journal";
+    } catch (const DatasetError& e) {
+      EXPECT_NE(std::string(e.what()).find("another grip run"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(testing::file_bytes(path_), bytes);
+  }
+  Journal second = Journal::reopen(path_, Journal::read(path_).valid_bytes);
+  EXPECT_EQ(testing::file_bytes(path_), bytes);
+}
+
 TEST_F(JournalTest, CreateNeverOverwrites) {
   testing::write_bytes(path_, "precious");
   EXPECT_THROW(Journal::create(path_, "feed", 1), DatasetError);

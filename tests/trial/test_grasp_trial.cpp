@@ -86,7 +86,8 @@ TEST(GraspTrial, CentredFinRayGraspHoldsACylinder) {
   const TrialScene scene(rigid_cylinder(3.5), fin_ray(), fin_ray_parameters(0.04));
   const TrialOutcome outcome = run_trials(scene, {centred(0.04)}).front();
   const io::CandidateRecord& r = outcome.result.record;
-  EXPECT_EQ(r.status, io::Status::kSuccess) << io::to_string(r.failure) << " " << outcome.failure_reason;
+  EXPECT_EQ(r.status, io::Status::kSuccess)
+      << io::to_string(r.failure) << " " << outcome.failure_reason;
   EXPECT_EQ(r.failure, io::FailureKind::kNone);
   // The compliant fingers wrap the box: the jaws reach the final opening before 50 N, and
   // the symmetric grasp squeezes equally from both sides.
@@ -96,8 +97,8 @@ TEST(GraspTrial, CentredFinRayGraspHoldsACylinder) {
   EXPECT_LT(largest(r.displacement), scene.parameters().displacement_threshold());
   EXPECT_EQ(r.d1, 0.0);  // IPC never penetrates
   EXPECT_GT(r.d2, 0.0);
-  EXPECT_LT(r.d2, scene.parameters().sim.d_hat);  // held within the barrier's reach
-  EXPECT_GT(r.newton.steps, 30u);  // closing, settling and 6 x 5 gravity steps
+  EXPECT_LT(r.d2, scene.parameters().sim.d_hat);    // held within the barrier's reach
+  EXPECT_GT(r.newton.steps, 30u);                   // closing, settling and 6 x 5 gravity steps
   EXPECT_FALSE(outcome.result.stress.has_value());  // a rigid object has no stress
 }
 
@@ -155,7 +156,8 @@ TEST(GraspTrial, StartingInsideTheObjectIsAnInitialPenetration) {
 // Starts the solver's own check cannot see (no contact pair within d_hat): the jaws' fingers
 // piercing a thin plate with every vertex far from it, and lying wholly inside a large box.
 TEST(GraspTrial, PiercingOrContainedFingersAreAnInitialPenetration) {
-  for (const Eigen::Vector3d size : {Eigen::Vector3d(0.3, 0.3, 0.004), Eigen::Vector3d(0.3, 0.3, 0.3)}) {
+  for (const Eigen::Vector3d& size :
+       {Eigen::Vector3d(0.3, 0.3, 0.004), Eigen::Vector3d(0.3, 0.3, 0.3)}) {
     TrialObject object;
     object.name = "slab";
     object.surface = geometry::make_box(size);
@@ -201,7 +203,8 @@ TEST(GraspTrial, RecordsTheDatasetTrajectory) {
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
   double magnitude = 0.0;
   for (std::size_t v = 0; v < n; ++v) {
-    const Eigen::Vector3d f(t.contact_forces[settled + 3 * v], t.contact_forces[settled + 3 * v + 1],
+    const Eigen::Vector3d f(t.contact_forces[settled + 3 * v],
+                            t.contact_forces[settled + 3 * v + 1],
                             t.contact_forces[settled + 3 * v + 2]);
     total += f;
     magnitude += f.norm();
@@ -280,7 +283,9 @@ TEST(GraspTrial, BatchMatchesSoloRunsForAnyThreadCount) {
     const TrialOutcome solo = run_trials(scene, {grasps[k]}, solo_options).front();
     EXPECT_TRUE(same_result(batch[k].result, solo.result)) << "candidate " << k;
     kinds.push_back(batch[k].result.record.failure);
-    if (k != 5) EXPECT_EQ(batch[k].result.record.d1, 0.0) << "candidate " << k;
+    if (k != 5) {
+      EXPECT_EQ(batch[k].result.record.d1, 0.0) << "candidate " << k;
+    }
   }
   EXPECT_EQ(kinds[0], io::FailureKind::kNone);
   EXPECT_EQ(kinds[4], io::FailureKind::kNoContact);

@@ -9,14 +9,17 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "solver/batch/batch.hpp"
 #include "src/app/commands.hpp"
 #include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/tetrahedralize.hpp"
+#include "src/grippers/hand_model.hpp"
+#include "src/grippers/leap_hand.hpp"
 #include "src/grippers/parallel_gripper.hpp"
 #include "src/synth/candidate_file.hpp"
 #include "src/synth/object_spec.hpp"
-#include "solver/batch/batch.hpp"
 #include "src/trial/grasp_trial.hpp"
+#include "src/trial/hand_trial.hpp"
 #include "src/trial/same_result.hpp"
 #include "src/trial/vtk_series.hpp"
 
@@ -30,8 +33,10 @@ std::vector<std::size_t> parse_indices(const std::string& text, std::size_t coun
   char dash = 0;
   std::istringstream in(text);
   bool ok = static_cast<bool>(in >> first);
-  if (ok && in >> dash) ok = dash == '-' && static_cast<bool>(in >> last) && (in >> std::ws).eof();
-  else last = first;
+  if (ok && in >> dash)
+    ok = dash == '-' && static_cast<bool>(in >> last) && (in >> std::ws).eof();
+  else
+    last = first;
   if (!ok || text.find_first_not_of("0123456789-") != std::string::npos || last < first) {
     throw std::invalid_argument("--index '" + text + "': expected I or A-B (e.g. 0-63)");
   }
@@ -49,17 +54,19 @@ grippers::ParallelGripper make_gripper(const std::string& name) {
   if (name == "fin-ray") return grippers::make_umi_soft_gripper();
   if (name == "parallel-jaw") return grippers::make_rigid_jaw_gripper();
   throw std::invalid_argument("--gripper '" + name +
-                              "': grip trial runs parallel grippers (fin-ray, parallel-jaw); "
-                              "the hand's trial is not implemented yet");
+                              "': grip trial runs fin-ray, parallel-jaw or leap");
 }
 
 void write_number(std::ostream& out, double value) {
-  if (std::isfinite(value)) out << value;
-  else out << "null";
+  if (std::isfinite(value))
+    out << value;
+  else
+    out << "null";
 }
 
-void write_report(std::ostream& out, const TrialArgs& args, const std::vector<trial::TrialOutcome>& outcomes,
-                  double seconds, int threads, double solo_seconds, bool identical) {
+void write_report(std::ostream& out, const TrialArgs& args,
+                  const std::vector<trial::TrialOutcome>& outcomes, double seconds, int threads,
+                  double solo_seconds, bool identical) {
   out.precision(17);
   out << "{\n\"object\": \"" << args.object << "\",\n\"gripper\": \"" << args.gripper
       << "\",\n\"soft\": " << (args.soft ? "true" : "false") << ",\n\"threads\": " << threads
@@ -75,8 +82,9 @@ void write_report(std::ostream& out, const TrialArgs& args, const std::vector<tr
   out << ",\n\"trials\": [";
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const io::CandidateRecord& r = outcomes[i].result.record;
-    out << (i ? ",\n" : "\n") << "  {\"id\": " << r.id << ", \"status\": \"" << io::to_string(r.status)
-        << "\", \"failure\": \"" << io::to_string(r.failure) << "\", \"reason\": \"";
+    out << (i ? ",\n" : "\n") << "  {\"id\": " << r.id << ", \"status\": \""
+        << io::to_string(r.status) << "\", \"failure\": \"" << io::to_string(r.failure)
+        << "\", \"reason\": \"";
     for (char c : outcomes[i].failure_reason) out << (c == '"' || c == '\\' ? '\'' : c);
     out << "\", \"d1\": ";
     write_number(out, r.d1);
@@ -92,7 +100,8 @@ void write_report(std::ostream& out, const TrialArgs& args, const std::vector<tr
       if (k) out << ", ";
       write_number(out, r.closing_forces[k]);
     }
-    out << "], \"newton\": {\"steps\": " << r.newton.steps << ", \"iterations\": " << r.newton.iterations
+    out << "], \"newton\": {\"steps\": " << r.newton.steps
+        << ", \"iterations\": " << r.newton.iterations
         << ", \"max_iterations\": " << r.newton.max_iterations << "}, \"wall_time\": ";
     write_number(out, r.wall_time);
     out << "}";
@@ -100,53 +109,19 @@ void write_report(std::ostream& out, const TrialArgs& args, const std::vector<tr
   out << "\n]\n}\n";
 }
 
-}  // namespace
-
-int trial(const TrialArgs& args) {
-  const grippers::ParallelGripper gripper = make_gripper(args.gripper);
-  const std::vector<synth::Candidate> candidates = synth::read_candidates(args.candidates);
-  if (candidates.empty()) throw std::invalid_argument(args.candidates + ": no candidates");
-  const std::vector<std::size_t> indices = parse_indices(args.index, candidates.size());
-
-  std::vector<trial::ParallelGrasp> grasps;
-  std::vector<std::uint64_t> ids;
-  for (std::size_t i : indices) {
-    const synth::Candidate& c = candidates[i];
-    if (synth::gripper_name(c.gripper) != args.gripper || c.hands.size() != 1 ||
-        c.hands.front().joints.size() != 1) {
-      throw std::invalid_argument(args.candidates + ": candidate " + std::to_string(i) + " is for '" +
-                                  std::string(synth::gripper_name(c.gripper)) + "' with " +
-                                  std::to_string(c.hands.size()) + " hand(s), not one '" +
-                                  args.gripper + "'; synthesize with the same --gripper");
-    }
-    grasps.push_back({c.hands.front().pose, c.hands.front().joints[0]});
-    ids.push_back(i);
-  }
-
-  trial::TrialObject object;
-  object.name = args.object;
-  object.surface = synth::load_object(args.object, args.seed, args.scale);
-  object.material = {args.density, args.youngs, args.poisson, args.friction};
-  if (args.soft) {
-    geometry::TetOptions options;
-    options.edge_length = args.tet_edge;
-    object.tets = geometry::tetrahedralize(object.surface, options, args.object);
-    object.surface = geometry::boundary_surface(*object.tets);
-    spdlog::info("soft object: {} vertices, {} tets", object.tets->vertices.rows(),
-                 object.tets->tets.rows());
-  }
-  trial::TrialParameters parameters;
-  parameters.closing_speed = args.closing_speed;
-  parameters.squeeze_speed = args.squeeze_speed;
-  const trial::TrialScene scene(object, gripper, parameters);
-
+// Runs the candidates as one batch with `run(scene, grasps, options)`, optionally one by one
+// too, writes the VTK series and the report; 1 when a solo run differs from the batch.
+template <class Scene, class Grasp, class Run>
+int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<Grasp>& grasps,
+                   const std::vector<std::uint64_t>& ids, Run run) {
   trial::TrialRunOptions options;
   options.threads = args.threads;
   options.ids = ids;
   options.body_frames = !args.vtk.empty();
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<trial::TrialOutcome> outcomes = trial::run_trials(scene, grasps, options);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::vector<trial::TrialOutcome> outcomes = run(scene, grasps, options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   spdlog::info("{} trial(s) in {:.3f} s", outcomes.size(), seconds);
 
   double solo_seconds = 0.0;
@@ -158,8 +133,9 @@ int trial(const TrialArgs& args) {
       solo.ids = {ids[k]};
       solo.body_frames = false;
       const auto solo_start = std::chrono::steady_clock::now();
-      const trial::TrialOutcome alone = trial::run_trials(scene, {grasps[k]}, solo).front();
-      solo_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - solo_start).count();
+      const trial::TrialOutcome alone = run(scene, std::vector<Grasp>{grasps[k]}, solo).front();
+      solo_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - solo_start).count();
       if (!trial::same_result(alone.result, outcomes[k].result)) {
         identical = false;
         spdlog::error("candidate {}: the solo run differs from the batch", ids[k]);
@@ -184,6 +160,66 @@ int trial(const TrialArgs& args) {
     write_report(out, args, outcomes, seconds, threads, solo_seconds, identical);
   }
   return identical ? 0 : 1;
+}
+
+}  // namespace
+
+int trial(const TrialArgs& args) {
+  const synth::GripperKind kind = synth::parse_gripper_kind(args.gripper);
+  const std::vector<synth::Candidate> candidates = synth::read_candidates(args.candidates);
+  if (candidates.empty()) throw std::invalid_argument(args.candidates + ": no candidates");
+  const std::vector<std::size_t> indices = parse_indices(args.index, candidates.size());
+  std::vector<std::uint64_t> ids;
+  for (std::size_t i : indices) {
+    const synth::Candidate& c = candidates[i];
+    if (c.gripper != kind || c.hands.size() != 1 ||
+        c.hands.front().joints.size() != synth::joints_per_hand(kind)) {
+      throw std::invalid_argument(
+          args.candidates + ": candidate " + std::to_string(i) + " is for '" +
+          std::string(synth::gripper_name(c.gripper)) + "' with " + std::to_string(c.hands.size()) +
+          " hand(s), not one '" + args.gripper + "'; synthesize with the same --gripper");
+    }
+    ids.push_back(i);
+  }
+
+  trial::TrialObject object;
+  object.name = args.object;
+  object.surface = synth::load_object(args.object, args.seed, args.scale);
+  object.material = {args.density, args.youngs, args.poisson, args.friction};
+  if (args.soft) {
+    geometry::TetOptions options;
+    options.edge_length = args.tet_edge;
+    object.tets = geometry::tetrahedralize(object.surface, options, args.object);
+    object.surface = geometry::boundary_surface(*object.tets);
+    spdlog::info("soft object: {} vertices, {} tets", object.tets->vertices.rows(),
+                 object.tets->tets.rows());
+  }
+  trial::TrialParameters parameters;
+  parameters.closing_speed = args.closing_speed;
+  parameters.squeeze_speed = args.squeeze_speed;
+
+  if (kind == synth::GripperKind::kLeap) {
+    const grippers::LeapHandFiles files = grippers::shipped_leap_hand(grippers::HandSide::kRight);
+    const trial::HandTrialScene scene(object, grippers::load_hand_model(files.urdf, files.points),
+                                      args.gripper, parameters);
+    std::vector<trial::HandTrialGrasp> grasps;
+    for (std::size_t i : indices) {
+      const synth::HandGrasp& hand = candidates[i].hands.front();
+      grasps.push_back({hand.pose, hand.joints, hand.contacts, hand.contact_normals});
+    }
+    return run_and_report(args, scene, grasps, ids,
+                          [](const auto& s, const auto& g, const auto& o) {
+                            return trial::run_hand_trials(s, g, o);
+                          });
+  }
+  const trial::TrialScene scene(object, make_gripper(args.gripper), parameters);
+  std::vector<trial::ParallelGrasp> grasps;
+  for (std::size_t i : indices) {
+    grasps.push_back({candidates[i].hands.front().pose, candidates[i].hands.front().joints[0]});
+  }
+  return run_and_report(args, scene, grasps, ids, [](const auto& s, const auto& g, const auto& o) {
+    return trial::run_trials(s, g, o);
+  });
 }
 
 }  // namespace grip::commands

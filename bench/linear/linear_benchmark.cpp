@@ -1,0 +1,125 @@
+#include "bench/linear/linear_benchmark.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+#include <stdexcept>
+
+#include "bench/linear/bimanual_squeeze.hpp"
+#include "bench/linear/newton_system.hpp"
+#include "solver/linear/sparse_cholesky.hpp"
+
+namespace grip::bench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t m = values.size() / 2;
+  return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
+}
+
+// Runs `first` and `second` once untimed (the first run analyses the pattern), then `repeats`
+// times each, timed and alternating, so both see the same load from whatever else runs.
+template <typename A, typename B>
+void time_side_by_side(int repeats, A first, B second, std::vector<double>& first_s,
+                       std::vector<double>& second_s) {
+  first();
+  second();
+  for (int r = 0; r < repeats; ++r) {
+    Clock::time_point start = Clock::now();
+    first();
+    first_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    start = Clock::now();
+    second();
+    second_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+  }
+}
+
+LinearBenchmarkRow measure(farm::PetscSystemSolver& petsc, double cell, int repeats) {
+  // One step of the squeeze: contacts are active and the pads are pinned, as in a trial.
+  const NewtonSystem system = capture_newton_system(bimanual_squeeze(cell), 1);
+  LinearBenchmarkRow row;
+  row.cell = cell;
+  row.dofs = static_cast<int>(system.lower.rows());
+  row.nonzeros = 2 * system.lower.nonZeros() - system.lower.rows();
+  solver::SparseCholesky cholesky;
+  Eigen::VectorXd direct, iterative;
+  std::vector<double> direct_s, petsc_s;
+  time_side_by_side(
+      repeats,
+      [&] {
+        if (!cholesky.factorize(system.lower)) throw std::runtime_error("CHOLMOD: not SPD");
+        direct = cholesky.solve(system.rhs);
+      },
+      [&] {
+        if (!petsc.factorize(system.lower) || !petsc.solve(system.rhs, iterative)) {
+          throw std::runtime_error("PETSc: " + petsc.failure());
+        }
+      },
+      direct_s, petsc_s);
+  row.direct_s = median(direct_s);
+  row.petsc_s = median(petsc_s);
+  row.iterations = petsc.iterations();
+  row.relative_difference = (iterative - direct).norm() / direct.norm();
+  return row;
+}
+
+}  // namespace
+
+LinearBenchmarkResult run_linear_benchmark(farm::PetscSystemSolver& petsc,
+                                           const LinearBenchmarkOptions& options,
+                                           std::ostream& out) {
+  LinearBenchmarkResult result;
+  result.ranks = petsc.ranks();
+  if (petsc.rank() != 0) {
+    petsc.serve();
+    return result;
+  }
+  result.method = petsc.method();
+  out << "PETSc " << result.method << " on " << result.ranks
+      << " rank(s) against CHOLMOD on one core; median of " << options.repeats << " repeats\n"
+      << "    cell m      DOFs    nonzeros   direct s    PETSc s  iterations  rel. difference\n";
+  try {
+    for (const double cell : options.cells) {
+      const LinearBenchmarkRow row = measure(petsc, cell, options.repeats);
+      result.rows.push_back(row);
+      out << std::setw(10) << cell << std::setw(10) << row.dofs << std::setw(12) << row.nonzeros
+          << std::fixed << std::setprecision(4) << std::setw(11) << row.direct_s << std::setw(11)
+          << row.petsc_s << std::defaultfloat << std::setw(12) << row.iterations << std::setw(17)
+          << std::setprecision(3) << row.relative_difference << std::setprecision(6) << std::endl;
+    }
+  } catch (...) {
+    petsc.stop();  // let the serving ranks go before the error leaves
+    throw;
+  }
+  petsc.stop();
+  for (auto row = result.rows.rbegin(); row != result.rows.rend(); ++row) {
+    if (row->petsc_s >= row->direct_s) break;
+    result.crossover_dofs = row->dofs;
+  }
+  if (result.crossover_dofs > 0) {
+    out << "PETSc is faster from " << result.crossover_dofs << " DOFs on\n";
+  } else {
+    out << "PETSc was not faster at the largest size measured: no crossover up to "
+        << (result.rows.empty() ? 0 : result.rows.back().dofs) << " DOFs\n";
+  }
+  return result;
+}
+
+void write_json_line(std::ostream& out, const LinearBenchmarkResult& result) {
+  out << "{\"benchmark\":\"linear\",\"ranks\":" << result.ranks << ",\"method\":\"" << result.method
+      << "\",\"crossover_dofs\":" << result.crossover_dofs << ",\"rows\":[";
+  for (std::size_t i = 0; i < result.rows.size(); ++i) {
+    const LinearBenchmarkRow& row = result.rows[i];
+    out << (i ? "," : "") << "{\"cell\":" << row.cell << ",\"dofs\":" << row.dofs
+        << ",\"nonzeros\":" << row.nonzeros << ",\"direct_s\":" << row.direct_s
+        << ",\"petsc_s\":" << row.petsc_s << ",\"iterations\":" << row.iterations
+        << ",\"relative_difference\":" << row.relative_difference << "}";
+  }
+  out << "]}\n";
+}
+
+}  // namespace grip::bench

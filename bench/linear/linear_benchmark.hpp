@@ -1,0 +1,47 @@
+#pragma once
+// `grip bench linear`: the direct solve (CHOLMOD, one core) against PETSc's KSP across the
+// solver's ranks, on real Newton systems of growing size, to find where PETSc starts to pay.
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "farm/petsc/petsc_system_solver.hpp"
+
+namespace grip::bench {
+
+struct LinearBenchmarkOptions {
+  // Tet cell sizes (m) of bimanual_squeeze(), one system size each.
+  std::vector<double> cells{0.01, 0.006, 0.004, 0.003, 0.0025};
+  int repeats = 5;  // timed factorize + solve pairs per size and solver (after one untimed)
+};
+
+struct LinearBenchmarkRow {
+  double cell = 0.0;
+  int dofs = 0;
+  long nonzeros = 0;      // of the whole symmetric matrix
+  double direct_s = 0.0;  // median CHOLMOD numeric factorization + solve (symbolic reused)
+  double petsc_s = 0.0;   // median PETSc factorize + solve (pattern and partition reused)
+  int iterations = 0;     // of PETSc's last solve
+  double relative_difference = 0.0;  // |x_petsc - x_direct| / |x_direct|
+};
+
+struct LinearBenchmarkResult {
+  int ranks = 1;
+  std::string method;  // PETSc's KSP and preconditioner
+  std::vector<LinearBenchmarkRow> rows;
+  // The fewest DOFs from which PETSc was faster at every larger size measured; 0 when it never
+  // was.
+  int crossover_dofs = 0;
+};
+
+// Collective over the solver's ranks: rank 0 builds the systems, times both solvers side by
+// side and prints a table row to `out` as each size finishes, then stops `petsc`; the other
+// ranks serve PETSc's solves and return an empty result.
+LinearBenchmarkResult run_linear_benchmark(farm::PetscSystemSolver& petsc,
+                                           const LinearBenchmarkOptions& options,
+                                           std::ostream& out);
+
+// The result as one JSON object on one line.
+void write_json_line(std::ostream& out, const LinearBenchmarkResult& result);
+
+}  // namespace grip::bench

@@ -1,0 +1,29 @@
+#pragma once
+// Where workers ask for their next batch: one counter per commit round, held in an MPI window
+// on rank 0 and taken with a one-sided atomic fetch-and-add. A rank that finishes a batch
+// takes the next one at once, without waiting for any other rank (rank 0 included) to answer,
+// so fast ranks run more batches than slow ones.
+#include <mpi.h>
+
+#include <cstdint>
+
+namespace grip::farm {
+
+class BatchClaims {
+ public:
+  // Collective over `comm`: every counter starts at 0.
+  BatchClaims(MPI_Comm comm, std::uint64_t rounds);
+  ~BatchClaims();  // collective
+  BatchClaims(const BatchClaims&) = delete;
+  BatchClaims& operator=(const BatchClaims&) = delete;
+
+  // The round's counter before this rank's increment: 0, 1, 2, ... over all ranks, each value
+  // handed out once.
+  std::uint64_t claim(std::uint64_t round);
+
+ private:
+  MPI_Win window_ = MPI_WIN_NULL;
+  std::uint64_t rounds_ = 0;
+};
+
+}  // namespace grip::farm

@@ -1,0 +1,239 @@
+#include "farm/farm.hpp"
+
+#include <sched.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "farm/batch_claims.hpp"
+#include "farm/plan.hpp"
+#include "farm/progress.hpp"
+#include "farm/stop_request.hpp"
+#include "farm/trial_runner.hpp"
+#include "farm/wire.hpp"
+#include "io/dataset_error.hpp"
+#include "io/dataset_writer.hpp"
+#include "src/config/config.hpp"
+
+namespace grip::farm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Rank 0 reads the job file; every rank parses that same text, so all agree on the job and
+// fail alike on a bad one.
+Job read_job(const std::filesystem::path& file, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string text;
+  std::uint8_t readable = 1;
+  if (rank == 0) {
+    std::ifstream in(file, std::ios::binary);
+    readable = static_cast<bool>(in);
+    std::ostringstream content;
+    content << in.rdbuf();
+    text = content.str();
+  }
+  MPI_Bcast(&readable, 1, MPI_UINT8_T, 0, comm);
+  if (!readable) throw config::ConfigError(file.string() + ": cannot read the job file");
+  broadcast(text, 0, comm);
+  return parse_job(std::move(text), file);
+}
+
+// The cores this process may run on: mpirun binds each rank to one core by default.
+int usable_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// Ranks on this node share its cores, and each keeps to the cores it is bound to.
+int default_threads(MPI_Comm comm) {
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int local_ranks = 1;
+  MPI_Comm_size(node, &local_ranks);
+  MPI_Comm_free(&node);
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return std::max(1, std::min(usable_cores(), cores / local_ranks));
+}
+
+struct Batch {
+  std::uint32_t object = 0;
+  std::uint32_t gripper = 0;
+  std::vector<std::uint64_t> ids;
+};
+
+// Pending candidates in id order, cut into batches of one object and gripper each.
+std::vector<Batch> make_batches(const io::DatasetPlan& plan,
+                                const std::vector<std::uint64_t>& pending, int size) {
+  std::vector<Batch> batches;
+  for (std::uint64_t id : pending) {
+    const io::CandidateSlot& slot = plan.candidates[id];
+    if (batches.empty() || batches.back().object != slot.object ||
+        batches.back().gripper != slot.gripper ||
+        static_cast<int>(batches.back().ids.size()) == size) {
+      batches.push_back({slot.object, slot.gripper, {}});
+    }
+    batches.back().ids.push_back(id);
+  }
+  return batches;
+}
+
+// The trial scenes this rank has built, by (object, gripper); consecutive batches mostly
+// share one, so only the most recent few are kept.
+class RunnerCache {
+ public:
+  RunnerCache(const FarmPlan& plan, const Job& job) : plan_(plan), job_(job) {}
+
+  const TrialRunner& get(std::uint32_t object, std::uint32_t gripper) {
+    const auto key = std::make_pair(object, gripper);
+    for (auto& [k, runner] : runners_) {
+      if (k == key) return *runner;
+    }
+    if (runners_.size() == kKept) runners_.erase(runners_.begin());
+    runners_.emplace_back(key,
+                          std::make_unique<TrialRunner>(trial_object(plan_.dataset.objects[object]),
+                                                        job_.grippers[gripper].kind, job_.trial));
+    return *runners_.back().second;
+  }
+
+ private:
+  static constexpr std::size_t kKept = 2;
+  const FarmPlan& plan_;
+  const Job& job_;
+  std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<TrialRunner>>>
+      runners_;
+};
+
+}  // namespace
+
+FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  install_stop_handlers();
+
+  const Job job = read_job(options.job, comm);
+  FarmReport report;
+  report.dataset = options.output.empty() ? job.output : options.output;
+  report.ranks = ranks;
+  report.threads = options.threads > 0 ? options.threads : default_threads(comm);
+  if (report.threads > usable_cores()) {
+    spdlog::warn(
+        "rank {} runs {} threads but may use {} core(s); under mpirun pass --bind-to none "
+        "(or --map-by slot:PE={}) so its threads get cores of their own",
+        rank, report.threads, usable_cores(), report.threads);
+  }
+  // The batch size may differ between runs: results do not depend on it.
+  report.batch = options.batch > 0 ? options.batch : job.batch > 0 ? job.batch : 4 * report.threads;
+
+  io::Provenance provenance;
+  provenance.job_file = options.job.string();
+  provenance.job_text = job.text;
+  provenance.seed = job.seed;
+  provenance.grip_version = options.grip_version;
+  provenance.git_revision = options.git_revision;
+  provenance.parameters = resolved_parameters(job);
+
+  // Refuse before the (long) planning what the writer would refuse after it.
+  if (!options.resume && std::filesystem::exists(report.dataset)) {
+    throw io::DatasetError(report.dataset.string() +
+                           ": the dataset already exists; continue it with --resume, or choose "
+                           "another output (--output or the job's [job] output)");
+  }
+  std::optional<io::DatasetWriter> writer;
+  if (options.resume) writer = io::DatasetWriter::resume(report.dataset, provenance, comm);
+
+  const Clock::time_point plan_start = Clock::now();
+  const FarmPlan plan = make_plan(job, comm, report.threads);
+  report.plan_seconds = seconds_since(plan_start);
+  if (plan.candidates.empty()) {
+    throw std::invalid_argument(
+        options.job.string() +
+        ": no candidate was synthesized for any object; the objects may not "
+        "fit the grippers ([randomization] scale, [[objects]])");
+  }
+  if (writer) {
+    if (writer->layout().candidate_count != plan.candidates.size()) {
+      throw io::DatasetError(report.dataset.string() +
+                             ": the job now plans a different number of candidates than the "
+                             "dataset holds (was it made by another grip version?); start a new "
+                             "dataset instead of resuming");
+    }
+  } else {
+    if (rank == 0 && report.dataset.has_parent_path()) {
+      std::filesystem::create_directories(report.dataset.parent_path());
+    }
+    MPI_Barrier(comm);
+    writer = io::DatasetWriter::create(report.dataset, plan.dataset, provenance, comm);
+  }
+
+  const std::vector<std::uint64_t> pending = writer->pending();
+  report.candidates = plan.candidates.size();
+  report.done_before = report.candidates - pending.size();
+  const std::vector<Batch> batches = make_batches(plan.dataset, pending, report.batch);
+  // A round holds a few batches per rank, claimed as ranks go; its results are committed
+  // together at its end. More batches per round balance better; fewer commit more often.
+  const std::uint64_t per_round =
+      static_cast<std::uint64_t>(job.round_batches) * static_cast<std::uint64_t>(ranks);
+  const std::uint64_t rounds = (batches.size() + per_round - 1) / per_round;
+  if (rank == 0) {
+    spdlog::info("{} of {} candidates pending: {} batches of up to {} on {} rank(s) x {} thread(s)",
+                 pending.size(), report.candidates, batches.size(), report.batch, ranks,
+                 report.threads);
+  }
+
+  const Clock::time_point trial_start = Clock::now();
+  Progress progress(pending.size());
+  RunnerCache runners(plan, job);
+  BatchClaims claims(comm, std::max<std::uint64_t>(rounds, 1));
+  for (std::uint64_t round = 0; round < rounds; ++round) {
+    const std::uint64_t first = round * per_round;
+    const std::uint64_t count = std::min<std::uint64_t>(per_round, batches.size() - first);
+    std::vector<io::CandidateResult> results;
+    while (!stop_requested()) {
+      const std::uint64_t k = claims.claim(round);
+      if (k >= count) break;
+      const Batch& batch = batches[first + k];
+      std::vector<const synth::Candidate*> candidates;
+      for (std::uint64_t id : batch.ids) candidates.push_back(&plan.candidates[id]);
+      const bool trajectory = plan.dataset.candidates[batch.ids.front()].frames;
+      for (trial::TrialOutcome& outcome :
+           runners.get(batch.object, batch.gripper)
+               .run(candidates, batch.ids, report.threads, trajectory)) {
+        io::CandidateResult& result = outcome.result;
+        if (!plan.dataset.candidates[result.record.id].stress) result.stress.reset();
+        results.push_back(std::move(result));
+      }
+    }
+    writer->write(results);
+    std::uint64_t committed = results.size();
+    MPI_Allreduce(MPI_IN_PLACE, &committed, 1, MPI_UINT64_T, MPI_SUM, comm);
+    report.done += committed;
+    if (rank == 0) progress.report(report.done, seconds_since(trial_start));
+    int stop = stop_requested() ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, comm);
+    if (stop) {
+      report.interrupted = report.done < pending.size();
+      break;
+    }
+  }
+  writer->close();
+  report.trial_seconds = seconds_since(trial_start);
+  return report;
+}
+
+}  // namespace grip::farm

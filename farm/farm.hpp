@@ -1,0 +1,42 @@
+#pragma once
+// `grip farm JOB.toml`: plan the job (objects prepared and candidates synthesized in parallel
+// across ranks), create or resume its dataset, then run every pending candidate's trial in
+// batches that ranks claim as they go, committing the finished ones collectively once per
+// round. One process with threads, or many MPI ranks: the same dataset (docs/farm.md).
+#include <mpi.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace grip::farm {
+
+struct FarmOptions {
+  std::filesystem::path job;     // the job file
+  std::filesystem::path output;  // the dataset; empty: the job's [job] output
+  bool resume = false;           // continue an existing dataset of the same job
+  int threads = 0;               // per rank; 0: this node's cores shared by its ranks
+  int batch = 0;                 // candidates per batch; 0: the job's, else 4 per thread
+  std::string grip_version;      // recorded in the dataset's provenance
+  std::string git_revision;
+};
+
+struct FarmReport {
+  std::filesystem::path dataset;
+  int ranks = 1;
+  int threads = 1;                // per rank
+  int batch = 1;                  // candidates per batch
+  std::uint64_t candidates = 0;   // in the dataset
+  std::uint64_t done_before = 0;  // already committed when the run started (resume)
+  std::uint64_t done = 0;         // committed by this run
+  double plan_seconds = 0;        // preparing objects and synthesizing candidates
+  double trial_seconds = 0;       // running and committing trials
+  bool interrupted = false;       // stopped by SIGINT or SIGTERM before the end
+};
+
+// Collective over `comm`. Throws config::ConfigError for a bad job file, io::DatasetError for
+// a dataset that exists without --resume (or is missing, or from another job, with it), on
+// every rank alike; nothing already written is touched.
+FarmReport run_farm(const FarmOptions& options, MPI_Comm comm);
+
+}  // namespace grip::farm

@@ -1,0 +1,266 @@
+#include "farm/job.hpp"
+
+#include <glob.h>
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+#include "src/config/config.hpp"
+#include "src/objects/object_library.hpp"
+#include "src/scene/sim_parameters.hpp"
+
+namespace grip::farm {
+namespace {
+
+using config::Table;
+
+double positive(const Table& table, std::string_view key, double fallback) {
+  const double value = table.number_or(key, fallback);
+  if (!(value > 0)) table.fail(key, "must be positive");
+  return value;
+}
+
+int positive_integer(const Table& table, std::string_view key, int fallback) {
+  const std::int64_t value = table.integer_or(key, fallback);
+  if (value < 1 || value > 1'000'000'000) table.fail(key, "must be a positive integer");
+  return static_cast<int>(value);
+}
+
+// [min, max] with 0 < min <= max (or 0 <= min for a coefficient that may vanish).
+void read_range(const Table& table, std::string_view key, double& min, double& max,
+                bool zero_allowed = false) {
+  if (!table.has(key)) return;
+  const std::vector<double> range = table.numbers(key);
+  if (range.size() != 2 || range[0] > range[1] || range[0] < 0 ||
+      (!zero_allowed && range[0] == 0)) {
+    table.fail(key, zero_allowed ? "must be [min, max] with 0 <= min <= max"
+                                 : "must be [min, max] with 0 < min <= max");
+  }
+  min = range[0];
+  max = range[1];
+}
+
+// The mesh files a path or glob names, relative to the job file's folder, sorted.
+std::vector<std::filesystem::path> resolve_meshes(const Table& group, const std::string& pattern,
+                                                  const std::filesystem::path& job_dir) {
+  const std::filesystem::path full = std::filesystem::path(pattern).is_absolute()
+                                         ? std::filesystem::path(pattern)
+                                         : job_dir / pattern;
+  glob_t matches{};
+  const int status = ::glob(full.c_str(), 0, nullptr, &matches);
+  std::vector<std::filesystem::path> files;
+  if (status == 0) {
+    for (std::size_t i = 0; i < matches.gl_pathc; ++i) {
+      if (std::filesystem::is_regular_file(matches.gl_pathv[i]))
+        files.emplace_back(matches.gl_pathv[i]);
+    }
+  }
+  ::globfree(&matches);
+  if (files.empty()) {
+    group.fail("mesh", "'" + full.string() +
+                           "' matches no file; paths are relative to the job file's folder");
+  }
+  return files;
+}
+
+ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_dir) {
+  t.allow({"category", "mesh", "count", "soft", "tet_edge", "scale", "randomize", "density",
+           "youngs", "poisson", "friction"});
+  ObjectGroup group;
+  if (t.has("category") == t.has("mesh")) {
+    t.fail(t.has("mesh") ? "mesh" : "category",
+           "give exactly one of 'category' (a procedural shape) and 'mesh' (a file or glob)");
+  }
+  if (t.has("category")) {
+    group.category = t.string("category");
+    try {
+      objects::parse_object_category(group.category);
+    } catch (const std::invalid_argument& error) {
+      t.fail("category", error.what());
+    }
+    group.count = positive_integer(t, "count", 1);
+    if (t.has("scale")) t.fail("scale", "applies to mesh files only; use [randomization] scale");
+  } else {
+    group.meshes = resolve_meshes(t, t.string("mesh"), job_dir);
+    if (t.has("count"))
+      t.fail("count", "applies to categories only; a mesh entry takes every file it names");
+    group.mesh_scale = positive(t, "scale", 1.0);
+  }
+  group.soft = t.boolean_or("soft", false);
+  group.tet_edge = positive(t, "tet_edge", group.tet_edge);
+  group.randomize = t.boolean_or("randomize", true);
+  for (const char* key : {"density", "youngs", "poisson", "friction"}) {
+    if (group.randomize && t.has(key)) {
+      t.fail(key, "is drawn from [randomization] unless the entry sets randomize = false");
+    }
+  }
+  objects::ObjectMaterial& m = group.material;
+  m.density = positive(t, "density", m.density);
+  m.youngs_modulus = positive(t, "youngs", m.youngs_modulus);
+  m.poisson_ratio = t.number_or("poisson", m.poisson_ratio);
+  if (!(m.poisson_ratio >= 0 && m.poisson_ratio < 0.5)) t.fail("poisson", "must lie in [0, 0.5)");
+  m.friction = t.number_or("friction", m.friction);
+  if (!(m.friction >= 0)) t.fail("friction", "must be non-negative");
+  return group;
+}
+
+GripperSetting read_gripper(const Table& t) {
+  t.allow({"name", "bimanual", "candidates"});
+  GripperSetting setting;
+  setting.kind = synth::parse_gripper_kind(t.choice("name", {"fin-ray", "parallel-jaw", "leap"}));
+  setting.bimanual = t.boolean_or("bimanual", false);
+  if (setting.bimanual) {
+    t.fail("bimanual",
+           "bimanual trials are not implemented yet (grip synth --bimanual "
+           "synthesizes bimanual candidates); set bimanual = false");
+  }
+  setting.candidates = positive_integer(t, "candidates", setting.candidates);
+  return setting;
+}
+
+void read_randomization(const Table& t, objects::RandomizationRanges& r) {
+  t.allow({"scale", "youngs", "poisson", "density", "friction"});
+  read_range(t, "scale", r.scale_min, r.scale_max);
+  read_range(t, "youngs", r.youngs_modulus_min, r.youngs_modulus_max);
+  read_range(t, "poisson", r.poisson_ratio_min, r.poisson_ratio_max, true);
+  if (r.poisson_ratio_max >= 0.5) t.fail("poisson", "must stay below 0.5");
+  read_range(t, "density", r.density_min, r.density_max);
+  read_range(t, "friction", r.friction_min, r.friction_max, true);
+}
+
+void read_trial(const Table& t, trial::TrialParameters& p) {
+  t.allow({"closing_speed", "squeeze_speed", "stop_force", "final_opening", "settle_speed",
+           "settle_steps", "settle_max_steps", "gravity", "phase_duration", "displacement_factor",
+           "metric_samples", "finger_friction"});
+  p.closing_speed = positive(t, "closing_speed", p.closing_speed);
+  p.squeeze_speed = positive(t, "squeeze_speed", p.squeeze_speed);
+  p.stop_force = positive(t, "stop_force", p.stop_force);
+  p.final_opening = t.number_or("final_opening", p.final_opening);
+  if (!(p.final_opening >= 0)) t.fail("final_opening", "must be non-negative (m)");
+  p.settle_speed = positive(t, "settle_speed", p.settle_speed);
+  p.settle_steps = positive_integer(t, "settle_steps", p.settle_steps);
+  p.settle_max_steps = positive_integer(t, "settle_max_steps", p.settle_max_steps);
+  p.gravity_magnitude = positive(t, "gravity", p.gravity_magnitude);
+  p.phase_duration = positive(t, "phase_duration", p.phase_duration);
+  p.displacement_factor = positive(t, "displacement_factor", p.displacement_factor);
+  p.metric_samples = positive_integer(t, "metric_samples", p.metric_samples);
+  p.rigid_finger_friction = t.number_or("finger_friction", p.rigid_finger_friction);
+  if (!(p.rigid_finger_friction >= 0)) t.fail("finger_friction", "must be non-negative");
+}
+
+void read_outputs(const Table& t, Job& job) {
+  t.allow({"frames", "stress", "closing_frames", "validation_frames"});
+  job.record_frames = t.boolean_or("frames", job.record_frames);
+  job.record_stress = t.boolean_or("stress", job.record_stress);
+  job.trial.closing_frames = positive_integer(t, "closing_frames", job.trial.closing_frames);
+  job.trial.validation_frames =
+      positive_integer(t, "validation_frames", job.trial.validation_frames);
+  if (job.trial.validation_frames % 6 != 0) {
+    t.fail("validation_frames", "must be a multiple of 6 (one share per gravity axis)");
+  }
+}
+
+}  // namespace
+
+Job parse_job(std::string text, const std::filesystem::path& file) {
+  const config::Document document = config::Document::parse(std::move(text), file);
+  const Table root = document.root();
+  root.allow({"job", "objects", "grippers", "randomization", "physics", "trial", "synthesis",
+              "outputs", "farm"});
+  Job job;
+  job.file = file;
+  job.text = document.text();
+
+  const Table head = root.table("job");
+  head.allow({"name", "seed", "output"});
+  job.name = head.string("name");
+  if (job.name.empty() || job.name.find_first_of("/\\ ") != std::string::npos) {
+    head.fail("name", "must be a non-empty word without '/' or spaces (it names the output)");
+  }
+  const std::int64_t seed = head.integer_or("seed", 0);
+  if (seed < 0) head.fail("seed", "must be non-negative");
+  job.seed = static_cast<std::uint64_t>(seed);
+  job.output = head.string_or("output", "out/" + job.name + "/dataset.h5");
+
+  const std::filesystem::path job_dir = file.parent_path().empty() ? "." : file.parent_path();
+  for (const Table& group : root.tables("objects"))
+    job.objects.push_back(read_object_group(group, job_dir));
+  if (job.objects.empty()) root.fail("objects", "the job needs at least one [[objects]] entry");
+  for (const Table& gripper : root.tables("grippers"))
+    job.grippers.push_back(read_gripper(gripper));
+  if (job.grippers.empty()) root.fail("grippers", "the job needs at least one [[grippers]] entry");
+
+  if (auto t = root.optional_table("randomization")) read_randomization(*t, job.randomization);
+  if (auto t = root.optional_table("physics")) {
+    t->allow(scene::kSimParameterKeys);
+    scene::read_sim_parameters(*t, job.trial.sim);
+  }
+  if (auto t = root.optional_table("trial")) read_trial(*t, job.trial);
+  if (auto t = root.optional_table("synthesis")) {
+    t->allow({"steps", "margin"});
+    job.synthesis_steps = positive_integer(*t, "steps", job.synthesis_steps);
+    job.synthesis_margin = t->number_or("margin", job.synthesis_margin);
+    if (!(job.synthesis_margin >= 0)) t->fail("margin", "must be non-negative (m)");
+  }
+  if (auto t = root.optional_table("outputs")) read_outputs(*t, job);
+  if (auto t = root.optional_table("farm")) {
+    t->allow({"batch", "round_batches"});
+    job.round_batches = positive_integer(*t, "round_batches", job.round_batches);
+    const std::int64_t batch = t->integer_or("batch", 0);
+    if (batch < 0 || batch > 100000) t->fail("batch", "must be 0 (automatic) or a positive count");
+    job.batch = static_cast<int>(batch);
+  }
+  return job;
+}
+
+Job load_job(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    throw config::ConfigError(file.string() + ": cannot read the job file");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_job(text.str(), file);
+}
+
+std::vector<io::Parameter> resolved_parameters(const Job& job) {
+  std::vector<io::Parameter> out;
+  // Shortest text that reads back as the same double: "0.05", not "0.050000000000000003".
+  auto add = [&out](std::string key, double value) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+    out.push_back({std::move(key), std::string(text, end)});
+  };
+  const solver::SimParameters& s = job.trial.sim;
+  add("physics.dt", s.dt);
+  add("physics.d_hat", s.d_hat);
+  if (s.adaptive_kappa)
+    out.push_back({"physics.kappa", "auto"});
+  else
+    add("physics.kappa", s.kappa);
+  add("physics.eps_v", s.eps_v);
+  add("physics.newton_tol", s.newton_tol);
+  add("physics.newton_velocity_tol", s.newton_velocity_tol);
+  add("physics.max_newton_iters", s.max_newton_iters);
+  add("physics.friction_lag_iterations", s.friction_lag_iterations);
+  add("physics.ccd_rescaling", s.ccd_rescaling);
+  const trial::TrialParameters& t = job.trial;
+  add("trial.closing_speed", t.closing_speed);
+  add("trial.squeeze_speed", t.squeeze_speed);
+  add("trial.stop_force", t.stop_force);
+  add("trial.final_opening", t.final_opening);
+  add("trial.settle_speed", t.settle_speed);
+  add("trial.settle_steps", t.settle_steps);
+  add("trial.settle_max_steps", t.settle_max_steps);
+  add("trial.gravity", t.gravity_magnitude);
+  add("trial.phase_duration", t.phase_duration);
+  add("trial.displacement_threshold", t.displacement_threshold());
+  add("trial.metric_samples", t.metric_samples);
+  add("trial.finger_friction", t.rigid_finger_friction);
+  add("synthesis.steps", job.synthesis_steps);
+  add("synthesis.margin", job.synthesis_margin);
+  return out;
+}
+
+}  // namespace grip::farm

@@ -1,0 +1,66 @@
+#pragma once
+// A farm job file (TOML, docs/job-format.md) read strictly: which objects (procedural
+// categories or mesh files) each gripper grasps, how many candidates per object, the solver,
+// trial and synthesis settings, what each candidate records, and the batch size.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/provenance.hpp"
+#include "src/objects/domain_randomization.hpp"
+#include "src/synth/candidate.hpp"
+#include "src/trial/trial_parameters.hpp"
+
+namespace grip::farm {
+
+// One [[objects]] entry: `count` shapes of a procedural category, or every mesh file a path
+// or glob names.
+struct ObjectGroup {
+  std::string category;                       // a procedural category; empty for mesh files
+  std::vector<std::filesystem::path> meshes;  // resolved, sorted; empty for a category
+  int count = 1;                              // shapes drawn from the category
+  bool soft = false;                          // FEM (tetrahedralized) instead of one affine body
+  double tet_edge = 0.008;                    // m, soft objects' target tet edge length
+  double mesh_scale = 1.0;                    // multiplies a mesh file's coordinates (units)
+  // Draw scale and material from the job's ranges; otherwise use `material` as given.
+  bool randomize = true;
+  objects::ObjectMaterial material;
+};
+
+// One [[grippers]] entry.
+struct GripperSetting {
+  synth::GripperKind kind = synth::GripperKind::kParallelJaw;
+  bool bimanual = false;
+  int candidates = 16;  // synthesized per object
+};
+
+struct Job {
+  std::filesystem::path file;  // as given
+  std::string text;            // verbatim (the dataset's provenance)
+  std::string name;
+  std::uint64_t seed = 0;
+  std::filesystem::path output;  // the dataset; relative paths are taken from the working folder
+  std::vector<ObjectGroup> objects;
+  std::vector<GripperSetting> grippers;
+  objects::RandomizationRanges randomization;
+  trial::TrialParameters trial;    // trial.sim holds the [physics] settings
+  int synthesis_steps = 1500;      // annealing steps per hand attempt
+  double synthesis_margin = 5e-4;  // m, clearance beyond d_hat every candidate keeps
+  bool record_frames = true;       // every candidate's trajectory
+  bool record_stress = true;       // soft objects' von Mises stress at the settled grasp
+  int batch = 0;                   // candidates per batch; 0: 4 per worker thread
+  int round_batches = 4;           // batches per rank between two commits (checkpoints)
+};
+
+// Reads and checks a job file. Throws config::ConfigError ("FILE:LINE: ...") naming the key
+// and what is allowed, for anything wrong, including a mesh path or glob that matches nothing.
+Job load_job(const std::filesystem::path& file);
+// The same from text already read (every rank parses rank 0's copy of the file).
+Job parse_job(std::string text, const std::filesystem::path& file);
+
+// The resolved settings, as the dataset's provenance lists them ("physics.dt" = "0.01", ...).
+std::vector<io::Parameter> resolved_parameters(const Job& job);
+
+}  // namespace grip::farm

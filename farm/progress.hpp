@@ -1,0 +1,19 @@
+#pragma once
+// Rank 0's progress line after each commit: trials done, rate and estimated time left.
+#include <cstdint>
+#include <string>
+
+namespace grip::farm {
+
+class Progress {
+ public:
+  explicit Progress(std::uint64_t total) : total_(total) {}
+  // "48/120 trials (40.0%), 1.25 trials/s, ETA 58 s"
+  std::string line(std::uint64_t done, double seconds) const;
+  void report(std::uint64_t done, double seconds) const;  // logs line() (spdlog)
+
+ private:
+  std::uint64_t total_;
+};
+
+}  // namespace grip::farm

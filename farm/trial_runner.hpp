@@ -1,0 +1,36 @@
+#pragma once
+// One object's trials with one gripper of the job, whichever kind: the trial scene (its solver
+// Model, shared by every environment) built once, then batches of candidates run through it.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "io/gripper_record.hpp"
+#include "src/synth/candidate.hpp"
+#include "src/trial/trial_object.hpp"
+#include "src/trial/trial_outcome.hpp"
+#include "src/trial/trial_parameters.hpp"
+
+namespace grip::farm {
+
+class TrialRunner {
+ public:
+  TrialRunner(const trial::TrialObject& object, synth::GripperKind gripper,
+              const trial::TrialParameters& parameters);
+  ~TrialRunner();
+  TrialRunner(const TrialRunner&) = delete;
+  TrialRunner& operator=(const TrialRunner&) = delete;
+
+  io::GripperRecord gripper_record() const;
+
+  // The candidates' trials as one batch on `threads` threads; outcome k carries ids[k].
+  std::vector<trial::TrialOutcome> run(const std::vector<const synth::Candidate*>& candidates,
+                                       const std::vector<std::uint64_t>& ids, int threads,
+                                       bool trajectory) const;
+
+ private:
+  struct Scene;
+  std::unique_ptr<Scene> scene_;
+};
+
+}  // namespace grip::farm

@@ -1,0 +1,26 @@
+#pragma once
+// A solver of Newton systems that can take the place of the environment's own sparse Cholesky
+// (Environment::use_linear_solver), e.g. an iterative solve across MPI ranks for big systems.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+
+namespace grip::solver {
+
+class LinearSystemSolver {
+ public:
+  virtual ~LinearSystemSolver() = default;
+
+  // Prepares solves with the symmetric positive-definite matrix whose lower triangle
+  // (column-major, compressed) is given. False when it cannot; failure() then says why.
+  virtual bool factorize(const Eigen::SparseMatrix<double>& lower) = 0;
+
+  // Solves with the matrix of the last successful factorize(). False when no solution to the
+  // solver's accuracy was found (x is then unspecified); failure() then says why.
+  virtual bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) = 0;
+
+  // Why the last factorize() or solve() failed.
+  virtual std::string failure() const = 0;
+};
+
+}  // namespace grip::solver

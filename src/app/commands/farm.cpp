@@ -1,0 +1,99 @@
+// grip farm JOB.toml: the dataset farm, under mpirun or as one process (docs/farm.md). Rank 0
+// reports progress and, at the end, where the dataset is and its summary.
+#include <mpi.h>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "farm/farm.hpp"
+#include "io/dataset_error.hpp"
+#include "src/app/commands.hpp"
+#include "src/app/version.hpp"
+#include "src/config/config.hpp"
+
+namespace grip::commands {
+namespace {
+
+// MPI for the command's lifetime; a plain `grip farm` (no mpirun) runs as one rank.
+class MpiSession {
+ public:
+  MpiSession() {
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+  }
+  ~MpiSession() { MPI_Finalize(); }
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+};
+
+void write_report(const std::string& file, const farm::FarmReport& r) {
+  std::FILE* out = std::fopen(file.c_str(), "w");
+  if (!out) throw std::runtime_error("--report " + file + ": cannot write the file");
+  std::fprintf(
+      out,
+      "{\"dataset\": \"%s\", \"ranks\": %d, \"threads\": %d, \"batch\": %d, "
+      "\"candidates\": %llu, \"done_before\": %llu, \"done\": %llu, "
+      "\"plan_seconds\": %.6f, \"trial_seconds\": %.6f, \"interrupted\": %s}\n",
+      r.dataset.c_str(), r.ranks, r.threads, r.batch, static_cast<unsigned long long>(r.candidates),
+      static_cast<unsigned long long>(r.done_before), static_cast<unsigned long long>(r.done),
+      r.plan_seconds, r.trial_seconds, r.interrupted ? "true" : "false");
+  std::fclose(out);
+}
+
+}  // namespace
+
+int farm(const FarmArgs& args) {
+  const MpiSession mpi;
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  if (rank != 0) spdlog::set_level(spdlog::level::warn);  // rank 0 speaks for the run
+
+  farm::FarmOptions options;
+  options.job = args.job;
+  options.output = args.output;
+  options.resume = args.resume;
+  options.threads = args.threads;
+  options.batch = args.batch;
+  options.grip_version = version();
+  options.git_revision = git_revision();
+  farm::FarmReport report;
+  try {
+    report = farm::run_farm(options, MPI_COMM_WORLD);
+  } catch (const config::ConfigError& e) {
+    // Every rank read the same job and fails alike: one message, a clean exit.
+    if (rank == 0) spdlog::error("{}", e.what());
+    return 1;
+  } catch (const io::DatasetError& e) {
+    if (rank == 0) spdlog::error("{}", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    // A failure on one rank would leave the others waiting in a collective: stop them all.
+    // Committed batches are safe; --resume continues from them.
+    spdlog::error("rank {}: {}", rank, e.what());
+    if (ranks > 1) MPI_Abort(MPI_COMM_WORLD, 1);
+    return 1;
+  }
+
+  if (rank == 0) {
+    std::printf(
+        "\ndataset %s: %llu of %llu candidates done (%llu by this run, %d rank(s) x %d "
+        "thread(s), batches of %d); planning %.1f s, trials %.1f s\n",
+        report.dataset.c_str(), static_cast<unsigned long long>(report.done_before + report.done),
+        static_cast<unsigned long long>(report.candidates),
+        static_cast<unsigned long long>(report.done), report.ranks, report.threads, report.batch,
+        report.plan_seconds, report.trial_seconds);
+    if (!args.report.empty()) write_report(args.report, report);
+    if (report.interrupted) {
+      std::printf("stopped early: continue with  grip farm %s --resume\n", args.job.c_str());
+    } else {
+      std::printf("\n");
+      inspect(report.dataset.string(), false);
+    }
+    std::fflush(stdout);
+  }
+  return report.interrupted ? 130 : 0;
+}
+
+}  // namespace grip::commands

@@ -1,0 +1,18 @@
+#pragma once
+// The dataset's description of a trial's gripper (io::GripperRecord): what its joints and
+// closing forces mean, and its surface at rest in the vertex order of the recorded frames.
+#include "io/gripper_record.hpp"
+#include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/trial_scene.hpp"
+
+namespace grip::trial {
+
+// A parallel gripper: kind "parallel", one joint ("opening", m), fingers "positive" and
+// "negative" (grippers::Jaw), both fingers at the widest opening in the gripper frame.
+io::GripperRecord gripper_record(const TrialScene& scene);
+
+// A hand: kind "hand", its joints in degree-of-freedom order (rad), its fingers, every link at
+// joints 0 in the hand frame (HandTrialScene::rest_surface).
+io::GripperRecord gripper_record(const HandTrialScene& scene);
+
+}  // namespace grip::trial

@@ -1,0 +1,132 @@
+#pragma once
+// The static part shared by every trial of one object and one dexterous hand (the LEAP-style
+// hand): the solver scene in hand-canonical placement (object at the world origin, hand frame =
+// world, joints at 0) with one kinematic body per link, its Model, the hand's fingers, how a
+// candidate places the hand and how a finger's joints move it.
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "solver/environment.hpp"
+#include "solver/model.hpp"
+#include "src/geometry/mesh.hpp"
+#include "src/geometry/signed_distance.hpp"
+#include "src/grippers/hand_model.hpp"
+#include "src/metrics/distance_metrics.hpp"
+#include "src/metrics/surface_points.hpp"
+#include "src/trial/object_body.hpp"
+#include "src/trial/trial_object.hpp"
+#include "src/trial/trial_parameters.hpp"
+
+namespace grip::trial {
+
+// One hand candidate: world from hand frame, the joint values (rad, the hand's degrees of
+// freedom in order) and the synthesized contacts (world points on the hand's fingers and the
+// object's outward normals there; may be empty). The contacts steer how the fingers close.
+struct HandTrialGrasp {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::VectorXd joints;
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contacts;
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contact_normals;
+};
+
+// A finger: a subtree of links hanging from the palm (the root link), named by its first
+// link's name up to the first '_' ("index_knuckle": "index").
+struct HandFinger {
+  std::string name;
+  std::vector<int> links;   // kinematic tree links
+  std::vector<int> bodies;  // their solver bodies (links with a surface)
+  std::vector<int> dofs;    // the degrees of freedom that move it
+};
+
+class HandTrialScene {
+ public:
+  // Builds the scene and its Model: the object (one affine body, or FEM when soft) and one
+  // kinematic body per link with a surface (friction `rigid_finger_friction`). `name` is the
+  // gripper's dataset name (e.g. "leap"). Throws std::invalid_argument (naming the object) for
+  // an unusable object or parameters, or a hand without fingers.
+  HandTrialScene(const TrialObject& object, grippers::HandModel hand, std::string name,
+                 const TrialParameters& parameters);
+  ~HandTrialScene();
+  HandTrialScene(const HandTrialScene&) = delete;
+  HandTrialScene& operator=(const HandTrialScene&) = delete;
+
+  const std::shared_ptr<const solver::Model>& model() const { return model_; }
+  const grippers::HandModel& hand() const { return hand_; }
+  const grippers::KinematicTree& kinematics() const { return hand_.kinematics; }
+  const std::string& name() const { return name_; }
+  const TrialParameters& parameters() const { return parameters_; }
+  bool soft_object() const { return object_.soft(); }
+  int object_body() const { return 0; }
+  const std::vector<HandFinger>& fingers() const { return fingers_; }
+
+  // Throws std::out_of_range unless the grasp has one joint value per degree of freedom,
+  // within the limits, and as many contact normals as contacts.
+  void check(const HandTrialGrasp& grasp) const;
+
+  // Moves the links of a fresh environment to the candidate's pose and joints
+  // (Environment::place), holds them still and turns gravity off. Throws as check() does.
+  void place(solver::Environment& environment, const HandTrialGrasp& grasp) const;
+
+  // The finger's closing direction in joint space at the candidate (zero outside its degrees of
+  // freedom), scaled so that its fastest pushed point moves 1 m per unit: the joint velocity
+  // J^T d summed over the points it pushes, each point p along d. Those are the candidate's
+  // contacts on this finger, pushed into the object (d = -normal), as DexGraspNet's evaluation
+  // does; a finger without one pushes its contact candidates (the hand points) along their own
+  // outward normals, i.e. the way its pad faces. A joint already at a limit is not pushed past
+  // it. Zero when the finger cannot move so.
+  Eigen::VectorXd closing_direction(const HandTrialGrasp& grasp, int finger) const;
+
+  // The finger's joints at `travel` along `direction` from `start` (clamped to the limits), and
+  // the travel at which the first of them reaches its limit (0 for a zero direction).
+  Eigen::VectorXd finger_joints(const Eigen::VectorXd& start, const Eigen::VectorXd& direction,
+                                int finger, double travel) const;
+  double closing_travel(const Eigen::VectorXd& start, const Eigen::VectorXd& direction,
+                        int finger) const;
+
+  // Scripts the finger's links to reach joint values `joints` (only the finger's own are read)
+  // at the end of the next step, or holds them where they are.
+  void move_finger(solver::Environment& environment, const Eigen::Isometry3d& pose, int finger,
+                   const Eigen::VectorXd& joints) const;
+  void hold_finger(solver::Environment& environment, int finger) const;
+
+  // The hand's surface: every link with a surface in link order, each link's vertices in its
+  // mesh's order. rest_surface() has the joints at 0 in the hand frame (the dataset's gripper
+  // surface); hand_surface_vertices() is the same vertices in an environment now.
+  const geometry::SurfaceMesh& rest_surface() const { return rest_surface_; }
+  geometry::Vertices hand_surface_vertices(const solver::Environment& environment) const;
+
+  // The object's pose as a row-major 3x4 [A | t], world from object frame (A: the affine
+  // body's matrix; a soft object's best-fit rotation).
+  std::array<double, 12> object_pose(const solver::Environment& environment) const {
+    return object_.pose(environment);
+  }
+
+  // D1/D2 now: the object's signed distance (its current surface) at the D1/D2 points, which
+  // are sampled once on the rest surface of the hand's links and follow them.
+  metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const;
+
+  // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
+  Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const {
+    return body == object_body() ? object_.stress(environment) : Eigen::VectorXd();
+  }
+
+ private:
+  grippers::HandModel hand_;
+  std::string name_;
+  TrialParameters parameters_;
+  ObjectBody object_;  // body 0
+  std::vector<HandFinger> fingers_;
+  std::vector<int> link_body_;                      // per link: its body, -1 without a surface
+  std::vector<int> link_finger_;                    // per link: its finger, -1 for the palm
+  std::vector<int> contact_link_;                   // per contact candidate (hand points): its link
+  std::vector<Eigen::Isometry3d> rest_link_poses_;  // joints at 0, hand frame = world
+  geometry::SurfaceMesh rest_surface_;
+  std::shared_ptr<const solver::Model> model_;
+  std::unique_ptr<metrics::SurfacePoints> hand_points_;
+};
+
+}  // namespace grip::trial

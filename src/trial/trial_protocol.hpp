@@ -1,0 +1,79 @@
+#pragma once
+// The grasp trial protocol shared by every gripper (GRIP, Sec. III-D): what the protocol needs
+// from one gripper's scene and candidates (TrialGripper), and run_protocol, which steps them as
+// one solver::Batch through closing, settling and the six gravity phases to their outcomes.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "solver/environment.hpp"
+#include "solver/model.hpp"
+#include "src/geometry/mesh.hpp"
+#include "src/metrics/distance_metrics.hpp"
+#include "src/trial/trial_outcome.hpp"
+#include "src/trial/trial_parameters.hpp"
+
+namespace grip::trial {
+
+struct TrialRunOptions {
+  int threads = 0;           // the batch's threads; 0: all cores. Results do not depend on it.
+  bool trajectory = true;    // fill CandidateResult::trajectory
+  bool body_frames = false;  // fill TrialOutcome::body_frames (all bodies, stress; for VTK)
+  std::vector<std::uint64_t> ids;  // record ids per candidate; empty: 0, 1, 2, ...
+  // Trials stepping at once; the next candidate starts as soon as one ends, so no thread waits
+  // for a batch's slowest trial. 0: every candidate at once. Results do not depend on it.
+  int max_active = 0;
+};
+
+// One gripper's side of a batch of trials: its scene (object, fingers, measurements) and its
+// candidates. Each finger closes along a path of its own, measured by its travel (m) from the
+// candidate's start: a parallel jaw along the closing axis, a hand's finger through its joints.
+class TrialGripper {
+ public:
+  virtual ~TrialGripper() = default;
+
+  virtual const TrialParameters& parameters() const = 0;
+  virtual const std::shared_ptr<const solver::Model>& model() const = 0;
+  virtual bool soft_object() const = 0;
+  virtual int object_body() const = 0;
+  virtual std::size_t candidate_count() const = 0;
+  virtual int finger_count() const = 0;
+  // The bodies whose normal contact force with the object is the finger's force.
+  virtual const std::vector<int>& finger_bodies(int finger) const = 0;
+
+  // Puts candidate k in a fresh environment (gravity off, fingers held) and returns each
+  // finger's longest travel (m). Throws std::out_of_range for a candidate the gripper cannot take.
+  virtual std::vector<double> place(solver::Environment& environment, std::size_t k) const = 0;
+  // Moves the finger over the next step from `travel` on at `speed` (m/s), or holds it.
+  virtual void move_finger(solver::Environment& environment, std::size_t k, int finger,
+                           double travel, double speed) const = 0;
+  virtual void hold_finger(solver::Environment& environment, int finger) const = 0;
+
+  // The candidate's pose (world from gripper) and joint values (the dataset's layout), and the
+  // joint values when its fingers have travelled `travel`.
+  virtual const Eigen::Isometry3d& pose(std::size_t k) const = 0;
+  virtual std::vector<double> joints(std::size_t k, const std::vector<double>& travel) const = 0;
+
+  // The gripper's surface vertices in the dataset's order, now.
+  virtual geometry::Vertices surface_vertices(const solver::Environment& environment) const = 0;
+  // The object's pose now: row-major 3x4 [A | t], world from object frame.
+  virtual std::array<double, 12> object_pose(const solver::Environment& environment) const = 0;
+  // D1/D2 now, from points fixed on the gripper's surface.
+  virtual metrics::DistanceMetrics grasp_distances(
+      const solver::Environment& environment) const = 0;
+  // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
+  virtual Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const = 0;
+};
+
+// One outcome per candidate, in order; each record's wall_time is the batch's wall time divided
+// by the number of candidates (a batch does not time its environments one by one). Throws
+// std::invalid_argument when options.ids does not give one id per candidate, and
+// std::out_of_range naming a candidate the gripper cannot take.
+std::vector<TrialOutcome> run_protocol(const TrialGripper& gripper, const TrialRunOptions& options);
+
+}  // namespace grip::trial

@@ -1,0 +1,64 @@
+// `grip farm` and `grip bench scaling` as a user runs them: a bad job file or an existing
+// dataset is one message naming the file and the fix with exit status 1, and the scaling
+// benchmark writes its table for every setting.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "tests/app/run_grip.hpp"
+#include "tests/farm/farm_test_job.hpp"
+
+namespace grip::farm {
+namespace {
+
+namespace fs = std::filesystem;
+
+class FarmCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("grip_farm_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(FarmCli, BadJobIsOneMessageNamingFileLineAndKey) {
+  testing::write_file(dir_ / "bad.toml",
+                      "[job]\nname = \"bad\"\n[[objects]]\ncategory = \"cylinder\"\ncuont = 2\n"
+                      "[[grippers]]\nname = \"parallel-jaw\"\n");
+  const auto run = grip::testing::run_grip("farm " + (dir_ / "bad.toml").string() + " --output " +
+                                           (dir_ / "bad.h5").string());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("bad.toml:5"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("did you mean 'objects[0].count'"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.h5"));
+}
+
+TEST_F(FarmCli, ExistingDatasetIsRefusedUntouched) {
+  testing::write_file(dir_ / "job.toml", testing::small_job(1, 1, false));
+  testing::write_file(dir_ / "data.h5", "someone's file");
+  const auto run = grip::testing::run_grip("farm " + (dir_ / "job.toml").string() + " --output " +
+                                           (dir_ / "data.h5").string());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("data.h5: the dataset already exists"), std::string::npos) << run.err;
+  EXPECT_EQ(grip::testing::slurp(dir_ / "data.h5"), "someone's file");
+}
+
+TEST_F(FarmCli, ScalingBenchmarkWritesATableRowPerSetting) {
+  testing::write_file(dir_ / "job.toml", testing::small_job(1, 2, false));
+  const auto run = grip::testing::run_grip("bench scaling " + (dir_ / "job.toml").string() +
+                                           " --ranks 1,2 --envs 1 --repeats 1 --out " +
+                                           (dir_ / "scaling").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string csv = grip::testing::slurp(dir_ / "scaling" / "scaling.csv");
+  EXPECT_EQ(csv.rfind("ranks,threads,envs,batch,trials,", 0), 0u) << csv;
+  EXPECT_NE(csv.find("\n1,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n2,"), std::string::npos) << csv;
+  EXPECT_NE(run.out.find("\"speedup\": 1.0000"), std::string::npos) << run.out;  // the first row
+}
+
+}  // namespace
+}  // namespace grip::farm

@@ -1,0 +1,174 @@
+// Job files: what a valid job resolves to, and a one-line error naming the file, line and key
+// for each kind of mistake.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "farm/farm_object.hpp"
+#include "farm/job.hpp"
+#include "src/config/config.hpp"
+
+namespace grip::farm {
+namespace {
+
+const char* const kValid = R"([job]
+name = "t"
+seed = 5
+
+[[objects]]
+category = "cylinder"
+count = 3
+
+[[objects]]
+category = "capsule"
+soft = true
+tet_edge = 0.01
+randomize = false
+friction = 0.8
+
+[[grippers]]
+name = "parallel-jaw"
+candidates = 4
+
+[physics]
+dt = 0.005
+
+[trial]
+stop_force = 40
+
+[outputs]
+validation_frames = 12
+)";
+
+// The message parse_job throws for `text`, or "" when it parses.
+std::string error_of(const std::string& text, const std::filesystem::path& file = "job.toml") {
+  try {
+    parse_job(text, file);
+  } catch (const config::ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Job, ResolvesDefaultsAndOverrides) {
+  const Job job = parse_job(kValid, "job.toml");
+  EXPECT_EQ(job.name, "t");
+  EXPECT_EQ(job.seed, 5u);
+  EXPECT_EQ(job.output, "out/t/dataset.h5");
+  ASSERT_EQ(job.objects.size(), 2u);
+  EXPECT_EQ(job.objects[0].count, 3);
+  EXPECT_TRUE(job.objects[1].soft);
+  EXPECT_DOUBLE_EQ(job.objects[1].material.friction, 0.8);
+  ASSERT_EQ(job.grippers.size(), 1u);
+  EXPECT_EQ(job.grippers[0].kind, synth::GripperKind::kParallelJaw);
+  EXPECT_EQ(job.grippers[0].candidates, 4);
+  EXPECT_DOUBLE_EQ(job.trial.sim.dt, 0.005);
+  EXPECT_DOUBLE_EQ(job.trial.stop_force, 40.0);
+  EXPECT_EQ(job.trial.validation_frames, 12);
+  EXPECT_EQ(job.trial.closing_frames, 40);  // the default, as GRIP's released files
+  EXPECT_EQ(job.text, kValid);              // verbatim, for the dataset's provenance
+
+  bool found = false;
+  for (const io::Parameter& p : resolved_parameters(job)) {
+    if (p.key == "physics.dt") {
+      found = true;
+      EXPECT_EQ(p.value, "0.005");
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(Job, ObjectsAreNamedAndSeededByPosition) {
+  const Job job = parse_job(kValid, "job.toml");
+  const std::vector<FarmObject> a = list_objects(job);
+  ASSERT_EQ(a.size(), 4u);
+  EXPECT_EQ(a[0].name, "cylinder-0");
+  EXPECT_EQ(a[2].name, "cylinder-2");
+  EXPECT_EQ(a[3].name, "capsule-0");
+  EXPECT_NE(a[0].shape_seed, a[1].shape_seed);
+  EXPECT_NE(a[0].material.scale, a[1].material.scale);  // randomized per object
+  EXPECT_DOUBLE_EQ(a[3].material.scale, 1.0);           // randomize = false
+  EXPECT_DOUBLE_EQ(a[3].material.friction, 0.8);
+  const std::vector<FarmObject> b = list_objects(job);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].shape_seed, b[i].shape_seed);
+    EXPECT_EQ(a[i].material.friction, b[i].material.friction);
+  }
+  // Another seed, other shapes.
+  std::string reseeded = kValid;
+  reseeded.replace(reseeded.find("seed = 5"), 8, "seed = 6");
+  EXPECT_NE(list_objects(parse_job(reseeded, "job.toml"))[0].shape_seed, a[0].shape_seed);
+}
+
+TEST(Job, MeshGlobsResolveFromTheJobFolder) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("grip_job_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "meshes");
+  for (const char* name : {"b.obj", "a.obj", "c.stl"}) std::ofstream(dir / "meshes" / name) << "\n";
+  const std::string text =
+      "[job]\nname = \"m\"\n[[objects]]\nmesh = \"meshes/*.obj\"\nscale = 0.001\n"
+      "[[grippers]]\nname = \"fin-ray\"\n";
+  const Job job = parse_job(text, dir / "job.toml");
+  ASSERT_EQ(job.objects.size(), 1u);
+  ASSERT_EQ(job.objects[0].meshes.size(), 2u);
+  EXPECT_EQ(job.objects[0].meshes[0].filename(), "a.obj");
+  EXPECT_EQ(job.objects[0].meshes[1].filename(), "b.obj");
+  EXPECT_EQ(list_objects(job)[1].name, "b");
+  EXPECT_NE(error_of("[job]\nname = \"m\"\n[[objects]]\nmesh = \"meshes/*.ply\"\n"
+                     "[[grippers]]\nname = \"fin-ray\"\n",
+                     dir / "job.toml")
+                .find("matches no file"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Job, MistakesNameTheFileLineAndKey) {
+  struct Case {
+    std::string from, to, expected;
+  };
+  const std::vector<Case> cases = {
+      {"count = 3", "cuont = 3", "job.toml:7: "},                          // misspelt key
+      {"count = 3", "count = 0", "objects[0].count"},                      // out of range
+      {"category = \"cylinder\"", "category = \"cylindre\"", "cylindre"},  // unknown category
+      {"name = \"parallel-jaw\"", "name = \"robotiq\"", "fin-ray"},        // lists the choices
+      {"candidates = 4", "candidates = 4\nbimanual = true", "not implemented yet"},
+      {"validation_frames = 12", "validation_frames = 10", "multiple of 6"},
+      {"dt = 0.005", "dt = -1", "physics.dt"},
+      {"friction = 0.8", "friction = 0.8\ndensity = 900", ""},  // allowed with randomize = false
+      {"randomize = false", "randomize = true", "randomize = false"},  // friction is drawn
+  };
+  for (const Case& c : cases) {
+    std::string text = kValid;
+    text.replace(text.find(c.from), c.from.size(), c.to);
+    const std::string message = error_of(text);
+    if (c.expected.empty()) {
+      EXPECT_EQ(message, "") << c.to;
+    } else {
+      EXPECT_NE(message.find(c.expected), std::string::npos) << c.to << " -> " << message;
+      EXPECT_EQ(message.rfind("job.toml:", 0), 0u) << message;
+    }
+  }
+  EXPECT_NE(error_of("[job]\nname = \"x\"\n[[grippers]]\nname = \"fin-ray\"\n").find("[[objects]]"),
+            std::string::npos);
+  EXPECT_NE(error_of("[job]\nname = \"x\"\n[[objects]]\ncategory = \"box\"\nmesh = \"a.obj\"\n"
+                     "[[grippers]]\nname = \"fin-ray\"\n")
+                .find("exactly one"),
+            std::string::npos);
+}
+
+TEST(Job, EveryShippedJobReads) {
+  int jobs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(GRIP_JOBS_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    ++jobs;
+    const Job job = load_job(entry.path());
+    EXPECT_EQ(job.name, entry.path().stem().string()) << entry.path();
+    EXPECT_FALSE(list_objects(job).empty()) << entry.path();
+  }
+  EXPECT_GE(jobs, 6);
+}
+
+}  // namespace
+}  // namespace grip::farm

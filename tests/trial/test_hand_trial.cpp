@@ -1,0 +1,275 @@
+// Known outcomes of the grasp trial with the LEAP-style hand (GRIP, Sec. III-D): a hand
+// synthesized on a coarse rigid cylinder closes until its fingers push with more than 50 N,
+// no link ever intersects the object, D1 = 0, the record and trajectory follow the dataset's
+// layout and the hand's gripper record, a hand closing on air finds no contact, and a batch
+// matches solo runs. The hand is the shipped one with coarser capsules (8 sides).
+#include "src/trial/hand_trial.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <set>
+
+#include <unistd.h>
+
+#include "src/geometry/intersections.hpp"
+#include "src/geometry/mesh_io.hpp"
+#include "src/geometry/primitives.hpp"
+#include "src/grippers/leap_hand.hpp"
+#include "src/synth/synthesize.hpp"
+#include "src/trial/gripper_record.hpp"
+#include "src/trial/same_result.hpp"
+
+namespace grip::trial {
+namespace {
+
+// The shipped LEAP-style hand with its capsule links coarsened from 24 to 8 sides (the same
+// boxes, URDF and hand points), so that a trial step costs a fraction of the full hand's. Each
+// coarse capsule is inscribed in the full one, so synthesized clearances only grow.
+grippers::HandModel coarse_leap() {
+  // One folder per process: ctest may run this file's tests side by side.
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("grip_coarse_leap_" + std::to_string(::getpid()));
+  const grippers::LeapHandFiles files =
+      grippers::write_leap_hand(folder, grippers::HandSide::kRight);
+  for (const char* stem : {"proximal", "thumb_proximal", "intermediate", "distal"}) {
+    const std::filesystem::path file = folder / "meshes" / (std::string(stem) + ".obj");
+    const geometry::SurfaceMesh full = geometry::read_surface_mesh(file);
+    const Eigen::Vector3d lower = full.vertices.colwise().minCoeff();
+    const Eigen::Vector3d upper = full.vertices.colwise().maxCoeff();
+    geometry::SurfaceMesh coarse = geometry::make_capsule(upper.y(), upper.x() - lower.x(), 8, 2);
+    coarse.vertices.col(0).array() += lower.x();
+    geometry::write_obj(file, coarse);
+  }
+  grippers::HandModel hand = grippers::load_hand_model(files.urdf, files.points);
+  std::filesystem::remove_all(folder);  // the model holds the meshes
+  return hand;
+}
+
+const grippers::HandModel& leap() {
+  static const grippers::HandModel hand = coarse_leap();
+  return hand;
+}
+
+// A rigid cylinder of radius 3 cm and length 8 cm along z, 16 sides.
+TrialObject cylinder() {
+  TrialObject object;
+  object.name = "cylinder";
+  object.surface = geometry::make_cylinder(0.03, 0.08, 16);
+  object.material.density = 500.0;
+  object.material.friction = 1.0;
+  return object;
+}
+
+// The paper's protocol with shorter gravity phases (5 steps), fewer recorded frames and D1/D2
+// points, and the fingers approaching at the squeeze speed (at 5 cm/s the first finger to
+// touch knocks the free object away from the others), so that every trial takes seconds.
+TrialParameters parameters() {
+  TrialParameters p;
+  p.closing_speed = p.squeeze_speed;
+  p.phase_duration = 0.05;
+  p.closing_frames = 8;
+  p.validation_frames = 12;
+  p.metric_samples = 20000;
+  return p;
+}
+
+// A hand candidate synthesized on the cylinder (300 annealing steps, seed 1) whose fingers all
+// close on it: the second one (the first one's fingers touch one after the other and knock the
+// free cylinder out of the hand).
+const HandTrialGrasp& closing_candidate() {
+  static const HandTrialGrasp grasp = [] {
+    synth::SynthesisParams params;
+    params.hand.steps = 300;
+    const synth::PreparedObject object(cylinder().surface);
+    const synth::SynthesisResult result =
+        synth::synthesize(object, synth::GripperKind::kLeap, false, params, 1, 2);
+    const synth::HandGrasp& h = result.candidates.at(1).hands.front();
+    return HandTrialGrasp{h.pose, h.joints, h.contacts, h.contact_normals};
+  }();
+  return grasp;
+}
+
+// The hand far above the cylinder, palm down, joints at 0: every finger closes on air.
+HandTrialGrasp on_air() {
+  HandTrialGrasp grasp;
+  grasp.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.3);
+  grasp.joints = Eigen::VectorXd::Zero(16);
+  return grasp;
+}
+
+// Exact intersections between the object (body 0) and the hand's links in one recorded frame.
+int object_hand_intersections(const solver::Model& model, const BodyFrame& frame) {
+  const auto& bodies = model.scene().bodies;
+  geometry::Vertices positions(0, 3);
+  std::vector<Eigen::Vector3i> faces;
+  std::set<std::pair<int, int>> edges;
+  std::vector<int> vertex_body;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const auto offset = static_cast<int>(positions.rows());
+    geometry::Vertices next(offset + frame.vertices[b].rows(), 3);
+    next << positions, frame.vertices[b];
+    positions = std::move(next);
+    vertex_body.insert(vertex_body.end(), frame.vertices[b].rows(), static_cast<int>(b));
+    for (Eigen::Index f = 0; f < bodies[b].triangles.rows(); ++f) {
+      const Eigen::Vector3i t = bodies[b].triangles.row(f).transpose().array() + offset;
+      faces.push_back(t);
+      for (int k = 0; k < 3; ++k)
+        edges.emplace(std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]));
+    }
+  }
+  geometry::Triangles face_rows(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    face_rows.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  geometry::Edges edge_rows(static_cast<Eigen::Index>(edges.size()), 2);
+  Eigen::Index e = 0;
+  for (const auto& [a, b] : edges) edge_rows.row(e++) << a, b;
+  return geometry::count_intersections(positions, face_rows, edge_rows, vertex_body,
+                                       [](int a, int b) { return a != b && (a == 0 || b == 0); });
+}
+
+TEST(HandTrial, SynthesizedGraspClosesOnACylinderWithoutIntersecting) {
+  // Every step is recorded: closing frames for more states than closing and settling take, and
+  // one validation frame per gravity step.
+  TrialParameters p = parameters();
+  p.closing_frames = 600;
+  p.validation_frames = 30;
+  const HandTrialScene scene(cylinder(), leap(), "leap", p);
+  TrialRunOptions options;
+  options.body_frames = true;
+  const HandTrialGrasp& grasp = closing_candidate();
+  const TrialOutcome outcome = run_hand_trials(scene, {grasp}, options).front();
+  const io::CandidateRecord& r = outcome.result.record;
+  SCOPED_TRACE(std::string(io::to_string(r.failure)) + " " + outcome.failure_reason);
+  EXPECT_NE(r.failure, io::FailureKind::kInitialPenetration);
+  EXPECT_NE(r.failure, io::FailureKind::kNewtonLimit);
+  EXPECT_NE(r.failure, io::FailureKind::kNumerical);
+  EXPECT_NE(r.failure, io::FailureKind::kNoContact);
+  EXPECT_EQ(r.d1, 0.0);  // IPC never penetrates
+  // Held within the barrier's reach (the D1/D2 points sample the capsules' surfaces, so the
+  // nearest of them may sit a little farther than the contact itself).
+  EXPECT_GT(r.d2, 0.0);
+  EXPECT_LT(r.d2, 2.0 * p.sim.d_hat);
+  // Fingers that touch the cylinder stop once they push with more than 50 N.
+  ASSERT_EQ(r.closing_forces.size(), 4u);
+  const auto pushing = std::count_if(r.closing_forces.begin(), r.closing_forces.end(),
+                                     [&](double f) { return f > p.stop_force; });
+  EXPECT_GE(pushing, 2);
+  // The verdict follows the displacements.
+  const double largest = *std::max_element(r.displacement.begin(), r.displacement.end());
+  EXPECT_EQ(r.status == io::Status::kSuccess, largest < p.displacement_threshold());
+  EXPECT_EQ(r.joints, std::vector<double>(grasp.joints.data(), grasp.joints.data() + 16));
+
+  // The trajectory in the dataset's layout, the hand's vertices in the gripper record's order.
+  ASSERT_TRUE(outcome.result.trajectory.has_value());
+  const io::TrajectoryRecord& t = *outcome.result.trajectory;
+  const std::size_t frames = 600 + 30;
+  EXPECT_EQ(t.gripper_vertices.size(), frames * gripper_record(scene).vertex_count() * 3);
+  EXPECT_EQ(t.joints.size(), frames * 16);
+  EXPECT_EQ(t.hand_poses.size(), frames * 12);
+  for (int j = 0; j < 16; ++j) EXPECT_EQ(t.joints[j], r.joints[j]);  // the first frame
+
+  // Every accepted step is among the frames, and none has an object-link intersection.
+  std::set<long> steps;
+  for (const BodyFrame& frame : outcome.body_frames) {
+    steps.insert(std::lround(frame.time / p.sim.dt));
+    EXPECT_EQ(object_hand_intersections(*scene.model(), frame), 0) << "t = " << frame.time;
+  }
+  EXPECT_EQ(steps.size(), r.newton.steps + 1);
+}
+
+TEST(HandTrial, ClosingOnAirFindsNoContact) {
+  TrialParameters p = parameters();
+  p.closing_speed = 0.25;  // nothing to knock away: the fingers close fast
+  const HandTrialScene scene(cylinder(), leap(), "leap", p);
+  const HandTrialGrasp air = on_air();
+  const TrialOutcome outcome = run_hand_trials(scene, {air}).front();
+  const io::CandidateRecord& r = outcome.result.record;
+  EXPECT_EQ(r.failure, io::FailureKind::kNoContact) << outcome.failure_reason;
+  EXPECT_EQ(r.closing_forces, std::vector<double>(4, 0.0));
+  // The first frame is the candidate: the rest surface of the gripper record moved to the pose.
+  const io::TrajectoryRecord& t = *outcome.result.trajectory;
+  const io::GripperRecord gripper = gripper_record(scene);
+  for (std::size_t v = 0; v < gripper.vertex_count(); ++v) {
+    const Eigen::Vector3d rest(gripper.vertices[3 * v], gripper.vertices[3 * v + 1],
+                               gripper.vertices[3 * v + 2]);
+    const Eigen::Vector3d expected = air.pose * rest;
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(t.gripper_vertices[3 * v + c], expected[c], 1e-6);
+  }
+  // Each finger closed until one of its joints reached a limit: in the last closing frame
+  // that joint lies within one step's motion of it, and every finger flexed.
+  const grippers::KinematicTree& tree = scene.kinematics();
+  const std::size_t last = 16 * (scene.parameters().closing_frames - 1);
+  for (const HandFinger& finger : scene.fingers()) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int dof : finger.dofs) {
+      const double q = t.joints[last + dof];
+      nearest = std::min({nearest, q - tree.lower_limits()[dof], tree.upper_limits()[dof] - q});
+    }
+    EXPECT_LT(nearest, 0.05) << finger.name;
+    EXPECT_GT(t.joints[last + finger.dofs[1]], 0.5) << finger.name;  // its second joint flexed
+  }
+}
+
+TEST(HandTrial, StartingInsideTheObjectIsAnInitialPenetration) {
+  const HandTrialScene scene(cylinder(), leap(), "leap", parameters());
+  HandTrialGrasp inside = on_air();
+  inside.pose.translation() = Eigen::Vector3d(-0.05, 0.0, 0.01);  // the palm through the cylinder
+  const TrialOutcome outcome = run_hand_trials(scene, {inside}).front();
+  EXPECT_EQ(outcome.result.record.failure, io::FailureKind::kInitialPenetration);
+  EXPECT_EQ(outcome.result.record.newton.steps, 0u);
+}
+
+TEST(HandTrial, BatchMatchesSoloRuns) {
+  const HandTrialScene scene(cylinder(), leap(), "leap", parameters());
+  // A grasp that closes and one that starts inside the cylinder (and leaves the batch at once).
+  std::vector<HandTrialGrasp> grasps = {closing_candidate(), on_air()};
+  grasps.back().pose.translation() = Eigen::Vector3d(-0.05, 0.0, 0.01);
+  TrialRunOptions batch_options;
+  batch_options.threads = 2;
+  const std::vector<TrialOutcome> batch = run_hand_trials(scene, grasps, batch_options);
+  ASSERT_EQ(batch.size(), grasps.size());
+  for (std::size_t k = 0; k < grasps.size(); ++k) {
+    TrialRunOptions solo_options;
+    solo_options.threads = 1;
+    solo_options.ids = {k};
+    const TrialOutcome solo = run_hand_trials(scene, {grasps[k]}, solo_options).front();
+    EXPECT_TRUE(same_result(batch[k].result, solo.result)) << "candidate " << k;
+  }
+  EXPECT_EQ(batch.back().result.record.failure, io::FailureKind::kInitialPenetration);
+}
+
+TEST(HandTrial, RejectsJointsTheHandCannotTake) {
+  const HandTrialScene scene(cylinder(), leap(), "leap", parameters());
+  HandTrialGrasp bent = on_air();
+  bent.joints[1] = 3.0;  // index MCP beyond its 2.23 rad limit
+  EXPECT_THROW(run_hand_trials(scene, {bent}), std::out_of_range);
+  bent.joints.resize(15);
+  EXPECT_THROW(run_hand_trials(scene, {bent}), std::out_of_range);
+}
+
+TEST(HandTrial, GripperRecordDescribesTheHand) {
+  const HandTrialScene scene(cylinder(), leap(), "leap", parameters());
+  const io::GripperRecord r = gripper_record(scene);
+  EXPECT_EQ(r.name, "leap");
+  EXPECT_EQ(r.kind, "hand");
+  EXPECT_EQ(r.hands, 1u);
+  ASSERT_EQ(r.joint_names.size(), 16u);
+  EXPECT_EQ(r.joint_names.front(), "index_abd");
+  EXPECT_EQ(r.joint_names.back(), "thumb_ip");
+  EXPECT_EQ(r.finger_names, (std::vector<std::string>{"index", "middle", "ring", "thumb"}));
+  EXPECT_EQ(r.vertex_count(), static_cast<std::size_t>(scene.rest_surface().vertices.rows()));
+  EXPECT_EQ(r.triangles.size(),
+            3 * static_cast<std::size_t>(scene.rest_surface().triangles.rows()));
+  // Each finger has four links and four joints.
+  for (const HandFinger& finger : scene.fingers()) {
+    EXPECT_EQ(finger.bodies.size(), 4u) << finger.name;
+    EXPECT_EQ(finger.dofs.size(), 4u) << finger.name;
+  }
+}
+
+}  // namespace
+}  // namespace grip::trial
