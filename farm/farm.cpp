@@ -5,11 +5,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
-#include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <thread>
 
 #include "farm/batch_claims.hpp"
@@ -36,17 +33,16 @@ double seconds_since(Clock::time_point start) {
 Job read_job(const std::filesystem::path& file, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  std::string text;
-  std::uint8_t readable = 1;
+  std::string text, error;
   if (rank == 0) {
-    std::ifstream in(file, std::ios::binary);
-    readable = static_cast<bool>(in);
-    std::ostringstream content;
-    content << in.rdbuf();
-    text = content.str();
+    try {
+      text = read_job_text(file);
+    } catch (const config::ConfigError& e) {
+      error = e.what();
+    }
   }
-  MPI_Bcast(&readable, 1, MPI_UINT8_T, 0, comm);
-  if (!readable) throw config::ConfigError(file.string() + ": cannot read the job file");
+  broadcast(error, 0, comm);
+  if (!error.empty()) throw config::ConfigError(error);
   broadcast(text, 0, comm);
   return parse_job(std::move(text), file);
 }
@@ -160,11 +156,10 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
   const Clock::time_point plan_start = Clock::now();
   const FarmPlan plan = make_plan(job, comm, report.threads);
   report.plan_seconds = seconds_since(plan_start);
-  if (plan.candidates.empty()) {
-    throw std::invalid_argument(
-        options.job.string() +
-        ": no candidate was synthesized for any object; the objects may not "
-        "fit the grippers ([randomization] scale, [[objects]])");
+  if (plan.candidates.empty()) {  // every rank has the same plan, so all fail alike
+    throw config::ConfigError(options.job.string() +
+                              ": no candidate was synthesized for any object; the objects may not "
+                              "fit the grippers ([randomization] scale, [[objects]])");
   }
   if (writer) {
     if (writer->layout().candidate_count != plan.candidates.size()) {

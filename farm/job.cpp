@@ -109,8 +109,7 @@ GripperSetting read_gripper(const Table& t) {
   t.allow({"name", "bimanual", "candidates"});
   GripperSetting setting;
   setting.kind = synth::parse_gripper_kind(t.choice("name", {"fin-ray", "parallel-jaw", "leap"}));
-  setting.bimanual = t.boolean_or("bimanual", false);
-  if (setting.bimanual) {
+  if (t.boolean_or("bimanual", false)) {
     t.fail("bimanual",
            "bimanual trials are not implemented yet (grip synth --bimanual "
            "synthesizes bimanual candidates); set bimanual = false");
@@ -214,15 +213,15 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
   return job;
 }
 
-Job load_job(const std::filesystem::path& file) {
+std::string read_job_text(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    throw config::ConfigError(file.string() + ": cannot read the job file");
-  }
+  if (!in) throw config::ConfigError(file.string() + ": cannot read the job file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_job(text.str(), file);
+  return text.str();
 }
+
+Job load_job(const std::filesystem::path& file) { return parse_job(read_job_text(file), file); }
 
 std::vector<io::Parameter> resolved_parameters(const Job& job) {
   std::vector<io::Parameter> out;

@@ -32,7 +32,6 @@ struct ObjectGroup {
 // One [[grippers]] entry.
 struct GripperSetting {
   synth::GripperKind kind = synth::GripperKind::kParallelJaw;
-  bool bimanual = false;
   int candidates = 16;  // synthesized per object
 };
 
@@ -53,6 +52,9 @@ struct Job {
   int batch = 0;                   // candidates per batch; 0: 4 per worker thread
   int round_batches = 4;           // batches per rank between two commits (checkpoints)
 };
+
+// The job file's text. Throws config::ConfigError naming the file when it cannot be read.
+std::string read_job_text(const std::filesystem::path& file);
 
 // Reads and checks a job file. Throws config::ConfigError ("FILE:LINE: ...") naming the key
 // and what is allowed, for anything wrong, including a mesh path or glob that matches nothing.

@@ -19,10 +19,10 @@ std::vector<synth::Candidate> synthesize_for(const Job& job, const FarmObject& o
   const double d_hat = job.trial.sim.d_hat;
   params.antipodal.d_hat = params.hand.clearance.d_hat = d_hat;
   params.antipodal.margin = params.hand.clearance.margin = job.synthesis_margin;
-  params.bimanual.hand_clearance = d_hat + job.synthesis_margin;
   params.hand.steps = job.synthesis_steps;
+  // Unimanual only: the job refuses bimanual settings until the trial runs them.
   synth::SynthesisResult result = synth::synthesize(
-      prepared, gripper.kind, gripper.bimanual, params, object.seed ^ stream, gripper.candidates);
+      prepared, gripper.kind, /*bimanual=*/false, params, object.seed ^ stream, gripper.candidates);
   if (static_cast<int>(result.candidates.size()) < gripper.candidates) {
     spdlog::warn(
         "{} x {}: {} of {} candidates after {} attempts (the object may not fit the "

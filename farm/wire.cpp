@@ -102,6 +102,7 @@ io::ObjectRecord unpack_object(std::string_view bytes) {
   r.vertices = in.vector<double>();
   r.triangles = in.vector<std::int32_t>();
   r.tets = in.vector<std::int32_t>();
+  if (!in.done()) throw std::runtime_error("farm: trailing bytes in an object message");
   return r;
 }
 

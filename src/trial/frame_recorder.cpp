@@ -79,7 +79,7 @@ io::TrajectoryRecord trajectory_record(const std::vector<RecordedFrame>& frames)
                                frame.object_pose.end());
     record.hand_poses.insert(record.hand_poses.end(), frame.hand_pose.begin(),
                              frame.hand_pose.end());
-    record.joints.push_back(frame.opening);
+    record.joints.insert(record.joints.end(), frame.joints.begin(), frame.joints.end());
   }
   return record;
 }

@@ -18,8 +18,8 @@ struct RecordedFrame {
   std::vector<float> friction_forces;   // n x 3, N: friction force of the last step
   std::array<double, 12> object_pose{};
   std::array<double, 12> hand_pose{};
-  double opening = 0.0;
-  BodyFrame bodies;  // filled only when body frames are kept
+  std::vector<double> joints;  // the gripper's joint values (one hand)
+  BodyFrame bodies;            // filled only when body frames are kept
 };
 
 class FrameRecorder {

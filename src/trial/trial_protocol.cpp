@@ -41,9 +41,6 @@ struct TrialState {
   Eigen::Vector3d settled_center = Eigen::Vector3d::Zero();
   bool metrics_done = false;
   FrameRecorder recorder;
-  // A RecordedFrame carries one joint value (`opening`): each recorded frame holds there the
-  // index of its joint values in this list instead, and the trajectory takes them from here.
-  std::vector<std::vector<double>> frame_joints;
   TrialOutcome outcome;
 
   TrialState(std::size_t k, int fingers, const TrialParameters& p, int steps_per_phase)
@@ -227,8 +224,7 @@ class ProtocolRunner {
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 4; ++c) f.hand_pose[4 * r + c] = pose.matrix()(r, c);
     }
-    f.opening = static_cast<double>(state.frame_joints.size());
-    state.frame_joints.push_back(gripper_.joints(state.candidate, state.travel));
+    f.joints = gripper_.joints(state.candidate, state.travel);
     if (options_.body_frames) {
       f.bodies.time = env.time();
       const int bodies = static_cast<int>(env.model().bodies().size());
@@ -371,20 +367,11 @@ class ProtocolRunner {
     record.newton.iterations = static_cast<std::uint32_t>(stats.newton_iterations);
     record.newton.max_iterations = static_cast<std::uint32_t>(stats.max_step_iterations);
     std::vector<RecordedFrame> frames = state.recorder.frames();
-    if (options_.trajectory) {
-      io::TrajectoryRecord trajectory = trajectory_record(frames);
-      trajectory.joints.clear();
-      for (const RecordedFrame& f : frames) {
-        const std::vector<double>& joints = state.frame_joints[static_cast<std::size_t>(f.opening)];
-        trajectory.joints.insert(trajectory.joints.end(), joints.begin(), joints.end());
-      }
-      state.outcome.result.trajectory = std::move(trajectory);
-    }
+    if (options_.trajectory) state.outcome.result.trajectory = trajectory_record(frames);
     if (options_.body_frames) {
       for (RecordedFrame& f : frames) state.outcome.body_frames.push_back(std::move(f.bodies));
     }
     state.recorder = FrameRecorder(p_.closing_frames, p_.validation_frames, steps_per_phase_);
-    state.frame_joints.clear();
     state.phase = Phase::kDone;
     batch_.retire(i);
   }

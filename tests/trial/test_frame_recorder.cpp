@@ -5,10 +5,10 @@
 namespace grip::trial {
 namespace {
 
-// A frame that carries its step number as the opening, so a test can see which were kept.
+// A frame that carries its step number as its joint value, so a test can see which were kept.
 RecordedFrame tagged(double step) {
   RecordedFrame frame;
-  frame.opening = step;
+  frame.joints = {step};
   frame.object_vertices = {float(step), 0.f, 0.f};
   frame.contact_forces = {0.f, float(step), 0.f};
   frame.friction_forces = {0.f, 0.f, float(step)};
@@ -17,7 +17,7 @@ RecordedFrame tagged(double step) {
 
 std::vector<double> openings(const std::vector<RecordedFrame>& frames) {
   std::vector<double> values;
-  for (const RecordedFrame& f : frames) values.push_back(f.opening);
+  for (const RecordedFrame& f : frames) values.push_back(f.joints.front());
   return values;
 }
 
