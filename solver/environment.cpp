@@ -34,6 +34,7 @@ struct Environment::StepState {
   double progress = 0.0;
   int lag = 0;
   int iteration = 0;  // within the current lag's solve
+  bool held = false;  // converged, held open by hold_converged
   double first_residual = 0.0;
   double weight = 0.0;  // N, of the dynamic bodies under the current gravity
   Eigen::VectorXd gradient;
@@ -340,7 +341,7 @@ std::vector<FrictionContact> Environment::lag_friction(const Vertices& positions
   std::vector<FrictionContact> contacts;
   const double d_hat = model_->sim().d_hat;
   for (const ContactPair& pair : find_contact_pairs(*model_, positions, positions, d_hat)) {
-    if (pair.friction <= 0.0) continue;  // no friction terms where mu = 0
+    if (pair.friction <= 0.0 && !friction_terms_at_zero_mu_) continue;  // none where mu = 0
     const ContactForce force = potential_.contact_force(pair, positions);
     if (force.magnitude <= 0.0) continue;
     Eigen::Vector3d x[4];
@@ -354,7 +355,7 @@ std::vector<FrictionContact> Environment::lag_friction(const Vertices& positions
 
 Environment::NewtonOutcome Environment::newton_iteration(StepState& state) {
   const SimParameters& sim = model_->sim();
-  if (state.iteration == sim.max_newton_iters) {
+  if (state.iteration == sim.max_newton_iters && !state.held) {
     fail("Newton did not converge in " + std::to_string(sim.max_newton_iters) + " iterations");
     return NewtonOutcome::kFailed;
   }
@@ -431,7 +432,7 @@ Environment::NewtonOutcome Environment::newton_iteration(StepState& state) {
   // no vertex's velocity by more than newton_velocity_tol. A test on the step's length alone
   // is not enough: near d_hat the barrier (and sticking friction) is so stiff that a
   // micrometre off leaves the normal force, and friction's lagged lambda, wrong.
-  if (!moving && (residual <= sim.newton_tol * state.first_residual ||
+  if (!moving && !state.held && (residual <= sim.newton_tol * state.first_residual ||
                   max_vertex_displacement(*model_, p) <= sim.newton_velocity_tol * h)) {
     return NewtonOutcome::kConverged;
   }
@@ -456,8 +457,11 @@ Environment::NewtonOutcome Environment::newton_iteration(StepState& state) {
     const double slope = gradient.dot(p);
     for (;;) {
       const Eigen::VectorXd trial = q_ + alpha * p;
+      // A held step's energy is one term of a monolithic solve's sum, whose decrease decides:
+      // it is evaluated but not halved on its own.
       if (potential_.energy(trial, positions_at(trial, targets, 1.0), swept) <=
-          energy + 1e-4 * alpha * slope) {
+              energy + 1e-4 * alpha * slope ||
+          state.held) {
         break;
       }
       alpha *= 0.5;
@@ -473,6 +477,7 @@ Environment::NewtonOutcome Environment::newton_iteration(StepState& state) {
 bool Environment::step() {
   Progress progress = begin_step();
   while (progress == Progress::kIterating) progress = iterate();
+  if (progress == Progress::kConverged) progress = finish_held_step();
   return progress == Progress::kStepDone;
 }
 
@@ -550,7 +555,7 @@ Environment::Progress Environment::iterate() {
     case NewtonOutcome::kFailed:
       return Progress::kFailed;
     case NewtonOutcome::kContinue:
-      return Progress::kIterating;
+      return state.held ? Progress::kConverged : Progress::kIterating;
     case NewtonOutcome::kConverged:
       break;
   }
@@ -560,6 +565,16 @@ Environment::Progress Environment::iterate() {
     state.iteration = 0;
     return Progress::kIterating;
   }
+  if (hold_converged_) {
+    state.held = true;
+    return Progress::kConverged;
+  }
+  finish_step();
+  return Progress::kStepDone;
+}
+
+Environment::Progress Environment::finish_held_step() {
+  if (!step_ || !step_->held) throw std::logic_error("Environment::finish_held_step: none held");
   finish_step();
   return Progress::kStepDone;
 }
@@ -604,6 +619,7 @@ void Environment::record_diagnostics(const StepTargets& targets) {
   const CollisionMesh& mesh = model_->collision();
   const Vertices x = positions_at(q_, targets, 1.0);
   diagnostics_.min_volume_ratio = min_volume_ratio();
+  diagnostics_.friction_contacts = static_cast<int>(potential_.friction().size());
   std::map<std::pair<int, int>, PairForce> forces;
   // Adds the force on a stencil's vertices to the pair (side A's body, side B's body).
   auto add = [&](const std::array<int, 4>& vertex, bool edge_edge,

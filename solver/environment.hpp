@@ -39,6 +39,7 @@ struct StepDiagnostics {
   double min_distance = std::numeric_limits<double>::infinity();  // over pairs within d_hat
   double min_volume_ratio = 1.0;  // smallest det F over all tets (1 without FEM)
   double kappa = 0.0;
+  int friction_contacts = 0;  // lagged friction contacts of the last lag
   double residual =
       0.0;  // infinity norm of the free DOFs' gradient at the end, scaled by 1/h^2 (N)
   std::vector<PairForce> contact_forces;
@@ -68,9 +69,26 @@ class Environment {
 
   // The same step in parts, for a batch that runs the Newton iterations of many environments
   // in rounds: begin_step(), then iterate() until it no longer returns kIterating.
-  enum class Progress { kIterating, kStepDone, kFailed };
+  // kConverged only comes with hold_converged (below).
+  enum class Progress { kIterating, kStepDone, kFailed, kConverged };
   Progress begin_step();
   Progress iterate();
+
+  // Off by default. On, a step whose Newton converged is held open instead of finished, the
+  // way one global convergence test of a monolithic solver keeps every part iterating until
+  // the slowest converges: iterate() reports kConverged, each further iterate() takes one more
+  // Newton step from there (and reports kConverged again), and finish_held_step() ends the step.
+  // A held step has no iteration limit (the slowest environment's bounds it), and its line
+  // search does not halve for its own energy (in a monolithic solve that energy is one term of
+  // a sum whose decrease decides). step() finishes a held step itself. Only for measuring what
+  // freezing converged environments saves (Batch::set_freeze_converged).
+  void set_hold_converged(bool hold) { hold_converged_ = hold; }
+  Progress finish_held_step();
+
+  // Off by default: contact pairs with mu = 0 get no friction terms. On, they get them anyway
+  // (each adds zero force at the full cost of its lag and its derivatives); only for measuring
+  // what skipping them saves.
+  void set_friction_terms_at_zero_mu(bool on) { friction_terms_at_zero_mu_ = on; }
 
   // Between steps, the caller may redirect gravity and change kinematic scripts.
   void set_gravity(const Eigen::Vector3d& gravity) { gravity_ = gravity; }
@@ -136,6 +154,8 @@ class Environment {
   SparseCholesky cholesky_;
   std::shared_ptr<LinearSystemSolver> linear_solver_;  // null: cholesky_ solves every system
   int linear_solver_min_dofs_ = 0;
+  bool hold_converged_ = false;
+  bool friction_terms_at_zero_mu_ = false;
 };
 
 }  // namespace grip::solver

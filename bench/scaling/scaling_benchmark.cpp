@@ -1,41 +1,22 @@
 #include "bench/scaling/scaling_benchmark.hpp"
 
 #include <spdlog/spdlog.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 
+#include "bench/common/subprocess.hpp"
+
 namespace grip::bench {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Runs argv with output to `log`; returns the exit code.
-int run_process(const std::vector<std::string>& args, const fs::path& log) {
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-    std::freopen(log.c_str(), "w", stdout);
-    std::freopen(log.c_str(), "a", stderr);
-    std::vector<char*> argv;
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(argv[0], argv.data());
-    std::_Exit(127);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
 
 double number(const std::string& json, const std::string& key) {
   const std::regex pattern("\"" + key + "\": ([-0-9.eE+]+)");
@@ -81,6 +62,9 @@ std::vector<ScalingRow> run_scaling(const ScalingOptions& options) {
         "and one repeat");
   }
   fs::create_directories(options.out);
+  // mpirun refuses to start as root without these; the runs inherit them.
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
   std::vector<ScalingRow> rows;
   for (int ranks : options.ranks) {
     for (int envs : options.envs) {
@@ -146,16 +130,9 @@ std::vector<ScalingRow> run_scaling(const ScalingOptions& options) {
   }
   write_tables(options.out, rows, options);
 
-  const fs::path script = fs::path(GRIP_SOURCE_DIR) / "bench/scaling/plot_scaling.py";
-  if (fs::exists("/usr/bin/python3") && fs::exists(script)) {
-    const fs::path log = options.out / "plot.log";
-    if (run_process({"/usr/bin/python3", script.string(), (options.out / "scaling.csv").string(),
-                     (options.out / "scaling.png").string()},
-                    log) != 0) {
-      spdlog::warn("no plot: {} failed (needs python3-matplotlib); see {}", script.string(),
-                   log.string());
-    }
-  }
+  plot("bench/scaling/plot_scaling.py",
+       {(options.out / "scaling.csv").string(), (options.out / "scaling.png").string()},
+       options.out);
   return rows;
 }
 

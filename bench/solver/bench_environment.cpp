@@ -14,17 +14,6 @@
 namespace grip::solver {
 namespace {
 
-BodyDescription surface_body(const std::string& name, BodyType type,
-                             const geometry::SurfaceMesh& mesh, const Eigen::Vector3d& position) {
-  BodyDescription body;
-  body.name = name;
-  body.type = type;
-  body.vertices = mesh.vertices;
-  body.triangles = mesh.triangles;
-  body.pose.position = position;
-  return body;
-}
-
 // A 6 cm soft cube on 12 cells per side (13^3 = 2,197 vertices, 10,368 tets) on the ground,
 // pressed by a plate coming down at 5 cm/s.
 SceneDescription soft_body_in_contact() {
@@ -36,9 +25,9 @@ SceneDescription soft_body_in_contact() {
   cube.pose.position = {0, 0, 0.0305};
   cube.material.youngs = 1e5;
   scene.bodies.push_back(cube);
-  scene.bodies.push_back(surface_body("ground", BodyType::kKinematic,
+  scene.bodies.push_back(scene::surface_body("ground", BodyType::kKinematic,
                                       geometry::make_box({0.3, 0.3, 0.02}), {0, 0, -0.01}));
-  BodyDescription plate = surface_body("plate", BodyType::kKinematic,
+  BodyDescription plate = scene::surface_body("plate", BodyType::kKinematic,
                                        geometry::make_box({0.1, 0.1, 0.01}), {0, 0, 0.0665});
   plate.script.velocity = {0, 0, -0.05};
   scene.bodies.push_back(plate);
@@ -49,8 +38,8 @@ SceneDescription soft_body_in_contact() {
 SceneDescription affine_body_on_dense_mesh() {
   SceneDescription scene;
   const geometry::SurfaceMesh sphere = geometry::make_sphere(0.2, 100, 50);
-  scene.bodies.push_back(surface_body("sphere", BodyType::kKinematic, sphere, {0, 0, -0.2}));
-  scene.bodies.push_back(surface_body("cube", BodyType::kAffine,
+  scene.bodies.push_back(scene::surface_body("sphere", BodyType::kKinematic, sphere, {0, 0, -0.2}));
+  scene.bodies.push_back(scene::surface_body("cube", BodyType::kAffine,
                                       geometry::make_box({0.04, 0.04, 0.04}), {0, 0, 0.0205}));
   return scene;
 }

@@ -19,6 +19,7 @@ Batch::Batch(int threads) : threads_(resolve_threads(threads)), arena_(threads_)
 
 int Batch::add(std::shared_ptr<const Model> model) {
   environments_.push_back(std::make_unique<Environment>(std::move(model)));
+  environments_.back()->set_hold_converged(!freeze_converged_);
   active_.push_back(1);
   return size() - 1;
 }
@@ -32,6 +33,13 @@ bool Batch::any_active() const {
     if (active(i)) return true;
   }
   return false;
+}
+
+void Batch::set_freeze_converged(bool freeze) {
+  freeze_converged_ = freeze;
+  for (const std::unique_ptr<Environment>& environment : environments_) {
+    environment->set_hold_converged(!freeze);
+  }
 }
 
 BatchStepReport Batch::step() {
@@ -59,11 +67,19 @@ BatchStepReport Batch::step() {
   for_each_iterating([&](int i) { progress[i] = environments_[i]->begin_step(); });
   for (;;) {
     // Drop environments that finished their step (frozen until the next one) or failed.
+    // Converged ones are held only without freezing, until all have converged.
     std::erase_if(iterating, [&](int i) {
       if (progress[i] == Environment::Progress::kFailed) ++report.failed;
-      return progress[i] != Environment::Progress::kIterating;
+      return progress[i] != Environment::Progress::kIterating &&
+             progress[i] != Environment::Progress::kConverged;
     });
     if (iterating.empty()) break;
+    if (std::all_of(iterating.begin(), iterating.end(), [&](int i) {
+          return progress[i] == Environment::Progress::kConverged;
+        })) {
+      for_each_iterating([&](int i) { progress[i] = environments_[i]->finish_held_step(); });
+      break;
+    }
     ++report.rounds;
     report.iterations += static_cast<long>(iterating.size());
     report.frozen += static_cast<long>(report.stepped - static_cast<int>(iterating.size()));

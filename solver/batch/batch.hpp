@@ -47,6 +47,12 @@ class Batch {
   bool active(int index) const;
   bool any_active() const;
 
+  // On by default: an environment whose Newton converged is frozen for the rest of the step.
+  // Off, every environment keeps iterating until all have converged (one global convergence
+  // test, as a monolithic solver of all environments would have; Environment::
+  // set_hold_converged); only for measuring what freezing saves (bench/model).
+  void set_freeze_converged(bool freeze);
+
   // One time step (each environment's own dt) of every active environment.
   BatchStepReport step();
 
@@ -55,6 +61,7 @@ class Batch {
   tbb::task_arena arena_;
   std::vector<std::unique_ptr<Environment>> environments_;
   std::vector<char> active_;
+  bool freeze_converged_ = true;
 };
 
 }  // namespace grip::solver

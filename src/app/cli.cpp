@@ -207,6 +207,48 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_scaling->callback(
       [&] { run = [&] { return grip::commands::bench_scaling(bench_scaling_args); }; });
+  grip::commands::BenchAccuracyArgs bench_accuracy_args;
+  CLI::App* bench_accuracy = bench->add_subcommand(
+      "accuracy", "Work-precision of the solver's settings against a tight reference run");
+  bench_accuracy
+      ->add_option("--scenes", bench_accuracy_args.scenes,
+                   "Scenes: fin-ray-rigid, fin-ray-soft, hand-rigid (default: all)")
+      ->delimiter(',');
+  bench_accuracy
+      ->add_option("--sweeps", bench_accuracy_args.sweeps,
+                   "Settings: dt, newton_tol, d_hat, kappa, eps_v, friction_lag_iterations, "
+                   "mesh (default: all)")
+      ->delimiter(',');
+  bench_accuracy->add_option("--threads", bench_accuracy_args.threads, "Threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  bench_accuracy->add_option("--repeats", bench_accuracy_args.repeats, "Runs per setting (median)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  bench_accuracy->add_option("--out", bench_accuracy_args.out, "Folder for tables and plots")
+      ->capture_default_str();
+  bench_accuracy->callback(
+      [&] { run = [&] { return grip::commands::bench_accuracy(bench_accuracy_args); }; });
+  grip::commands::BenchHardArgs bench_hard_args;
+  CLI::App* bench_hard = bench->add_subcommand(
+      "hard", "Hard cases: a pass/fail per invariant (no intersection, no inversion)");
+  bench_hard->add_option("--cases", bench_hard_args.cases, "Cases (default: all)")->delimiter(',');
+  bench_hard->add_option("--threads", bench_hard_args.threads, "Threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  bench_hard->add_option("--out", bench_hard_args.out, "Folder for the tables and plot")
+      ->capture_default_str();
+  bench_hard->callback([&] { run = [&] { return grip::commands::bench_hard(bench_hard_args); }; });
+  grip::commands::BenchModelArgs bench_model_args;
+  CLI::App* bench_model = bench->add_subcommand(
+      "model", "What modelling only what a scene needs saves: time and error per choice");
+  bench_model->add_option("--repeats", bench_model_args.repeats, "Runs per variant (median)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  bench_model->add_option("--threads", bench_model_args.threads, "Threads")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  bench_model->add_option("--out", bench_model_args.out, "Folder for tables and plots")
+      ->capture_default_str();
+  bench_model->callback([&] { run = [&] { return grip::commands::bench_model(bench_model_args); }; });
   grip::commands::BenchLinearArgs bench_linear_args;
   CLI::App* bench_linear = bench->add_subcommand(
       "linear",

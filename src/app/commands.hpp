@@ -137,4 +137,35 @@ struct BenchLinearArgs {
 };
 int bench_linear(const BenchLinearArgs& args);
 
+// grip bench accuracy [--scenes ...] [--sweeps ...] [--threads T] [--repeats N] [--out DIR]:
+// work-precision of the solver's settings on the standard trial scenes against a tight
+// reference run (bench/accuracy/, docs/results.md).
+struct BenchAccuracyArgs {
+  std::vector<std::string> scenes;  // empty: every standard scene
+  std::vector<std::string> sweeps;  // settings to sweep; empty: all
+  int threads = 0;                  // 0: all cores
+  int repeats = 1;                  // runs per setting; the wall time is their median
+  std::string out = "out/accuracy";
+};
+int bench_accuracy(const BenchAccuracyArgs& args);
+
+// grip bench hard [--cases ...] [--threads T] [--out DIR]: the hard-case suite, a pass/fail per
+// invariant and statistics per case; non-zero exit when any case fails an invariant, its
+// expected solver outcome or its physical check (bench/hard/, docs/results.md).
+struct BenchHardArgs {
+  std::vector<std::string> cases;  // empty: every case
+  int threads = 0;                 // 0: all cores
+  std::string out = "out/hard";
+};
+int bench_hard(const BenchHardArgs& args);
+
+// grip bench model [--repeats N] [--threads T] [--out DIR]: what modelling only what a scene
+// needs saves, in time and error (bench/model/, docs/results.md).
+struct BenchModelArgs {
+  int repeats = 5;  // runs per variant; the table reports the median
+  int threads = 1;
+  std::string out = "out/model";
+};
+int bench_model(const BenchModelArgs& args);
+
 }  // namespace grip::commands

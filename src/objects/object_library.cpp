@@ -241,6 +241,10 @@ double thinnest_feature(const ObjectShape& shape) {
   throw std::invalid_argument("unknown object category");
 }
 
+double tet_edge_for(const ObjectShape& shape, double scale, double requested) {
+  return std::min(requested, 0.5 * scale * thinnest_feature(shape));
+}
+
 SurfaceMesh generate_surface(const ObjectShape& shape, int segments) {
   check_shape(shape);
   if (segments < 8) throw std::invalid_argument("object surface: use at least 8 segments");

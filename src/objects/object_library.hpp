@@ -52,6 +52,11 @@ ObjectShape sample_shape(ObjectCategory category, std::uint64_t seed);
 // about half of it resolves the shape with a few tets across.
 double thinnest_feature(const ObjectShape& shape);
 
+// The tet edge length to mesh `shape` scaled by `scale` with: `requested`, or half its thinnest
+// part when that is smaller. An edge longer than a wall is thick leaves slivers (a mug's
+// handle meshed at 8 mm: dihedral angles of 1 to 2 degrees).
+double tet_edge_for(const ObjectShape& shape, double scale, double requested);
+
 // The closed, outward, manifold surface of the shape, centred on the origin's vertical axis
 // and standing on z = 0 (a torus and a sphere-like shape lie with their lowest point at z =
 // 0). `segments` sets the angular resolution of round parts. Throws std::invalid_argument if

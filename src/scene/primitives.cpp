@@ -6,6 +6,18 @@
 
 namespace grip::scene {
 
+solver::BodyDescription surface_body(const std::string& name, solver::BodyType type,
+                                     const geometry::SurfaceMesh& mesh,
+                                     const Eigen::Vector3d& position) {
+  solver::BodyDescription body;
+  body.name = name;
+  body.type = type;
+  body.vertices = mesh.vertices;
+  body.triangles = mesh.triangles;
+  body.pose.position = position;
+  return body;
+}
+
 void set_fem_mesh(solver::BodyDescription& body, const geometry::TetMesh& tets) {
   Eigen::VectorXi to_tet;
   const geometry::SurfaceMesh boundary = geometry::boundary_surface(tets, &to_tet);

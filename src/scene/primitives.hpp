@@ -1,10 +1,19 @@
 #pragma once
-// Soft bodies for scene files: a tet mesh made an FEM body's mesh, and a box as a structured
-// tet grid (exact volume, no meshing needed). Surface shapes come from src/geometry/primitives.hpp.
+// Bodies for scenes built in code or read from scene files: a surface made a body, a tet mesh
+// made an FEM body's mesh, and a box as a structured tet grid (exact volume, no meshing needed).
+// Surface shapes come from src/geometry/primitives.hpp.
+#include <string>
+
 #include "solver/scene.hpp"
 #include "src/geometry/mesh.hpp"
 
 namespace grip::scene {
+
+// A body of the given type whose collision mesh is `mesh` (in its frame), its frame starting
+// at `position`.
+solver::BodyDescription surface_body(const std::string& name, solver::BodyType type,
+                                     const geometry::SurfaceMesh& mesh,
+                                     const Eigen::Vector3d& position);
 
 // Gives an FEM body a tet mesh: its vertices, its tets and its boundary triangles (indexing
 // the tet mesh's vertices, as the solver wants them).

@@ -33,4 +33,15 @@ geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, d
   return geometry::repair_surface(mesh, {}, spec).mesh;
 }
 
+double object_tet_edge(const std::string& spec, std::uint64_t seed, double category_scale,
+                       double requested) {
+  for (const objects::ObjectCategory category : objects::all_object_categories()) {
+    if (objects::category_name(category) == spec) {
+      return objects::tet_edge_for(objects::sample_shape(category, seed), category_scale,
+                                   requested);
+    }
+  }
+  return requested;
+}
+
 }  // namespace grip::synth

@@ -14,4 +14,10 @@ namespace grip::synth {
 // throws (naming the file).
 geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, double scale = 1.0);
 
+// The tet edge length to mesh the object with: for a category, objects::tet_edge_for its
+// shape scaled by `category_scale` (half its thinnest part when that is below `requested`);
+// for a mesh file, `requested`.
+double object_tet_edge(const std::string& spec, std::uint64_t seed, double category_scale,
+                       double requested);
+
 }  // namespace grip::synth

@@ -343,7 +343,9 @@ class ProtocolRunner {
   }
 
   // A failed environment's state is not a grasp (a step may have stopped half-way): its
-  // frames end at the last accepted step, and D1/D2 are not measured (NaN).
+  // frames end at the last accepted step, and D1/D2 are not measured (NaN). A solver failure
+  // after a gravity phase already moved the object beyond the threshold does not decide the
+  // verdict: the grasp had failed (`displaced`) before; failure_reason keeps the solver's word.
   void fail(int i) {
     TrialState& state = states_[i];
     const solver::Environment& env = batch_.environment(i);
@@ -353,7 +355,12 @@ class ProtocolRunner {
     if (!state.metrics_done) {
       record.d1 = record.d2 = std::numeric_limits<double>::quiet_NaN();
     }
-    finish(i, solver_failure_kind(env.failure()));
+    const bool displaced_before =
+        state.phase == Phase::kGravity &&
+        std::any_of(record.displacement.begin(),
+                    record.displacement.begin() + state.gravity_phase,
+                    [&](double d) { return d >= p_.displacement_threshold(); });
+    finish(i, displaced_before ? io::FailureKind::kDisplaced : solver_failure_kind(env.failure()));
   }
 
   void finish(int i, io::FailureKind failure) {

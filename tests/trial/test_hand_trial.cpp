@@ -9,16 +9,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <set>
 
-#include <unistd.h>
-
 #include "src/geometry/intersections.hpp"
-#include "src/geometry/mesh_io.hpp"
 #include "src/geometry/primitives.hpp"
-#include "src/grippers/leap_hand.hpp"
+#include "src/grippers/coarse_leap_hand.hpp"
 #include "src/synth/synthesize.hpp"
 #include "src/trial/gripper_record.hpp"
 #include "src/trial/same_result.hpp"
@@ -26,31 +22,8 @@
 namespace grip::trial {
 namespace {
 
-// The shipped LEAP-style hand with its capsule links coarsened from 24 to 8 sides (the same
-// boxes, URDF and hand points), so that a trial step costs a fraction of the full hand's. Each
-// coarse capsule is inscribed in the full one, so synthesized clearances only grow.
-grippers::HandModel coarse_leap() {
-  // One folder per process: ctest may run this file's tests side by side.
-  const std::filesystem::path folder =
-      std::filesystem::temp_directory_path() / ("grip_coarse_leap_" + std::to_string(::getpid()));
-  const grippers::LeapHandFiles files =
-      grippers::write_leap_hand(folder, grippers::HandSide::kRight);
-  for (const char* stem : {"proximal", "thumb_proximal", "intermediate", "distal"}) {
-    const std::filesystem::path file = folder / "meshes" / (std::string(stem) + ".obj");
-    const geometry::SurfaceMesh full = geometry::read_surface_mesh(file);
-    const Eigen::Vector3d lower = full.vertices.colwise().minCoeff();
-    const Eigen::Vector3d upper = full.vertices.colwise().maxCoeff();
-    geometry::SurfaceMesh coarse = geometry::make_capsule(upper.y(), upper.x() - lower.x(), 8, 2);
-    coarse.vertices.col(0).array() += lower.x();
-    geometry::write_obj(file, coarse);
-  }
-  grippers::HandModel hand = grippers::load_hand_model(files.urdf, files.points);
-  std::filesystem::remove_all(folder);  // the model holds the meshes
-  return hand;
-}
-
 const grippers::HandModel& leap() {
-  static const grippers::HandModel hand = coarse_leap();
+  static const grippers::HandModel hand = grippers::coarse_leap_hand();
   return hand;
 }
 

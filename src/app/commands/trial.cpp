@@ -188,7 +188,10 @@ int trial(const TrialArgs& args) {
   object.material = {args.density, args.youngs, args.poisson, args.friction};
   if (args.soft) {
     geometry::TetOptions options;
-    options.edge_length = args.tet_edge;
+    options.edge_length = synth::object_tet_edge(args.object, args.seed, 1.0, args.tet_edge);
+    if (options.edge_length < args.tet_edge) {
+      spdlog::info("tet edge {:.4f} m: half the object's thinnest part", options.edge_length);
+    }
     object.tets = geometry::tetrahedralize(object.surface, options, args.object);
     object.surface = geometry::boundary_surface(*object.tets);
     spdlog::info("soft object: {} vertices, {} tets", object.tets->vertices.rows(),

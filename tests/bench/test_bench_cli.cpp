@@ -1,0 +1,50 @@
+// The result benchmarks as a user runs them from a fresh build: `grip bench hard` writes its
+// table, CSV and plot and exits 0 when every case holds; an unknown case, a bimanual accuracy
+// scene (there is none) or an unknown sweep is one message and exit status 1.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tests/app/run_grip.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using grip::testing::run_grip;
+using grip::testing::slurp;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("grip_bench_cli_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+TEST(BenchCli, HardWritesItsTablesAndPasses) {
+  const fs::path out = scratch("hard");
+  const auto run = run_grip("bench hard --cases mu_3.5_incline,parallel_edge_edge --threads 1 --out " +
+                            out.string());
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("all cases pass"), std::string::npos) << run.out;
+  const std::string csv = slurp(out / "hard.csv");
+  EXPECT_NE(csv.find("mu_3.5_incline"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("parallel_edge_edge"), std::string::npos) << csv;
+  EXPECT_EQ(csv.find("large_squeeze"), std::string::npos) << "only the cases asked for";
+  EXPECT_TRUE(fs::exists(out / "hard.md"));
+  fs::remove_all(out);
+}
+
+TEST(BenchCli, UnknownNamesAreOneMessageAndExitOne) {
+  const fs::path out = scratch("bad");
+  const auto hard = run_grip("bench hard --cases no_such_case --out " + out.string());
+  EXPECT_EQ(hard.exit_code, 1);
+  EXPECT_NE((hard.out + hard.err).find("no_such_case"), std::string::npos) << hard.err;
+  const auto bimanual = run_grip("bench accuracy --scenes bimanual --out " + out.string());
+  EXPECT_EQ(bimanual.exit_code, 1);
+  EXPECT_NE((bimanual.out + bimanual.err).find("bimanual"), std::string::npos) << bimanual.err;
+  const auto sweep = run_grip("bench accuracy --sweeps no_such_setting --out " + out.string());
+  EXPECT_EQ(sweep.exit_code, 1);
+  EXPECT_NE((sweep.out + sweep.err).find("no_such_setting"), std::string::npos) << sweep.err;
+  fs::remove_all(out);
+}
+
+}  // namespace
