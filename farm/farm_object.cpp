@@ -93,10 +93,8 @@ io::ObjectRecord prepare_object(const FarmObject& object) {
                      object.material.density, object.material.friction};
   if (object.soft) {
     geometry::TetOptions options;
-    options.edge_length = object.category == "mesh"
-                              ? object.tet_edge
-                              : synth::object_tet_edge(object.category, object.shape_seed,
-                                                       object.material.scale, object.tet_edge);
+    options.edge_length = synth::object_tet_edge(object.category, object.shape_seed,
+                                                 object.material.scale, object.tet_edge);
     const geometry::TetMesh tets = geometry::tetrahedralize(surface, options, object.name);
     Eigen::VectorXi surface_to_tet;
     const geometry::SurfaceMesh boundary = geometry::boundary_surface(tets, &surface_to_tet);

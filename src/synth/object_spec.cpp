@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "src/geometry/mesh_io.hpp"
@@ -9,15 +10,24 @@
 #include "src/objects/object_library.hpp"
 
 namespace grip::synth {
+namespace {
+
+// The category a spec names; none for a mesh file's path.
+std::optional<objects::ObjectCategory> category_of(const std::string& spec) {
+  for (const objects::ObjectCategory category : objects::all_object_categories()) {
+    if (objects::category_name(category) == spec) return category;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, double scale) {
   if (!(scale > 0.0) || !std::isfinite(scale)) {
     throw std::invalid_argument("--scale must be a positive factor (got " + std::to_string(scale) + ")");
   }
-  for (const objects::ObjectCategory category : objects::all_object_categories()) {
-    if (objects::category_name(category) == spec) {
-      return objects::generate_surface(objects::sample_shape(category, seed));
-    }
+  if (const auto category = category_of(spec)) {
+    return objects::generate_surface(objects::sample_shape(*category, seed));
   }
   if (!std::filesystem::is_regular_file(spec)) {
     std::string names;
@@ -35,13 +45,10 @@ geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, d
 
 double object_tet_edge(const std::string& spec, std::uint64_t seed, double category_scale,
                        double requested) {
-  for (const objects::ObjectCategory category : objects::all_object_categories()) {
-    if (objects::category_name(category) == spec) {
-      return objects::tet_edge_for(objects::sample_shape(category, seed), category_scale,
-                                   requested);
-    }
-  }
-  return requested;
+  const auto category = category_of(spec);
+  return category ? objects::tet_edge_for(objects::sample_shape(*category, seed), category_scale,
+                                          requested)
+                  : requested;
 }
 
 }  // namespace grip::synth
