@@ -37,6 +37,7 @@ find_package(spdlog REQUIRED)
 find_package(TBB REQUIRED)
 pkg_check_modules(TOMLPP REQUIRED IMPORTED_TARGET tomlplusplus)
 find_package(CLI11 REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
 find_package(urdfdom REQUIRED)
 find_package(Threads REQUIRED)
 # SHA-256 of job files (the dataset's job id); libssl-dev also comes with parallel HDF5.

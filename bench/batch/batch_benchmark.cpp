@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -9,8 +10,10 @@
 #include <iomanip>
 #include <limits>
 #include <random>
+#include <utility>
 
 #include "solver/batch/batch.hpp"
+#include "src/json/json_text.hpp"
 
 namespace grip::bench {
 namespace {
@@ -143,25 +146,26 @@ BatchBenchmarkResult run_batch_benchmark(const scene::SceneFile& scene, const st
 }
 
 void write_json_line(std::ostream& out, const BatchBenchmarkResult& result) {
-  out << std::setprecision(6) << "{\"benchmark\": \"batch\", \"scene\": \"" << result.scene
-      << "\", \"threads\": " << result.threads << ", \"rows\": [";
-  for (std::size_t i = 0; i < result.rows.size(); ++i) {
-    const BatchBenchmarkRow& r = result.rows[i];
-    out << (i ? ", " : "") << "{\"envs\": " << r.envs << ", \"steps\": " << r.steps
-        << ", \"sequential_s\": " << r.sequential_s << ", \"batched_s\": " << r.batched_s
-        << ", \"speedup\": " << r.speedup << ", \"newton_iterations\": " << r.newton_iterations
-        << ", \"frozen_fraction\": " << r.frozen_fraction << ", \"memory_mib\": " << r.memory_mib
-        << ", \"memory_per_env_mib\": " << r.memory_per_env_mib
-        << ", \"memory_per_added_env_mib\": ";
-    if (std::isfinite(r.memory_per_added_env_mib)) {
-      out << r.memory_per_added_env_mib;
-    } else {
-      out << "null";
-    }
-    out << ", \"failed\": " << r.failed
-        << ", \"identical\": " << (r.identical ? "true" : "false") << "}";
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const BatchBenchmarkRow& r : result.rows) {
+    rows.push_back(nlohmann::ordered_json{{"envs", r.envs},
+                                          {"steps", r.steps},
+                                          {"sequential_s", r.sequential_s},
+                                          {"batched_s", r.batched_s},
+                                          {"speedup", r.speedup},
+                                          {"newton_iterations", r.newton_iterations},
+                                          {"frozen_fraction", r.frozen_fraction},
+                                          {"memory_mib", r.memory_mib},
+                                          {"memory_per_env_mib", r.memory_per_env_mib},
+                                          {"memory_per_added_env_mib", r.memory_per_added_env_mib},
+                                          {"failed", r.failed},
+                                          {"identical", r.identical}});
   }
-  out << "]}\n";
+  const nlohmann::ordered_json line = {{"benchmark", "batch"},
+                                       {"scene", result.scene},
+                                       {"threads", result.threads},
+                                       {"rows", std::move(rows)}};
+  out << json::text(line, "%.6g") << '\n';
 }
 
 }  // namespace grip::bench

@@ -1,10 +1,12 @@
 #include "bench/ccd/ccd_benchmark.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 
 #include "bench/ccd/exact_separation.hpp"
+#include "src/json/json_text.hpp"
 
 namespace grip::bench {
 
@@ -59,13 +61,11 @@ CcdBenchmarkResult run_ccd_benchmark(const std::vector<CcdQuery>& queries, CcdQu
 }
 
 std::string summary_json(const CcdBenchmarkResult& result) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer,
-                "{\"queries\":%zu,\"false_negatives\":%zu,\"false_positives\":%zu,"
-                "\"ns_per_query\":%.1f}",
-                result.queries, result.false_negatives, result.false_positives,
-                result.ns_per_query);
-  return buffer;
+  const nlohmann::ordered_json summary = {{"queries", result.queries},
+                                          {"false_negatives", result.false_negatives},
+                                          {"false_positives", result.false_positives},
+                                          {"ns_per_query", result.ns_per_query}};
+  return json::compact_text(summary, "%.1f");
 }
 
 }  // namespace grip::bench

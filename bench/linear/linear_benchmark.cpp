@@ -1,13 +1,17 @@
 #include "bench/linear/linear_benchmark.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <stdexcept>
+#include <utility>
 
 #include "bench/linear/bimanual_squeeze.hpp"
 #include "bench/linear/newton_system.hpp"
 #include "solver/linear/sparse_cholesky.hpp"
+#include "src/json/json_text.hpp"
 
 namespace grip::bench {
 
@@ -110,16 +114,22 @@ LinearBenchmarkResult run_linear_benchmark(farm::PetscSystemSolver& petsc,
 }
 
 void write_json_line(std::ostream& out, const LinearBenchmarkResult& result) {
-  out << "{\"benchmark\":\"linear\",\"ranks\":" << result.ranks << ",\"method\":\"" << result.method
-      << "\",\"crossover_dofs\":" << result.crossover_dofs << ",\"rows\":[";
-  for (std::size_t i = 0; i < result.rows.size(); ++i) {
-    const LinearBenchmarkRow& row = result.rows[i];
-    out << (i ? "," : "") << "{\"cell\":" << row.cell << ",\"dofs\":" << row.dofs
-        << ",\"nonzeros\":" << row.nonzeros << ",\"direct_s\":" << row.direct_s
-        << ",\"petsc_s\":" << row.petsc_s << ",\"iterations\":" << row.iterations
-        << ",\"relative_difference\":" << row.relative_difference << "}";
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const LinearBenchmarkRow& row : result.rows) {
+    rows.push_back(nlohmann::ordered_json{{"cell", row.cell},
+                                          {"dofs", row.dofs},
+                                          {"nonzeros", row.nonzeros},
+                                          {"direct_s", row.direct_s},
+                                          {"petsc_s", row.petsc_s},
+                                          {"iterations", row.iterations},
+                                          {"relative_difference", row.relative_difference}});
   }
-  out << "]}\n";
+  const nlohmann::ordered_json line = {{"benchmark", "linear"},
+                                       {"ranks", result.ranks},
+                                       {"method", result.method},
+                                       {"crossover_dofs", result.crossover_dofs},
+                                       {"rows", std::move(rows)}};
+  out << json::compact_text(line, "%.6g") << '\n';
 }
 
 }  // namespace grip::bench

@@ -1,14 +1,13 @@
 #include "bench/scaling/scaling_benchmark.hpp"
 
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <regex>
-#include <sstream>
 #include <stdexcept>
 
 #include "bench/common/subprocess.hpp"
@@ -18,13 +17,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-double number(const std::string& json, const std::string& key) {
-  const std::regex pattern("\"" + key + "\": ([-0-9.eE+]+)");
-  std::smatch match;
-  if (!std::regex_search(json, match, pattern)) {
+double number(const nlohmann::json& report, const std::string& key) {
+  const auto value = report.find(key);
+  if (value == report.end() || !value->is_number()) {
     throw std::runtime_error("the farm's report lacks '" + key + "'");
   }
-  return std::stod(match[1]);
+  return value->get<double>();
 }
 
 double median(std::vector<double> values) {
@@ -108,13 +106,15 @@ std::vector<ScalingRow> run_scaling(const ScalingOptions& options) {
       totals[k].push_back(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       std::ifstream in(report);
-      std::stringstream text;
-      text << in.rdbuf();
-      const std::string json = text.str();
-      row.batch = static_cast<int>(number(json, "batch"));
-      row.threads = static_cast<int>(number(json, "threads"));
-      row.trials = static_cast<int>(number(json, "done"));
-      row.runs.push_back(number(json, "trial_seconds"));
+      const nlohmann::json farm_report = nlohmann::json::parse(in, nullptr, false);
+      if (farm_report.is_discarded()) {
+        throw std::runtime_error("grip bench scaling: the farm's report " + report.string() +
+                                 " is not JSON");
+      }
+      row.batch = static_cast<int>(number(farm_report, "batch"));
+      row.threads = static_cast<int>(number(farm_report, "threads"));
+      row.trials = static_cast<int>(number(farm_report, "done"));
+      row.runs.push_back(number(farm_report, "trial_seconds"));
       fs::remove(dataset);
       fs::remove(dataset.string() + ".journal");
       spdlog::info("{} rank(s) x {} thread(s), batch {}: {} trials in {:.2f} s (repeat {})",

@@ -2,49 +2,17 @@
 
 #include <chrono>
 #include <cmath>
-#include <iomanip>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <nlohmann/json.hpp>
 
 #include "solver/batch/batch.hpp"
+#include "src/json/json_text.hpp"
 #include "src/scene/invariants.hpp"
 
 namespace grip::scene {
-namespace {
-
-void write_number(std::ostream& out, double value) {
-  if (std::isfinite(value)) {
-    out << value;
-  } else {
-    out << "null";  // JSON has no infinity: e.g. no contact ever came within d_hat
-  }
-}
-
-void write_vector(std::ostream& out, const Eigen::Vector3d& v) {
-  out << '[';
-  for (int i = 0; i < 3; ++i) {
-    if (i) out << ", ";
-    write_number(out, v[i]);
-  }
-  out << ']';
-}
-
-void write_string(std::ostream& out, const std::string& s) {
-  out << '"';
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out << '\\' << c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
-    } else {
-      out << c;
-    }
-  }
-  out << '"';
-}
-
-}  // namespace
 
 BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<std::string>& names,
                        bool trace, int threads) {
@@ -111,70 +79,60 @@ BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<st
 
 namespace {
 
-void write_scene(std::ostream& out, const SceneReport& report, bool trace) {
-  out << "{\n  \"scene\": ";
-  write_string(out, report.scene);
-  out << ",\n  \"status\": " << (report.ok ? "\"ok\"" : "\"failed\"") << ",\n  \"failure\": ";
-  if (report.ok) {
-    out << "null";
-  } else {
-    write_string(out, report.failure);
+nlohmann::ordered_json vector_json(const Eigen::Vector3d& v) {
+  return nlohmann::ordered_json::array({v[0], v[1], v[2]});
+}
+
+nlohmann::ordered_json scene_json(const SceneReport& report, bool trace) {
+  nlohmann::ordered_json bodies = nlohmann::ordered_json::object();
+  for (const BodyReport& body : report.bodies) {
+    nlohmann::ordered_json rotation = nlohmann::ordered_json::array();
+    for (int r = 0; r < 3; ++r) rotation.push_back(vector_json(body.rotation.row(r).transpose()));
+    bodies[body.name] = {{"com", vector_json(body.com)},
+                         {"velocity", vector_json(body.velocity)},
+                         {"rotation", std::move(rotation)}};
   }
-  out << ",\n  \"steps\": " << report.steps << ",\n  \"bodies\": {";
-  for (std::size_t b = 0; b < report.bodies.size(); ++b) {
-    const BodyReport& body = report.bodies[b];
-    out << (b ? ",\n    " : "\n    ");
-    write_string(out, body.name);
-    out << ": {\"com\": ";
-    write_vector(out, body.com);
-    out << ", \"velocity\": ";
-    write_vector(out, body.velocity);
-    out << ", \"rotation\": [";
-    for (int r = 0; r < 3; ++r) {
-      if (r) out << ", ";
-      write_vector(out, body.rotation.row(r).transpose());
-    }
-    out << "]}";
-  }
-  out << "\n  },\n  \"min_distance\": ";
-  write_number(out, report.min_distance);
-  out << ",\n  \"min_volume_ratio\": ";
-  write_number(out, report.min_volume_ratio);
-  out << ",\n  \"intersection_free\": " << (report.intersection_free ? "true" : "false")
-      << ",\n  \"newton_iterations\": {\"total\": " << report.newton_total
-      << ", \"max_per_step\": " << report.newton_max_per_step << "}";
+  nlohmann::ordered_json scene = {
+      {"scene", report.scene},
+      {"status", report.ok ? "ok" : "failed"},
+      {"failure", report.ok ? nlohmann::ordered_json() : nlohmann::ordered_json(report.failure)},
+      {"steps", report.steps},
+      {"bodies", std::move(bodies)},
+      {"min_distance", report.min_distance},  // null when no contact ever came within d_hat
+      {"min_volume_ratio", report.min_volume_ratio},
+      {"intersection_free", report.intersection_free},
+      {"newton_iterations",
+       {{"total", report.newton_total}, {"max_per_step", report.newton_max_per_step}}}};
   if (trace) {
-    out << ",\n  \"trace\": [";
-    for (std::size_t i = 0; i < report.trace.size(); ++i) {
-      const TraceRow& row = report.trace[i];
-      out << (i ? ",\n    " : "\n    ") << "{\"t\": ";
-      write_number(out, row.time);
-      out << ", \"com\": {";
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    for (const TraceRow& row : report.trace) {
+      nlohmann::ordered_json com = nlohmann::ordered_json::object();
       for (std::size_t b = 0; b < row.com.size(); ++b) {
-        if (b) out << ", ";
-        write_string(out, report.bodies[b].name);
-        out << ": ";
-        write_vector(out, row.com[b]);
+        com[report.bodies[b].name] = vector_json(row.com[b]);
       }
-      out << "}}";
+      rows.push_back({{"t", row.time}, {"com", std::move(com)}});
     }
-    out << "\n  ]";
+    scene["trace"] = std::move(rows);
   }
-  out << "\n}";
+  return scene;
 }
 
 }  // namespace
 
 void write_json(std::ostream& out, const BatchReport& report, bool trace) {
-  out << std::setprecision(17);
-  out << "{\n\"threads\": " << report.threads << ",\n\"wall_seconds\": ";
-  write_number(out, report.wall_seconds);
-  out << ",\n\"scenes\": [";
-  for (std::size_t i = 0; i < report.scenes.size(); ++i) {
-    out << (i ? ",\n" : "\n");
-    write_scene(out, report.scenes[i], trace);
-  }
-  out << "\n]\n}\n";
+  nlohmann::ordered_json scenes = nlohmann::ordered_json::array();
+  for (const SceneReport& scene : report.scenes) scenes.push_back(scene_json(scene, trace));
+  const nlohmann::ordered_json root = {{"threads", report.threads},
+                                       {"wall_seconds", report.wall_seconds},
+                                       {"scenes", std::move(scenes)}};
+  // A line per top-level key, scene key, body and trace row; every double exactly (17 digits).
+  out << json::text(root, "%.17g",
+                    {{"", 0},
+                     {"/scenes", 0},
+                     {"/scenes/*", 2},
+                     {"/scenes/*/bodies", 4},
+                     {"/scenes/*/trace", 4}})
+      << '\n';
 }
 
 }  // namespace grip::scene

@@ -1,10 +1,11 @@
 // `grip farm` and `grip bench scaling` as a user runs them: a bad job file or an existing
-// dataset is one message naming the file and the fix with exit status 1, and the scaling
-// benchmark writes its table for every setting.
+// dataset is one message naming the file and the fix with exit status 1, the scaling
+// benchmark writes its table for every setting, and their JSON keeps any path as it is.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "tests/app/run_grip.hpp"
 #include "tests/farm/farm_test_job.hpp"
@@ -24,6 +25,14 @@ class FarmCli : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;
 };
+
+// For run_grip's shell (the path holds no single quote).
+std::string quoted(const fs::path& path) {
+  std::string text = path.string();
+  text.insert(text.begin(), '\'');
+  text.push_back('\'');
+  return text;
+}
 
 TEST_F(FarmCli, BadJobIsOneMessageNamingFileLineAndKey) {
   testing::write_file(dir_ / "bad.toml",
@@ -58,6 +67,33 @@ TEST_F(FarmCli, ScalingBenchmarkWritesATableRowPerSetting) {
   EXPECT_NE(csv.find("\n1,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\n2,"), std::string::npos) << csv;
   EXPECT_NE(run.out.find("\"speedup\": 1.0000"), std::string::npos) << run.out;  // the first row
+}
+
+TEST_F(FarmCli, ReportsKeepPathsWithQuotesBackslashesAndNewlines) {
+  const fs::path odd = dir_ / "we\"ird\\dir\nx";
+  fs::create_directories(odd);
+  const fs::path job = odd / "job \"q\".toml", dataset = odd / "data \"1\".h5",
+                 report = odd / "report \"1\".json";
+  testing::write_file(job, testing::small_job(1, 1, false));
+  const auto farm = grip::testing::run_grip("farm " + quoted(job) + " --output " + quoted(dataset) +
+                                            " --report " + quoted(report));
+  ASSERT_EQ(farm.exit_code, 0) << farm.err;
+  const nlohmann::json read = nlohmann::json::parse(grip::testing::slurp(report), nullptr, false);
+  ASSERT_FALSE(read.is_discarded()) << grip::testing::slurp(report);
+  EXPECT_EQ(read["dataset"], dataset.string());
+  EXPECT_EQ(read["done"], 1);
+
+  // The scaling benchmark reads the farm's reports and ends with one JSON line naming the job.
+  const auto scaling =
+      grip::testing::run_grip("bench scaling " + quoted(job) +
+                              " --ranks 1 --envs 1 --repeats 1 --out " + quoted(odd / "scaling"));
+  ASSERT_EQ(scaling.exit_code, 0) << scaling.err;
+  ASSERT_FALSE(scaling.out.empty());
+  const std::string last = scaling.out.substr(scaling.out.rfind('\n', scaling.out.size() - 2) + 1);
+  const nlohmann::json summary = nlohmann::json::parse(last, nullptr, false);
+  ASSERT_FALSE(summary.is_discarded()) << last;
+  EXPECT_EQ(summary["job"], job.string());
+  EXPECT_EQ(summary["rows"][0]["trials"], 1);
 }
 
 }  // namespace

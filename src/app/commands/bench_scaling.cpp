@@ -1,10 +1,14 @@
 // grip bench scaling: a farm job under mpirun at several rank and batch sizes
 // (bench/scaling/scaling_benchmark.hpp, docs/farm.md).
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "bench/scaling/scaling_benchmark.hpp"
 #include "src/app/commands.hpp"
+#include "src/json/json_text.hpp"
 
 namespace grip::commands {
 
@@ -28,16 +32,18 @@ int bench_scaling(const BenchScalingArgs& args) {
   }
   std::printf("table: %s/scaling.md, %s/scaling.csv%s\n", args.out.c_str(), args.out.c_str(),
               std::filesystem::exists(options.out / "scaling.png") ? ", plot: scaling.png" : "");
-  std::printf("{\"job\": \"%s\", \"rows\": [", args.job.c_str());
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const bench::ScalingRow& r = rows[k];
-    std::printf(
-        "%s{\"ranks\": %d, \"threads\": %d, \"batch\": %d, \"trials\": %d, "
-        "\"trial_seconds\": %.4f, \"trials_per_second\": %.4f, \"speedup\": %.4f}",
-        k ? ", " : "", r.ranks, r.threads, r.batch, r.trials, r.trial_seconds, r.trials_per_second,
-        r.speedup);
+  nlohmann::ordered_json summary_rows = nlohmann::ordered_json::array();
+  for (const bench::ScalingRow& r : rows) {
+    summary_rows.push_back(nlohmann::ordered_json{{"ranks", r.ranks},
+                                                  {"threads", r.threads},
+                                                  {"batch", r.batch},
+                                                  {"trials", r.trials},
+                                                  {"trial_seconds", r.trial_seconds},
+                                                  {"trials_per_second", r.trials_per_second},
+                                                  {"speedup", r.speedup}});
   }
-  std::printf("]}\n");
+  const nlohmann::ordered_json summary = {{"job", args.job}, {"rows", std::move(summary_rows)}};
+  std::printf("%s\n", json::text(summary, "%.4f").c_str());
   return 0;
 }
 

@@ -2,8 +2,10 @@
 // reports progress and, at the end, where the dataset is and its summary.
 #include <mpi.h>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
 #include "farm/farm.hpp"
@@ -11,6 +13,7 @@
 #include "src/app/commands.hpp"
 #include "src/app/version.hpp"
 #include "src/config/config.hpp"
+#include "src/json/json_text.hpp"
 
 namespace grip::commands {
 namespace {
@@ -28,17 +31,19 @@ class MpiSession {
 };
 
 void write_report(const std::string& file, const farm::FarmReport& r) {
-  std::FILE* out = std::fopen(file.c_str(), "w");
+  std::ofstream out(file);
   if (!out) throw std::runtime_error("--report " + file + ": cannot write the file");
-  std::fprintf(
-      out,
-      "{\"dataset\": \"%s\", \"ranks\": %d, \"threads\": %d, \"batch\": %d, "
-      "\"candidates\": %llu, \"done_before\": %llu, \"done\": %llu, "
-      "\"plan_seconds\": %.6f, \"trial_seconds\": %.6f, \"interrupted\": %s}\n",
-      r.dataset.c_str(), r.ranks, r.threads, r.batch, static_cast<unsigned long long>(r.candidates),
-      static_cast<unsigned long long>(r.done_before), static_cast<unsigned long long>(r.done),
-      r.plan_seconds, r.trial_seconds, r.interrupted ? "true" : "false");
-  std::fclose(out);
+  const nlohmann::ordered_json report = {{"dataset", r.dataset.string()},
+                                         {"ranks", r.ranks},
+                                         {"threads", r.threads},
+                                         {"batch", r.batch},
+                                         {"candidates", r.candidates},
+                                         {"done_before", r.done_before},
+                                         {"done", r.done},
+                                         {"plan_seconds", r.plan_seconds},
+                                         {"trial_seconds", r.trial_seconds},
+                                         {"interrupted", r.interrupted}};
+  out << json::text(report, "%.6f") << '\n';
 }
 
 }  // namespace

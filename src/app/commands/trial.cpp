@@ -3,7 +3,6 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -21,6 +20,7 @@
 #include "src/trial/grasp_trial.hpp"
 #include "src/trial/hand_trial.hpp"
 #include "src/trial/same_result.hpp"
+#include "src/trial/trial_report.hpp"
 #include "src/trial/vtk_series.hpp"
 
 namespace grip::commands {
@@ -55,58 +55,6 @@ grippers::ParallelGripper make_gripper(const std::string& name) {
   if (name == "parallel-jaw") return grippers::make_rigid_jaw_gripper();
   throw std::invalid_argument("--gripper '" + name +
                               "': grip trial runs fin-ray, parallel-jaw or leap");
-}
-
-void write_number(std::ostream& out, double value) {
-  if (std::isfinite(value))
-    out << value;
-  else
-    out << "null";
-}
-
-void write_report(std::ostream& out, const TrialArgs& args,
-                  const std::vector<trial::TrialOutcome>& outcomes, double seconds, int threads,
-                  double solo_seconds, bool identical) {
-  out.precision(17);
-  out << "{\n\"object\": \"" << args.object << "\",\n\"gripper\": \"" << args.gripper
-      << "\",\n\"soft\": " << (args.soft ? "true" : "false") << ",\n\"threads\": " << threads
-      << ",\n\"candidates\": " << outcomes.size() << ",\n\"wall_seconds\": ";
-  write_number(out, seconds);
-  if (args.compare_solo) {
-    out << ",\n\"solo_wall_seconds\": ";
-    write_number(out, solo_seconds);
-    out << ",\n\"speedup\": ";
-    write_number(out, solo_seconds / seconds);
-    out << ",\n\"identical_to_solo\": " << (identical ? "true" : "false");
-  }
-  out << ",\n\"trials\": [";
-  for (std::size_t i = 0; i < outcomes.size(); ++i) {
-    const io::CandidateRecord& r = outcomes[i].result.record;
-    out << (i ? ",\n" : "\n") << "  {\"id\": " << r.id << ", \"status\": \""
-        << io::to_string(r.status) << "\", \"failure\": \"" << io::to_string(r.failure)
-        << "\", \"reason\": \"";
-    for (char c : outcomes[i].failure_reason) out << (c == '"' || c == '\\' ? '\'' : c);
-    out << "\", \"d1\": ";
-    write_number(out, r.d1);
-    out << ", \"d2\": ";
-    write_number(out, r.d2);
-    out << ", \"displacement\": [";
-    for (std::size_t k = 0; k < r.displacement.size(); ++k) {
-      if (k) out << ", ";
-      write_number(out, r.displacement[k]);
-    }
-    out << "], \"closing_forces\": [";
-    for (std::size_t k = 0; k < r.closing_forces.size(); ++k) {
-      if (k) out << ", ";
-      write_number(out, r.closing_forces[k]);
-    }
-    out << "], \"newton\": {\"steps\": " << r.newton.steps
-        << ", \"iterations\": " << r.newton.iterations
-        << ", \"max_iterations\": " << r.newton.max_iterations << "}, \"wall_time\": ";
-    write_number(out, r.wall_time);
-    out << "}";
-  }
-  out << "\n]\n}\n";
 }
 
 // Runs the candidates as one batch with `run(scene, grasps, options)`, optionally one by one
@@ -151,13 +99,21 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
                               *scene.model(), outcome.body_frames);
     }
   }
-  const int threads = solver::Batch(args.threads).threads();
+  trial::TrialReport report;
+  report.object = args.object;
+  report.gripper = args.gripper;
+  report.soft = args.soft;
+  report.threads = solver::Batch(args.threads).threads();
+  report.wall_seconds = seconds;
+  report.compared_solo = args.compare_solo;
+  report.solo_wall_seconds = solo_seconds;
+  report.identical_to_solo = identical;
   if (args.report.empty()) {
-    write_report(std::cout, args, outcomes, seconds, threads, solo_seconds, identical);
+    trial::write_report(std::cout, report, outcomes);
   } else {
     std::ofstream out(args.report);
     if (!out) throw std::runtime_error("--report " + args.report + ": cannot write the file");
-    write_report(out, args, outcomes, seconds, threads, solo_seconds, identical);
+    trial::write_report(out, report, outcomes);
   }
   return identical ? 0 : 1;
 }

@@ -1,0 +1,27 @@
+#pragma once
+// The JSON report of `grip trial` (docs/trial.md): the batch's object, gripper, threads and wall
+// time, the comparison with solo runs when asked for, and per candidate its verdict, the
+// solver's reason, D1/D2, displacements, closing forces, Newton statistics and wall time.
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "src/trial/trial_outcome.hpp"
+
+namespace grip::trial {
+
+struct TrialReport {
+  std::string object;  // the object's spec, as given
+  std::string gripper;
+  bool soft = false;
+  int threads = 1;
+  double wall_seconds = 0.0;
+  bool compared_solo = false;  // the candidates were also run one by one:
+  double solo_wall_seconds = 0.0;
+  bool identical_to_solo = true;
+};
+
+void write_report(std::ostream& out, const TrialReport& report,
+                  const std::vector<TrialOutcome>& outcomes);
+
+}  // namespace grip::trial

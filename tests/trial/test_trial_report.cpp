@@ -1,0 +1,91 @@
+// The JSON report of `grip trial`: its layout, byte for byte, and object specs and solver
+// reasons with quotes, backslashes and newlines kept as they are.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "src/trial/trial_report.hpp"
+
+namespace grip::trial {
+namespace {
+
+// A held candidate and one Newton gave up on, compared with solo runs.
+std::vector<TrialOutcome> two_outcomes() {
+  std::vector<TrialOutcome> outcomes(2);
+  io::CandidateRecord& held = outcomes[0].result.record;
+  held.id = 3;
+  held.status = io::Status::kSuccess;
+  held.d2 = 0.0005;
+  held.displacement = {1e-6, 0, 0, 0, 0, 2.5e-7};
+  held.closing_forces = {51.5, 50};
+  held.newton = {70, 188, 48};
+  held.wall_time = 1.25;
+  io::CandidateRecord& failed = outcomes[1].result.record;
+  failed.id = 4;
+  failed.status = io::Status::kFailure;
+  failed.failure = io::FailureKind::kNewtonLimit;
+  failed.d1 = std::numeric_limits<double>::infinity();
+  failed.newton = {3, 300, 100};
+  failed.wall_time = 0.5;
+  outcomes[1].failure_reason = "t = 0.03 s: Newton did not converge in 100 iterations";
+  return outcomes;
+}
+
+TrialReport compared_report() {
+  TrialReport report;
+  report.object = "cylinder";
+  report.gripper = "parallel-jaw";
+  report.threads = 2;
+  report.wall_seconds = 2.0;
+  report.compared_solo = true;
+  report.solo_wall_seconds = 3.0;
+  return report;
+}
+
+std::string report_text(const TrialReport& report, const std::vector<TrialOutcome>& outcomes) {
+  std::ostringstream out;
+  write_report(out, report, outcomes);
+  return out.str();
+}
+
+TEST(TrialReport, KeepsItsLayout) {
+  const std::string expected = R"({
+"object": "cylinder",
+"gripper": "parallel-jaw",
+"soft": false,
+"threads": 2,
+"candidates": 2,
+"wall_seconds": 2,
+"solo_wall_seconds": 3,
+"speedup": 1.5,
+"identical_to_solo": true,
+"trials": [
+  {"id": 3, "status": "success", "failure": "none", "reason": "", "d1": 0, "d2": 0.00050000000000000001, "displacement": [9.9999999999999995e-07, 0, 0, 0, 0, 2.4999999999999999e-07], "closing_forces": [51.5, 50], "newton": {"steps": 70, "iterations": 188, "max_iterations": 48}, "wall_time": 1.25},
+  {"id": 4, "status": "failure", "failure": "newton_limit", "reason": "t = 0.03 s: Newton did not converge in 100 iterations", "d1": null, "d2": 0, "displacement": [0, 0, 0, 0, 0, 0], "closing_forces": [], "newton": {"steps": 3, "iterations": 300, "max_iterations": 100}, "wall_time": 0.5}
+]
+}
+)";
+  EXPECT_EQ(report_text(compared_report(), two_outcomes()), expected);
+}
+
+TEST(TrialReport, ObjectsAndReasonsWithQuotesBackslashesAndNewlinesSurviveARoundTrip) {
+  TrialReport report = compared_report();
+  report.object = "meshes/\"odd\" \\name\\\nsecond line.obj";
+  report.gripper = "fin\"ray\\";
+  std::vector<TrialOutcome> outcomes = two_outcomes();
+  outcomes[1].failure_reason = "t = 0.03 s: \"" + report.object + "\" \\ gave up\nhere";
+  const std::string text = report_text(report, outcomes);
+  const nlohmann::json read = nlohmann::json::parse(text, nullptr, false);
+  ASSERT_FALSE(read.is_discarded()) << text;
+  EXPECT_EQ(read["object"], report.object);
+  EXPECT_EQ(read["gripper"], report.gripper);
+  EXPECT_EQ(read["trials"][0]["reason"], "");
+  EXPECT_EQ(read["trials"][1]["reason"], outcomes[1].failure_reason);
+  EXPECT_EQ(read["trials"][1]["d1"], nullptr);
+  EXPECT_EQ(read["speedup"], 1.5);
+}
+
+}  // namespace
+}  // namespace grip::trial
