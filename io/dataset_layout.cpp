@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "io/dataset_columns.hpp"
 #include "io/dataset_error.hpp"
 #include "io/hdf5.hpp"
 
@@ -150,11 +151,11 @@ DatasetLayout DatasetLayout::read(hid_t file) {
     gripper.vertices = h5::dims(open(gripper_group(g) + "/vertices"))[0];
     layout.grippers.push_back(gripper);
   }
-  layout.object = h5::read_all<std::uint32_t>(open("/candidates/object"), H5T_NATIVE_UINT32);
-  layout.gripper = h5::read_all<std::uint32_t>(open("/candidates/gripper"), H5T_NATIVE_UINT32);
-  layout.frame_slot = h5::read_all<std::int64_t>(open("/candidates/frame_slot"), H5T_NATIVE_INT64);
-  layout.stress_slot =
-      h5::read_all<std::int64_t>(open("/candidates/stress_slot"), H5T_NATIVE_INT64);
+  for (const Column& column : dataset_columns()) {
+    if (column.place != Place::kPlan) continue;
+    const h5::Handle dataset = open(std::string("/candidates/") + column.name);
+    column.access_to<DatasetLayout>().put(read_values(dataset, column.element), layout);
+  }
   if (layout.object.size() != layout.candidate_count) {
     throw DatasetError("its candidate table has " + std::to_string(layout.object.size()) +
                        " rows, but its header says " + std::to_string(layout.candidate_count));

@@ -1,7 +1,7 @@
 #pragma once
-// The shape of a dataset file: the group and dataset names of the schema (format version 1,
-// docs/dataset-format.md) and every size derived from the plan, so that writer, resume and
-// reader agree on where each candidate's bytes live.
+// The shape of a dataset file: its group names (format version 1, docs/dataset-format.md;
+// its datasets are dataset_columns()) and every size derived from the plan, so that writer,
+// resume and reader agree on where each candidate's bytes live.
 #include <hdf5.h>
 
 #include <cstdint>

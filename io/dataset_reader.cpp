@@ -1,9 +1,10 @@
 #include "io/dataset_reader.hpp"
 
-#include <algorithm>
+#include <utility>
 
+#include "io/column.hpp"
+#include "io/dataset_columns.hpp"
 #include "io/dataset_error.hpp"
-#include "io/enum_types.hpp"
 
 namespace grip::io {
 
@@ -18,37 +19,26 @@ std::vector<T> read_column(hid_t file, const std::string& path, hid_t memory_typ
   return h5::read_all<T>(open_dataset(file, path), memory_type);
 }
 
-// Reads row `row` of a dataset whose first dimension indexes rows.
-template <typename T>
-std::vector<T> read_row(hid_t file, const std::string& path, std::uint64_t row, hid_t memory_type) {
-  const h5::Handle dataset = open_dataset(file, path);
-  std::vector<hsize_t> count = h5::dims(dataset);
-  std::vector<hsize_t> start(count.size(), 0);
-  start[0] = row;
-  count[0] = 1;
-  hsize_t size = 1;
-  for (const hsize_t d : count) size *= d;
-  std::vector<T> values(size);
-  if (size == 0) return values;
-  const h5::Handle file_space = h5::space_handle(H5Dget_space(dataset), "selecting a row");
-  h5::check(
-      H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
-      "selecting row " + std::to_string(row) + " of " + path);
-  const h5::Handle memory_space =
-      h5::space_handle(H5Screate_simple(1, &size, nullptr), "shaping a row");
-  h5::check(H5Dread(dataset, memory_type, memory_space, file_space, H5P_DEFAULT, values.data()),
-            "reading row " + std::to_string(row) + " of " + path);
-  return values;
+// Puts the whole-record columns of `place` under `group` into `record`.
+template <typename Record>
+void read_record(hid_t file, const std::string& group, Place place, Record& record) {
+  for (const Column& column : dataset_columns()) {
+    if (column.place != place) continue;
+    const h5::Handle dataset = open_dataset(file, group + "/" + column.name);
+    column.access_to<Record>().put(read_values(dataset, column.element), record);
+  }
 }
 
-// The first `hands` hands of a [max_hands][width] row, each cut to `per_hand` values.
-std::vector<double> unpad_hands(const double* row, std::uint32_t hands, std::size_t per_hand,
-                                std::size_t width) {
-  std::vector<double> values;
-  for (std::uint32_t h = 0; h < hands; ++h) {
-    values.insert(values.end(), row + h * width, row + h * width + per_hand);
+// Puts row `row` of the columns of `place` under `group` into `record`.
+template <typename Record>
+void read_record_row(hid_t file, const std::string& group, Place place, std::uint64_t row,
+                     Record& record) {
+  for (const Column& column : dataset_columns()) {
+    if (column.place != place) continue;
+    const std::string path = group + "/" + column.name;
+    column.access_to<Record>().put(
+        read_row_values(open_dataset(file, path), path, row, column.element), record);
   }
-  return values;
 }
 
 }  // namespace
@@ -79,12 +69,7 @@ Provenance DatasetReader::provenance() const {
   const h5::Handle group =
       h5::group_handle(H5Gopen2(file_, "/provenance", H5P_DEFAULT), "opening /provenance");
   provenance.job_file = h5::read_string_attribute(group, "job_file");
-  provenance.job_text = h5::read_strings(open_dataset(file_, "/provenance/job_text")).at(0);
-  const std::vector<std::string> table =
-      h5::read_strings(open_dataset(file_, "/provenance/parameters"));
-  for (std::size_t i = 0; i + 1 < table.size(); i += 2) {
-    provenance.parameters.push_back({table[i], table[i + 1]});
-  }
+  read_record(file_, "/provenance", Place::kProvenance, provenance);
   return provenance;
 }
 
@@ -101,9 +86,7 @@ ObjectRecord DatasetReader::object(std::uint32_t index) const {
   object.material.poisson_ratio = h5::read_double_attribute(group, "poisson_ratio");
   object.material.density = h5::read_double_attribute(group, "density");
   object.material.friction = h5::read_double_attribute(group, "friction");
-  object.vertices = read_column<double>(file_, path + "/vertices", H5T_NATIVE_DOUBLE);
-  object.triangles = read_column<std::int32_t>(file_, path + "/triangles", H5T_NATIVE_INT32);
-  object.tets = read_column<std::int32_t>(file_, path + "/tets", H5T_NATIVE_INT32);
+  read_record(file_, path, Place::kObject, object);
   return object;
 }
 
@@ -116,10 +99,7 @@ GripperRecord DatasetReader::gripper(std::uint32_t index) const {
   gripper.kind = h5::read_string_attribute(group, "kind");
   gripper.soft = h5::read_uint_attribute(group, "soft") != 0;
   gripper.hands = static_cast<std::uint32_t>(h5::read_uint_attribute(group, "hands"));
-  gripper.joint_names = h5::read_strings(open_dataset(file_, path + "/joint_names"));
-  gripper.finger_names = h5::read_strings(open_dataset(file_, path + "/finger_names"));
-  gripper.vertices = read_column<double>(file_, path + "/vertices", H5T_NATIVE_DOUBLE);
-  gripper.triangles = read_column<std::int32_t>(file_, path + "/triangles", H5T_NATIVE_INT32);
+  read_record(file_, path, Place::kGripper, gripper);
   return gripper;
 }
 
@@ -128,51 +108,38 @@ std::vector<std::uint8_t> DatasetReader::done() const {
 }
 
 std::vector<CandidateRecord> DatasetReader::candidates() const {
-  const std::string table = "/candidates/";
-  const h5::Handle status_memory = status_type(false);
-  const h5::Handle failure_memory = failure_kind_type(false);
-  const auto status = read_column<std::uint8_t>(file_, table + "status", status_memory);
-  const auto failure = read_column<std::uint8_t>(file_, table + "failure", failure_memory);
-  const auto hand_poses = read_column<double>(file_, table + "hand_poses", H5T_NATIVE_DOUBLE);
-  const auto joints = read_column<double>(file_, table + "joints", H5T_NATIVE_DOUBLE);
-  const auto d1 = read_column<double>(file_, table + "d1", H5T_NATIVE_DOUBLE);
-  const auto d2 = read_column<double>(file_, table + "d2", H5T_NATIVE_DOUBLE);
-  const auto displacement = read_column<double>(file_, table + "displacement", H5T_NATIVE_DOUBLE);
-  const auto closing = read_column<double>(file_, table + "closing_forces", H5T_NATIVE_DOUBLE);
-  const auto steps = read_column<std::uint32_t>(file_, table + "newton_steps", H5T_NATIVE_UINT32);
-  const auto iterations =
-      read_column<std::uint32_t>(file_, table + "newton_iterations", H5T_NATIVE_UINT32);
-  const auto max_iterations =
-      read_column<std::uint32_t>(file_, table + "newton_max_iterations", H5T_NATIVE_UINT32);
-  const auto wall_time = read_column<double>(file_, table + "wall_time", H5T_NATIVE_DOUBLE);
-
-  const std::size_t hands = layout_.max_hands;
-  std::vector<CandidateRecord> records(layout_.candidate_count);
-  for (std::size_t id = 0; id < records.size(); ++id) {
-    const DatasetLayout::Gripper& gripper = layout_.grippers[layout_.gripper[id]];
-    CandidateRecord& r = records[id];
-    r.id = id;
-    r.hand_poses = unpad_hands(&hand_poses[id * hands * 12], gripper.hands, 12, 12);
-    r.joints = unpad_hands(&joints[id * hands * layout_.max_joints], gripper.hands, gripper.joints,
-                           layout_.max_joints);
-    r.closing_forces = unpad_hands(&closing[id * hands * layout_.max_fingers], gripper.hands,
-                                   gripper.fingers, layout_.max_fingers);
-    r.status = static_cast<Status>(status[id]);
-    r.failure = static_cast<FailureKind>(failure[id]);
-    r.d1 = d1[id];
-    r.d2 = d2[id];
-    std::copy_n(&displacement[id * 6], 6, r.displacement.begin());
-    r.newton = {steps[id], iterations[id], max_iterations[id]};
-    r.wall_time = wall_time[id];
+  std::vector<CandidateResult> results(layout_.candidate_count);
+  for (std::size_t id = 0; id < results.size(); ++id) results[id].record.id = id;
+  const Sizes table = Sizes::of(layout_);
+  for (const Column& column : dataset_columns()) {
+    if (column.place != Place::kResult) continue;
+    const Access<CandidateResult>& access = column.access_to<CandidateResult>();
+    if (access.put == nullptr) continue;  // the written flags, read by committed()
+    const Values values =
+        read_values(open_dataset(file_, std::string("/candidates/") + column.name), column.element);
+    const std::size_t width = row_size(column, table);
+    for (std::size_t id = 0; id < results.size(); ++id) {
+      Values row = slice(values, id * width, width);
+      if (column.per_hand != nullptr) {
+        const DatasetLayout::Gripper& gripper = layout_.grippers[layout_.gripper[id]];
+        row = unpadded(row, gripper.hands, column.per_hand(gripper), width / table.max_hands);
+      }
+      access.put(row, results[id]);
+    }
   }
+  std::vector<CandidateRecord> records;
+  records.reserve(results.size());
+  for (CandidateResult& result : results) records.push_back(std::move(result.record));
   return records;
 }
 
 bool DatasetReader::committed(std::uint64_t id, const char* written_column) const {
   // A flag alone is not enough: an interrupted batch may have set it before its done flag.
-  return read_row<std::uint8_t>(file_, "/candidates/done", id, H5T_NATIVE_UINT8)[0] != 0 &&
-         read_row<std::uint8_t>(file_, std::string("/candidates/") + written_column, id,
-                                H5T_NATIVE_UINT8)[0] != 0;
+  const auto flag = [&](const std::string& path) {
+    const Values row = read_row_values(open_dataset(file_, path), path, id, Element::kUint8);
+    return std::get<std::vector<std::uint8_t>>(row).at(0) != 0;
+  };
+  return flag("/candidates/done") && flag(std::string("/candidates/") + written_column);
 }
 
 std::optional<TrajectoryRecord> DatasetReader::trajectory(std::uint64_t id) const {
@@ -180,17 +147,11 @@ std::optional<TrajectoryRecord> DatasetReader::trajectory(std::uint64_t id) cons
     throw DatasetError(path_.string() + ": no candidate " + std::to_string(id));
   }
   if (!committed(id, "trajectory_written")) return std::nullopt;
-  const auto slot = static_cast<std::uint64_t>(layout_.frame_slot[id]);
-  const std::string group = trajectory_group(layout_.object[id], layout_.gripper[id]) + "/";
-  TrajectoryRecord t;
-  t.object_vertices = read_row<float>(file_, group + "object_vertices", slot, H5T_NATIVE_FLOAT);
-  t.gripper_vertices = read_row<float>(file_, group + "gripper_vertices", slot, H5T_NATIVE_FLOAT);
-  t.contact_forces = read_row<float>(file_, group + "contact_forces", slot, H5T_NATIVE_FLOAT);
-  t.friction_forces = read_row<float>(file_, group + "friction_forces", slot, H5T_NATIVE_FLOAT);
-  t.object_poses = read_row<double>(file_, group + "object_poses", slot, H5T_NATIVE_DOUBLE);
-  t.hand_poses = read_row<double>(file_, group + "hand_poses", slot, H5T_NATIVE_DOUBLE);
-  t.joints = read_row<double>(file_, group + "joints", slot, H5T_NATIVE_DOUBLE);
-  return t;
+  TrajectoryRecord trajectory;
+  read_record_row(file_, trajectory_group(layout_.object[id], layout_.gripper[id]),
+                  Place::kTrajectory, static_cast<std::uint64_t>(layout_.frame_slot[id]),
+                  trajectory);
+  return trajectory;
 }
 
 std::optional<std::vector<float>> DatasetReader::stress(std::uint64_t id) const {
@@ -198,8 +159,10 @@ std::optional<std::vector<float>> DatasetReader::stress(std::uint64_t id) const 
     throw DatasetError(path_.string() + ": no candidate " + std::to_string(id));
   }
   if (!committed(id, "stress_written")) return std::nullopt;
-  return read_row<float>(file_, stress_dataset(layout_.object[id]),
-                         static_cast<std::uint64_t>(layout_.stress_slot[id]), H5T_NATIVE_FLOAT);
+  CandidateResult result;
+  read_record_row(file_, object_group(layout_.object[id]), Place::kStress,
+                  static_cast<std::uint64_t>(layout_.stress_slot[id]), result);
+  return std::move(result.stress);
 }
 
 }  // namespace grip::io

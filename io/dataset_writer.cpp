@@ -7,8 +7,10 @@
 #include <type_traits>
 #include <utility>
 
+#include "io/column.hpp"
+#include "io/column_values.hpp"
+#include "io/dataset_columns.hpp"
 #include "io/dataset_error.hpp"
-#include "io/enum_types.hpp"
 
 namespace grip::io {
 
@@ -61,24 +63,35 @@ h5::Handle make_group(hid_t location, const std::string& path) {
                           "creating group " + path);
 }
 
-// A contiguous dataset whose space is allocated now. With `fill`, every element is set to it
-// now (small table columns); without, the space is left as the file system gives it (bulky
-// per-frame data, which is only read where a done flag says it was written).
-h5::Handle make_dataset(hid_t location, const std::string& path, hid_t file_type,
-                        const std::vector<hsize_t>& dims, hid_t fill_type = -1,
-                        const void* fill = nullptr) {
-  const h5::Handle space = h5::space_handle(
-      H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "shaping " + path);
+// A column's dataset: contiguous, its space allocated now, filled as the column says (small
+// table columns now; bulky per-frame data left as the file system gives it, since it is only
+// read where a done flag says it was written).
+h5::Handle make_dataset(hid_t location, const Column& column, const Dims& dims, hid_t file_type,
+                        hid_t memory_type) {
+  const std::string path = column.name;
+  const h5::Handle space =
+      dims.empty()
+          ? h5::space_handle(H5Screate(H5S_SCALAR), "shaping " + path)
+          : h5::space_handle(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                             "shaping " + path);
   const h5::Handle plist =
       h5::plist_handle(H5Pcreate(H5P_DATASET_CREATE), "creating dataset properties");
   h5::check(H5Pset_layout(plist, H5D_CONTIGUOUS), "choosing a contiguous layout");
   h5::check(H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY), "choosing early allocation");
   h5::check(H5Pset_obj_track_times(plist, false), "turning off time tracking");
-  if (fill != nullptr) {
-    h5::check(H5Pset_fill_value(plist, fill_type, fill), "setting a fill value");
-    h5::check(H5Pset_fill_time(plist, H5D_FILL_TIME_ALLOC), "choosing fill at allocation");
-  } else {
-    h5::check(H5Pset_fill_time(plist, H5D_FILL_TIME_NEVER), "choosing no fill");
+  switch (column.fill) {
+    case Fill::kUnset:
+      break;
+    case Fill::kNever:
+      h5::check(H5Pset_fill_time(plist, H5D_FILL_TIME_NEVER), "choosing no fill");
+      break;
+    case Fill::kZero:
+    case Fill::kNaN: {
+      const std::array<std::byte, 8> fill = fill_bytes(column.element, column.fill);
+      h5::check(H5Pset_fill_value(plist, memory_type, fill.data()), "setting a fill value");
+      h5::check(H5Pset_fill_time(plist, H5D_FILL_TIME_ALLOC), "choosing fill at allocation");
+      break;
+    }
   }
   return h5::dataset_handle(
       H5Dcreate2(location, path.c_str(), file_type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
@@ -108,40 +121,44 @@ void write_from_root(hid_t dataset, hid_t memory_type, const void* data, int ran
             "writing data");
 }
 
-template <typename T>
-void make_and_write(hid_t location, const std::string& path, hid_t file_type, hid_t memory_type,
-                    const std::vector<hsize_t>& dims, const std::vector<T>& data, int rank,
-                    hid_t transfer) {
-  const h5::Handle dataset = make_dataset(location, path, file_type, dims);
-  write_from_root(dataset, memory_type, data.data(), rank, transfer);
-}
-
-void write_strings(hid_t location, const std::string& path, const std::vector<hsize_t>& dims,
-                   const std::vector<std::string>& values, int rank, hid_t transfer) {
-  std::size_t width = 1;
-  for (const auto& value : values) width = std::max(width, value.size());
-  std::vector<char> packed(values.size() * width, '\0');
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    std::copy(values[i].begin(), values[i].end(), packed.begin() + i * width);
+// Creates a column's dataset in `location` and, given `values`, writes them whole from rank 0.
+void create_column(hid_t location, const Column& column, const Dims& dims, const Values* values,
+                   int rank, hid_t transfer) {
+  if (column.element == Element::kString) {
+    const auto* strings = values ? &std::get<std::vector<std::string>>(*values) : nullptr;
+    const std::size_t width = strings ? string_width(*strings) : 1;
+    const h5::Handle type = element_type(column.element, true, width);
+    const h5::Handle dataset = make_dataset(location, column, dims, type, type);
+    if (strings) {
+      write_from_root(dataset, type, packed_strings(*strings, width).data(), rank, transfer);
+    }
+    return;
   }
-  const h5::Handle type = h5::string_type(width);
-  const h5::Handle space =
-      dims.empty()
-          ? h5::space_handle(H5Screate(H5S_SCALAR), "shaping " + path)
-          : h5::space_handle(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
-                             "shaping " + path);
-  const h5::Handle plist =
-      h5::plist_handle(H5Pcreate(H5P_DATASET_CREATE), "creating dataset properties");
-  h5::check(H5Pset_layout(plist, H5D_CONTIGUOUS), "choosing a contiguous layout");
-  h5::check(H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY), "choosing early allocation");
-  h5::check(H5Pset_obj_track_times(plist, false), "turning off time tracking");
-  const h5::Handle dataset = h5::dataset_handle(
-      H5Dcreate2(location, path.c_str(), type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
-      "creating dataset " + path);
-  write_from_root(dataset, type, packed.data(), rank, transfer);
+  const h5::Handle file_type = element_type(column.element, true);
+  const h5::Handle memory_type = element_type(column.element, false);
+  const h5::Handle dataset = make_dataset(location, column, dims, file_type, memory_type);
+  if (values) write_from_root(dataset, memory_type, number_data(*values), rank, transfer);
 }
 
-hsize_t as_hsize(std::uint64_t n) { return static_cast<hsize_t>(n); }
+// Creates a whole-record column from the record's values.
+template <typename Record>
+void create_record_column(hid_t location, const Column& column, const Record& record, int rank,
+                          hid_t transfer) {
+  Values values = empty_values(value_index(column.element));
+  column.access_to<Record>().get(record, values);
+  Sizes sizes;
+  sizes.count = value_count(values);
+  create_column(location, column, column.extents(sizes), &values, rank, transfer);
+}
+
+// Creates a row place's column of `rows` rows shaped by `sizes`; `values`, if any, fill it whole.
+void create_row_column(hid_t location, const Column& column, hsize_t rows, const Sizes& sizes,
+                       const Values* values, int rank, hid_t transfer) {
+  Dims dims{rows};
+  const Dims extents = column.extents(sizes);
+  dims.insert(dims.end(), extents.begin(), extents.end());
+  create_column(location, column, dims, values, rank, transfer);
+}
 
 void write_provenance(hid_t file, const Provenance& provenance, const DatasetLayout& layout,
                       std::uint64_t objects, std::uint64_t grippers, int rank, hid_t transfer) {
@@ -162,14 +179,11 @@ void write_provenance(hid_t file, const Provenance& provenance, const DatasetLay
 
   const h5::Handle group = make_group(file, "/provenance");
   h5::write_attribute(group, "job_file", provenance.job_file);
-  write_strings(group, "job_text", {}, {provenance.job_text}, rank, transfer);
-  std::vector<std::string> table;
-  for (const Parameter& parameter : provenance.parameters) {
-    table.push_back(parameter.key);
-    table.push_back(parameter.value);
+  for (const Column& column : dataset_columns()) {
+    if (column.place == Place::kProvenance) {
+      create_record_column(group, column, provenance, rank, transfer);
+    }
   }
-  write_strings(group, "parameters", {as_hsize(provenance.parameters.size()), 2}, table, rank,
-                transfer);
 }
 
 void write_object(hid_t file, std::uint32_t index, const ObjectRecord& object,
@@ -184,35 +198,29 @@ void write_object(hid_t file, std::uint32_t index, const ObjectRecord& object,
   h5::write_attribute(group, "poisson_ratio", object.material.poisson_ratio);
   h5::write_attribute(group, "density", object.material.density);
   h5::write_attribute(group, "friction", object.material.friction);
-  const hsize_t n = object.vertex_count();
-  make_and_write(group, "vertices", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n, 3}, object.vertices,
-                 rank, transfer);
-  make_and_write(group, "triangles", H5T_STD_I32LE, H5T_NATIVE_INT32,
-                 {object.triangles.size() / 3, 3}, object.triangles, rank, transfer);
-  make_and_write(group, "tets", H5T_STD_I32LE, H5T_NATIVE_INT32, {object.tet_count(), 4},
-                 object.tets, rank, transfer);
-  const DatasetLayout::Object& sizes = layout.objects[index];
-  if (sizes.stress_slots > 0) {
-    make_dataset(group, "stress", H5T_IEEE_F32LE, {sizes.stress_slots, sizes.tets});
+  Sizes object_sizes = Sizes::of(layout);
+  object_sizes.object = layout.objects[index];
+  for (const Column& column : dataset_columns()) {
+    if (column.place == Place::kObject) {
+      create_record_column(group, column, object, rank, transfer);
+    } else if (column.place == Place::kStress && object_sizes.object.stress_slots > 0) {
+      create_row_column(group, column, object_sizes.object.stress_slots, object_sizes, nullptr,
+                        rank, transfer);
+    }
   }
-  const hsize_t frames = layout.frames();
   bool any_trajectory = false;
   for (std::uint32_t g = 0; g < gripper_count; ++g) {
     const hsize_t slots = layout.trajectory_slots[layout.pair(index, g)];
     if (slots == 0) continue;
     if (!any_trajectory) make_group(group, "trajectories");
     any_trajectory = true;
-    const DatasetLayout::Gripper& gripper = layout.grippers[g];
     const h5::Handle trajectories = make_group(file, trajectory_group(index, g));
-    const hsize_t hands = gripper.hands;
-    make_dataset(trajectories, "object_vertices", H5T_IEEE_F32LE, {slots, frames, n, 3});
-    make_dataset(trajectories, "gripper_vertices", H5T_IEEE_F32LE,
-                 {slots, frames, hands * gripper.vertices, 3});
-    make_dataset(trajectories, "contact_forces", H5T_IEEE_F32LE, {slots, frames, n, 3});
-    make_dataset(trajectories, "friction_forces", H5T_IEEE_F32LE, {slots, frames, n, 3});
-    make_dataset(trajectories, "object_poses", H5T_IEEE_F64LE, {slots, frames, 3, 4});
-    make_dataset(trajectories, "hand_poses", H5T_IEEE_F64LE, {slots, frames, hands, 3, 4});
-    make_dataset(trajectories, "joints", H5T_IEEE_F64LE, {slots, frames, hands, gripper.joints});
+    const Sizes sizes = Sizes::of(layout, index, g);
+    for (const Column& column : dataset_columns()) {
+      if (column.place == Place::kTrajectory) {
+        create_row_column(trajectories, column, slots, sizes, nullptr, rank, transfer);
+      }
+    }
   }
 }
 
@@ -223,53 +231,27 @@ void write_gripper(hid_t file, std::uint32_t index, const GripperRecord& gripper
   h5::write_attribute(group, "kind", gripper.kind);
   h5::write_attribute(group, "soft", std::uint64_t{gripper.soft});
   h5::write_attribute(group, "hands", std::uint64_t{gripper.hands});
-  write_strings(group, "joint_names", {gripper.joint_names.size()}, gripper.joint_names, rank,
-                transfer);
-  write_strings(group, "finger_names", {gripper.finger_names.size()}, gripper.finger_names, rank,
-                transfer);
-  make_and_write(group, "vertices", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {gripper.vertex_count(), 3},
-                 gripper.vertices, rank, transfer);
-  make_and_write(group, "triangles", H5T_STD_I32LE, H5T_NATIVE_INT32,
-                 {gripper.triangles.size() / 3, 3}, gripper.triangles, rank, transfer);
+  for (const Column& column : dataset_columns()) {
+    if (column.place == Place::kGripper) {
+      create_record_column(group, column, gripper, rank, transfer);
+    }
+  }
 }
 
+// Plan columns are written now; done and result columns start as their fill ("not written").
 void write_candidate_table(hid_t file, const DatasetLayout& layout, int rank, hid_t transfer) {
   const h5::Handle group = make_group(file, "/candidates");
   const hsize_t n = layout.candidate_count;
-  const hsize_t hands = layout.max_hands;
-  make_and_write(group, "object", H5T_STD_U32LE, H5T_NATIVE_UINT32, {n}, layout.object, rank,
-                 transfer);
-  make_and_write(group, "gripper", H5T_STD_U32LE, H5T_NATIVE_UINT32, {n}, layout.gripper, rank,
-                 transfer);
-  make_and_write(group, "frame_slot", H5T_STD_I64LE, H5T_NATIVE_INT64, {n}, layout.frame_slot, rank,
-                 transfer);
-  make_and_write(group, "stress_slot", H5T_STD_I64LE, H5T_NATIVE_INT64, {n}, layout.stress_slot,
-                 rank, transfer);
-
-  // Result columns start as "not written": zero flags and counts, NaN numbers.
-  const std::uint8_t zero8 = 0;
-  const std::uint32_t zero32 = 0;
-  const h5::Handle status_file = status_type(true);
-  const h5::Handle status_memory = status_type(false);
-  const h5::Handle failure_file = failure_kind_type(true);
-  const h5::Handle failure_memory = failure_kind_type(false);
-  make_dataset(group, "done", H5T_STD_U8LE, {n}, H5T_NATIVE_UINT8, &zero8);
-  make_dataset(group, "status", status_file, {n}, status_memory, &zero8);
-  make_dataset(group, "failure", failure_file, {n}, failure_memory, &zero8);
-  make_dataset(group, "hand_poses", H5T_IEEE_F64LE, {n, hands, 3, 4}, H5T_NATIVE_DOUBLE, &kNaN);
-  make_dataset(group, "joints", H5T_IEEE_F64LE, {n, hands, layout.max_joints}, H5T_NATIVE_DOUBLE,
-               &kNaN);
-  make_dataset(group, "d1", H5T_IEEE_F64LE, {n}, H5T_NATIVE_DOUBLE, &kNaN);
-  make_dataset(group, "d2", H5T_IEEE_F64LE, {n}, H5T_NATIVE_DOUBLE, &kNaN);
-  make_dataset(group, "displacement", H5T_IEEE_F64LE, {n, 6}, H5T_NATIVE_DOUBLE, &kNaN);
-  make_dataset(group, "closing_forces", H5T_IEEE_F64LE, {n, hands, layout.max_fingers},
-               H5T_NATIVE_DOUBLE, &kNaN);
-  make_dataset(group, "newton_steps", H5T_STD_U32LE, {n}, H5T_NATIVE_UINT32, &zero32);
-  make_dataset(group, "newton_iterations", H5T_STD_U32LE, {n}, H5T_NATIVE_UINT32, &zero32);
-  make_dataset(group, "newton_max_iterations", H5T_STD_U32LE, {n}, H5T_NATIVE_UINT32, &zero32);
-  make_dataset(group, "wall_time", H5T_IEEE_F64LE, {n}, H5T_NATIVE_DOUBLE, &kNaN);
-  make_dataset(group, "trajectory_written", H5T_STD_U8LE, {n}, H5T_NATIVE_UINT8, &zero8);
-  make_dataset(group, "stress_written", H5T_STD_U8LE, {n}, H5T_NATIVE_UINT8, &zero8);
+  const Sizes sizes = Sizes::of(layout);
+  for (const Column& column : dataset_columns()) {
+    if (column.place == Place::kPlan) {
+      Values values = empty_values(value_index(column.element));
+      column.access_to<DatasetLayout>().get(layout, values);
+      create_row_column(group, column, n, sizes, &values, rank, transfer);
+    } else if (column.place == Place::kDone || column.place == Place::kResult) {
+      create_row_column(group, column, n, sizes, nullptr, rank, transfer);
+    }
+  }
 }
 
 // ---- batch writes ---------------------------------------------------------------------------
@@ -307,24 +289,40 @@ void write_rows(hid_t location, const std::string& path, const std::vector<std::
             "writing rows of " + path);
 }
 
-// Copies `values` into a row of `width` elements, NaN-padded.
-void pad_row(std::vector<double>& out, const std::vector<double>& values, std::size_t width) {
-  out.insert(out.end(), values.begin(), values.end());
-  out.insert(out.end(), width - values.size(), kNaN);
+// Packs one column's rows of `records` (in order): each record's values, padded per hand to
+// the table's widths where the column has hands.
+template <typename Record>
+Values packed_rows(const Column& column, const std::vector<const Record*>& records,
+                   const DatasetLayout& layout) {
+  const auto& access = column.access_to<Record>();
+  Values packed = empty_values(value_index(column.element));
+  const Sizes table = Sizes::of(layout);
+  for (const Record* record : records) {
+    if constexpr (std::is_same_v<Record, CandidateResult>) {
+      if (column.per_hand != nullptr) {
+        Values values = empty_values(value_index(column.element));
+        access.get(*record, values);
+        const DatasetLayout::Gripper& gripper = layout.grippers[layout.gripper[record->record.id]];
+        append_padded(packed, values, gripper.hands, column.per_hand(gripper), table.max_hands,
+                      row_size(column, table) / table.max_hands,
+                      column.fill == Fill::kNaN ? kNaN : 0.0);
+        continue;
+      }
+    }
+    access.get(*record, packed);
+  }
+  return packed;
 }
 
-// Hands of `per_hand` values padded to the table's widths: [max_hands][width].
-void pad_hands(std::vector<double>& out, const std::vector<double>& values, std::uint32_t hands,
-               std::size_t per_hand, std::uint32_t max_hands, std::size_t width) {
-  for (std::uint32_t h = 0; h < max_hands; ++h) {
-    if (h < hands) {
-      const auto begin = values.begin() + static_cast<std::ptrdiff_t>(h * per_hand);
-      out.insert(out.end(), begin, begin + static_cast<std::ptrdiff_t>(per_hand));
-      out.insert(out.end(), width - per_hand, kNaN);
-    } else {
-      out.insert(out.end(), width, kNaN);
-    }
-  }
+// A trajectory field named like a candidate table column is "trajectory NAME" in messages.
+std::string field_label(const Column& column) {
+  const std::string name = column.name;
+  if (column.place != Place::kTrajectory) return name;
+  const auto columns = dataset_columns();
+  const bool shared = std::any_of(columns.begin(), columns.end(), [&](const Column& other) {
+    return other.place == Place::kResult && name == other.name;
+  });
+  return shared ? "trajectory " + name : name;
 }
 
 std::string check_result(const CandidateResult& result, const DatasetLayout& layout,
@@ -336,49 +334,32 @@ std::string check_result(const CandidateResult& result, const DatasetLayout& lay
            " candidates";
   }
   if (done[r.id] != 0) return which + " is already written; a record is written once";
-  const DatasetLayout::Gripper& gripper = layout.grippers[layout.gripper[r.id]];
-  const DatasetLayout::Object& object = layout.objects[layout.object[r.id]];
-  const auto size_error = [&](const char* field, std::size_t got, std::size_t want) {
-    return which + ": " + field + " has " + std::to_string(got) + " values, expected " +
-           std::to_string(want);
+  const Sizes sizes = Sizes::of_candidate(layout, r.id);
+  // The first column of `place` whose values in `record` do not fill its row, or "".
+  const auto size_problem = [&](Place place, const auto& record) -> std::string {
+    using Record = std::remove_cvref_t<decltype(record)>;
+    for (const Column& column : dataset_columns()) {
+      if (column.place != place) continue;
+      const std::size_t got = column.access_to<Record>().size(record);
+      const std::size_t want = record_size(column, sizes);
+      if (got != want) {
+        return which + ": " + field_label(column) + " has " + std::to_string(got) +
+               " values, expected " + std::to_string(want);
+      }
+    }
+    return "";
   };
-  if (r.hand_poses.size() != 12u * gripper.hands) {
-    return size_error("hand_poses", r.hand_poses.size(), 12u * gripper.hands);
-  }
-  if (r.joints.size() != std::size_t{gripper.joints} * gripper.hands) {
-    return size_error("joints", r.joints.size(), std::size_t{gripper.joints} * gripper.hands);
-  }
-  if (r.closing_forces.size() != std::size_t{gripper.fingers} * gripper.hands) {
-    return size_error("closing_forces", r.closing_forces.size(),
-                      std::size_t{gripper.fingers} * gripper.hands);
-  }
+  std::string problem = size_problem(Place::kResult, result);
+  if (!problem.empty()) return problem;
   if (result.trajectory) {
     if (layout.frame_slot[r.id] < 0) return which + " has a trajectory but no frame slot";
-    const TrajectoryRecord& t = *result.trajectory;
-    const std::size_t f = layout.frames();
-    const std::size_t n3 = f * object.vertices * 3;
-    if (t.object_vertices.size() != n3)
-      return size_error("object_vertices", t.object_vertices.size(), n3);
-    if (t.contact_forces.size() != n3)
-      return size_error("contact_forces", t.contact_forces.size(), n3);
-    if (t.friction_forces.size() != n3)
-      return size_error("friction_forces", t.friction_forces.size(), n3);
-    const std::size_t g3 = f * gripper.hands * gripper.vertices * 3;
-    if (t.gripper_vertices.size() != g3)
-      return size_error("gripper_vertices", t.gripper_vertices.size(), g3);
-    if (t.object_poses.size() != f * 12)
-      return size_error("object_poses", t.object_poses.size(), f * 12);
-    const std::size_t hp = f * gripper.hands * 12;
-    if (t.hand_poses.size() != hp)
-      return size_error("trajectory hand_poses", t.hand_poses.size(), hp);
-    const std::size_t js = f * gripper.hands * gripper.joints;
-    if (t.joints.size() != js) return size_error("trajectory joints", t.joints.size(), js);
+    problem = size_problem(Place::kTrajectory, *result.trajectory);
+    if (!problem.empty()) return problem;
   }
   if (result.stress) {
     if (layout.stress_slot[r.id] < 0) return which + " has stress but no stress slot";
-    if (result.stress->size() != object.tets) {
-      return size_error("stress", result.stress->size(), object.tets);
-    }
+    problem = size_problem(Place::kStress, result);
+    if (!problem.empty()) return problem;
   }
   return "";
 }
@@ -586,53 +567,11 @@ void DatasetWriter::write(std::span<const CandidateResult> results) {
 
   const hid_t file = file_;
   const hid_t transfer = transfer_;
-  {
-    std::vector<std::uint8_t> status, failure, trajectory_written, stress_written;
-    std::vector<double> hand_poses, joints, d1, d2, displacement, closing_forces, wall_time;
-    std::vector<std::uint32_t> steps, iterations, max_iterations;
-    for (const auto* result : sorted) {
-      const CandidateRecord& r = result->record;
-      const DatasetLayout::Gripper& gripper = layout_.grippers[layout_.gripper[r.id]];
-      status.push_back(static_cast<std::uint8_t>(r.status));
-      failure.push_back(static_cast<std::uint8_t>(r.failure));
-      pad_hands(hand_poses, r.hand_poses, gripper.hands, 12, layout_.max_hands, 12);
-      pad_hands(joints, r.joints, gripper.hands, gripper.joints, layout_.max_hands,
-                layout_.max_joints);
-      pad_hands(closing_forces, r.closing_forces, gripper.hands, gripper.fingers, layout_.max_hands,
-                layout_.max_fingers);
-      d1.push_back(r.d1);
-      d2.push_back(r.d2);
-      pad_row(displacement, {r.displacement.begin(), r.displacement.end()}, 6);
-      steps.push_back(r.newton.steps);
-      iterations.push_back(r.newton.iterations);
-      max_iterations.push_back(r.newton.max_iterations);
-      wall_time.push_back(r.wall_time);
-      trajectory_written.push_back(result->trajectory ? 1 : 0);
-      stress_written.push_back(result->stress ? 1 : 0);
-    }
-    const h5::Handle status_memory = status_type(false);
-    const h5::Handle failure_memory = failure_kind_type(false);
-    write_rows(file, "/candidates/status", rows, status_memory, status.data(), transfer);
-    write_rows(file, "/candidates/failure", rows, failure_memory, failure.data(), transfer);
-    write_rows(file, "/candidates/hand_poses", rows, H5T_NATIVE_DOUBLE, hand_poses.data(),
-               transfer);
-    write_rows(file, "/candidates/joints", rows, H5T_NATIVE_DOUBLE, joints.data(), transfer);
-    write_rows(file, "/candidates/d1", rows, H5T_NATIVE_DOUBLE, d1.data(), transfer);
-    write_rows(file, "/candidates/d2", rows, H5T_NATIVE_DOUBLE, d2.data(), transfer);
-    write_rows(file, "/candidates/displacement", rows, H5T_NATIVE_DOUBLE, displacement.data(),
-               transfer);
-    write_rows(file, "/candidates/closing_forces", rows, H5T_NATIVE_DOUBLE, closing_forces.data(),
-               transfer);
-    write_rows(file, "/candidates/newton_steps", rows, H5T_NATIVE_UINT32, steps.data(), transfer);
-    write_rows(file, "/candidates/newton_iterations", rows, H5T_NATIVE_UINT32, iterations.data(),
-               transfer);
-    write_rows(file, "/candidates/newton_max_iterations", rows, H5T_NATIVE_UINT32,
-               max_iterations.data(), transfer);
-    write_rows(file, "/candidates/wall_time", rows, H5T_NATIVE_DOUBLE, wall_time.data(), transfer);
-    write_rows(file, "/candidates/trajectory_written", rows, H5T_NATIVE_UINT8,
-               trajectory_written.data(), transfer);
-    write_rows(file, "/candidates/stress_written", rows, H5T_NATIVE_UINT8, stress_written.data(),
-               transfer);
+  for (const Column& column : dataset_columns()) {
+    if (column.place != Place::kResult) continue;
+    const h5::Handle memory_type = element_type(column.element, false);
+    write_rows(file, std::string("/candidates/") + column.name, rows, memory_type,
+               number_data(packed_rows(column, sorted, layout_)), transfer);
   }
 
   // Trajectories and stress live in per-object datasets: every rank joins the writes of every
@@ -661,42 +600,31 @@ void DatasetWriter::write(std::span<const CandidateResult> results) {
       }
     }
     const std::string group = trajectory_group(o, g) + "/";
-    const auto gather = [&](auto member) {
-      using Value =
-          typename std::remove_reference_t<decltype(trajectories[0]->*member)>::value_type;
-      std::vector<Value> packed;
-      for (const auto* t : trajectories) {
-        packed.insert(packed.end(), (t->*member).begin(), (t->*member).end());
-      }
-      return packed;
-    };
-    write_rows(file, group + "object_vertices", slots, H5T_NATIVE_FLOAT,
-               gather(&TrajectoryRecord::object_vertices).data(), transfer);
-    write_rows(file, group + "gripper_vertices", slots, H5T_NATIVE_FLOAT,
-               gather(&TrajectoryRecord::gripper_vertices).data(), transfer);
-    write_rows(file, group + "contact_forces", slots, H5T_NATIVE_FLOAT,
-               gather(&TrajectoryRecord::contact_forces).data(), transfer);
-    write_rows(file, group + "friction_forces", slots, H5T_NATIVE_FLOAT,
-               gather(&TrajectoryRecord::friction_forces).data(), transfer);
-    write_rows(file, group + "object_poses", slots, H5T_NATIVE_DOUBLE,
-               gather(&TrajectoryRecord::object_poses).data(), transfer);
-    write_rows(file, group + "hand_poses", slots, H5T_NATIVE_DOUBLE,
-               gather(&TrajectoryRecord::hand_poses).data(), transfer);
-    write_rows(file, group + "joints", slots, H5T_NATIVE_DOUBLE,
-               gather(&TrajectoryRecord::joints).data(), transfer);
+    for (const Column& column : dataset_columns()) {
+      if (column.place != Place::kTrajectory) continue;
+      const h5::Handle memory_type = element_type(column.element, false);
+      write_rows(file, group + column.name, slots, memory_type,
+                 number_data(packed_rows(column, trajectories, layout_)), transfer);
+    }
   }
   for (std::uint32_t o = 0; o < layout_.objects.size(); ++o) {
     if (!touched[pairs + o]) continue;
     std::vector<std::uint64_t> slots;
-    std::vector<float> packed;
+    std::vector<const CandidateResult*> stressed;
     for (const auto* result : sorted) {
       const std::uint64_t id = result->record.id;
       if (result->stress && layout_.object[id] == o) {
         slots.push_back(static_cast<std::uint64_t>(layout_.stress_slot[id]));
-        packed.insert(packed.end(), result->stress->begin(), result->stress->end());
+        stressed.push_back(result);
       }
     }
-    write_rows(file, stress_dataset(o), slots, H5T_NATIVE_FLOAT, packed.data(), transfer);
+    const std::string group = object_group(o) + "/";
+    for (const Column& column : dataset_columns()) {
+      if (column.place != Place::kStress) continue;
+      const h5::Handle memory_type = element_type(column.element, false);
+      write_rows(file, group + column.name, slots, memory_type,
+                 number_data(packed_rows(column, stressed, layout_)), transfer);
+    }
   }
 
   // Commit: rows reach the disk before their done flags, the flags before the journal line.
