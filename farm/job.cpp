@@ -108,7 +108,16 @@ ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_d
 GripperSetting read_gripper(const Table& t) {
   t.allow({"name", "bimanual", "candidates"});
   GripperSetting setting;
-  setting.kind = synth::parse_gripper_kind(t.choice("name", {"fin-ray", "parallel-jaw", "leap"}));
+  const std::string name = t.string("name");
+  const grippers::GripperType* type = grippers::find_gripper_type(name);
+  if (!type) {
+    std::string names;
+    for (const std::string& known : grippers::gripper_names()) {
+      names += (names.empty() ? "\"" : ", \"") + known + "\"";
+    }
+    t.fail("name", "is \"" + name + "\" but must be one of " + names);
+  }
+  setting.kind = type->kind;
   if (t.boolean_or("bimanual", false)) {
     t.fail("bimanual",
            "bimanual trials are not implemented yet (grip synth --bimanual "

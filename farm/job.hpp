@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "io/provenance.hpp"
+#include "src/grippers/gripper_registry.hpp"
 #include "src/objects/domain_randomization.hpp"
-#include "src/synth/candidate.hpp"
 #include "src/trial/trial_parameters.hpp"
 
 namespace grip::farm {
@@ -31,7 +31,7 @@ struct ObjectGroup {
 
 // One [[grippers]] entry.
 struct GripperSetting {
-  synth::GripperKind kind = synth::GripperKind::kParallelJaw;
+  grippers::GripperKind kind = grippers::GripperKind::kParallelJaw;
   int candidates = 16;  // synthesized per object
 };
 

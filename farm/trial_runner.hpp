@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/gripper_record.hpp"
+#include "src/grippers/gripper_registry.hpp"
 #include "src/synth/candidate.hpp"
 #include "src/trial/trial_object.hpp"
 #include "src/trial/trial_outcome.hpp"
@@ -15,7 +16,7 @@ namespace grip::farm {
 
 class TrialRunner {
  public:
-  TrialRunner(const trial::TrialObject& object, synth::GripperKind gripper,
+  TrialRunner(const trial::TrialObject& object, grippers::GripperKind gripper,
               const trial::TrialParameters& parameters);
   ~TrialRunner();
   TrialRunner(const TrialRunner&) = delete;
