@@ -214,10 +214,10 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
   if (auto t = root.optional_table("outputs")) read_outputs(*t, job);
   if (auto t = root.optional_table("farm")) {
     t->allow({"batch", "round_batches"});
-    job.round_batches = positive_integer(*t, "round_batches", job.round_batches);
-    const std::int64_t batch = t->integer_or("batch", 0);
-    if (batch < 0 || batch > 100000) t->fail("batch", "must be 0 (automatic) or a positive count");
-    job.batch = static_cast<int>(batch);
+    job.round_work_units = positive_integer(*t, "round_batches", job.round_work_units);
+    const std::int64_t size = t->integer_or("batch", 0);
+    if (size < 0 || size > 100000) t->fail("batch", "must be 0 (automatic) or a positive count");
+    job.work_unit_size = static_cast<int>(size);
   }
   return job;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // One object's trials with one gripper of the job, whichever kind: the trial scene (its solver
-// Model, shared by every environment) built once, then batches of candidates run through it.
+// Model, shared by every environment) built once, then work units of candidates run through it.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -24,7 +24,7 @@ class TrialRunner {
 
   io::GripperRecord gripper_record() const;
 
-  // The candidates' trials as one batch on `threads` threads; outcome k carries ids[k].
+  // The candidates' trials as one solver::Batch on `threads` threads; outcome k carries ids[k].
   std::vector<trial::TrialOutcome> run(const std::vector<const synth::Candidate*>& candidates,
                                        const std::vector<std::uint64_t>& ids, int threads,
                                        bool trajectory) const;

@@ -30,14 +30,15 @@ class MpiSession {
 void write_report(const std::string& file, const farm::FarmReport& r) {
   std::FILE* out = std::fopen(file.c_str(), "w");
   if (!out) throw std::runtime_error("--report " + file + ": cannot write the file");
-  std::fprintf(
-      out,
-      "{\"dataset\": \"%s\", \"ranks\": %d, \"threads\": %d, \"batch\": %d, "
-      "\"candidates\": %llu, \"done_before\": %llu, \"done\": %llu, "
-      "\"plan_seconds\": %.6f, \"trial_seconds\": %.6f, \"interrupted\": %s}\n",
-      r.dataset.c_str(), r.ranks, r.threads, r.batch, static_cast<unsigned long long>(r.candidates),
-      static_cast<unsigned long long>(r.done_before), static_cast<unsigned long long>(r.done),
-      r.plan_seconds, r.trial_seconds, r.interrupted ? "true" : "false");
+  std::fprintf(out,
+               "{\"dataset\": \"%s\", \"ranks\": %d, \"threads\": %d, \"batch\": %d, "
+               "\"candidates\": %llu, \"done_before\": %llu, \"done\": %llu, "
+               "\"plan_seconds\": %.6f, \"trial_seconds\": %.6f, \"interrupted\": %s}\n",
+               r.dataset.c_str(), r.ranks, r.threads, r.work_unit_size,
+               static_cast<unsigned long long>(r.candidates),
+               static_cast<unsigned long long>(r.done_before),
+               static_cast<unsigned long long>(r.done), r.plan_seconds, r.trial_seconds,
+               r.interrupted ? "true" : "false");
   std::fclose(out);
 }
 
@@ -55,7 +56,7 @@ int farm(const FarmArgs& args) {
   options.output = args.output;
   options.resume = args.resume;
   options.threads = args.threads;
-  options.batch = args.batch;
+  options.work_unit_size = args.batch;
   options.grip_version = version();
   options.git_revision = git_revision();
   farm::FarmReport report;
@@ -70,7 +71,7 @@ int farm(const FarmArgs& args) {
     return 1;
   } catch (const std::exception& e) {
     // A failure on one rank would leave the others waiting in a collective: stop them all.
-    // Committed batches are safe; --resume continues from them.
+    // Committed rounds are safe; --resume continues from them.
     spdlog::error("rank {}: {}", rank, e.what());
     if (ranks > 1) MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;
@@ -82,8 +83,8 @@ int farm(const FarmArgs& args) {
         "thread(s), batches of %d); planning %.1f s, trials %.1f s\n",
         report.dataset.c_str(), static_cast<unsigned long long>(report.done_before + report.done),
         static_cast<unsigned long long>(report.candidates),
-        static_cast<unsigned long long>(report.done), report.ranks, report.threads, report.batch,
-        report.plan_seconds, report.trial_seconds);
+        static_cast<unsigned long long>(report.done), report.ranks, report.threads,
+        report.work_unit_size, report.plan_seconds, report.trial_seconds);
     if (!args.report.empty()) write_report(args.report, report);
     if (report.interrupted) {
       std::printf("stopped early: continue with  grip farm %s --resume\n", args.job.c_str());
