@@ -9,12 +9,12 @@
 #include <optional>
 #include <thread>
 
-#include "farm/batch_claims.hpp"
 #include "farm/plan.hpp"
-#include "farm/progress.hpp"
+#include "farm/progress_line.hpp"
 #include "farm/stop_request.hpp"
 #include "farm/trial_runner.hpp"
 #include "farm/wire.hpp"
+#include "farm/work_unit_claims.hpp"
 #include "io/dataset_error.hpp"
 #include "io/dataset_writer.hpp"
 #include "src/config/config.hpp"
@@ -66,29 +66,29 @@ int default_threads(MPI_Comm comm) {
   return std::max(1, std::min(usable_cores(), cores / local_ranks));
 }
 
-struct Batch {
+// What a rank claims and runs as one solver::Batch: candidates of one object and gripper.
+struct WorkUnit {
   std::uint32_t object = 0;
   std::uint32_t gripper = 0;
   std::vector<std::uint64_t> ids;
 };
 
-// Pending candidates in id order, cut into batches of one object and gripper each.
-std::vector<Batch> make_batches(const io::DatasetPlan& plan,
-                                const std::vector<std::uint64_t>& pending, int size) {
-  std::vector<Batch> batches;
+// Pending candidates in id order, cut into work units of at most `size` candidates.
+std::vector<WorkUnit> make_work_units(const io::DatasetPlan& plan,
+                                      const std::vector<std::uint64_t>& pending, int size) {
+  std::vector<WorkUnit> units;
   for (std::uint64_t id : pending) {
     const io::CandidateSlot& slot = plan.candidates[id];
-    if (batches.empty() || batches.back().object != slot.object ||
-        batches.back().gripper != slot.gripper ||
-        static_cast<int>(batches.back().ids.size()) == size) {
-      batches.push_back({slot.object, slot.gripper, {}});
+    if (units.empty() || units.back().object != slot.object ||
+        units.back().gripper != slot.gripper || static_cast<int>(units.back().ids.size()) == size) {
+      units.push_back({slot.object, slot.gripper, {}});
     }
-    batches.back().ids.push_back(id);
+    units.back().ids.push_back(id);
   }
-  return batches;
+  return units;
 }
 
-// The trial scenes this rank has built, by (object, gripper); consecutive batches mostly
+// The trial scenes this rank has built, by (object, gripper); consecutive work units mostly
 // share one, so only the most recent few are kept.
 class RunnerCache {
  public:
@@ -133,8 +133,10 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
         "(or --map-by slot:PE={}) so its threads get cores of their own",
         rank, report.threads, usable_cores(), report.threads);
   }
-  // The batch size may differ between runs: results do not depend on it.
-  report.batch = options.batch > 0 ? options.batch : job.batch > 0 ? job.batch : 4 * report.threads;
+  // The work unit size may differ between runs: results do not depend on it.
+  report.work_unit_size = options.work_unit_size > 0 ? options.work_unit_size
+                          : job.work_unit_size > 0   ? job.work_unit_size
+                                                     : 4 * report.threads;
 
   io::Provenance provenance;
   provenance.job_file = options.job.string();
@@ -179,36 +181,37 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
   const std::vector<std::uint64_t> pending = writer->pending();
   report.candidates = plan.candidates.size();
   report.done_before = report.candidates - pending.size();
-  const std::vector<Batch> batches = make_batches(plan.dataset, pending, report.batch);
-  // A round holds a few batches per rank, claimed as ranks go; its results are committed
-  // together at its end. More batches per round balance better; fewer commit more often.
+  const std::vector<WorkUnit> units = make_work_units(plan.dataset, pending, report.work_unit_size);
+  // A round holds a few work units per rank, claimed as ranks go; its results are committed
+  // together at its end. More work units per round balance better; fewer commit more often.
   const std::uint64_t per_round =
-      static_cast<std::uint64_t>(job.round_batches) * static_cast<std::uint64_t>(ranks);
-  const std::uint64_t rounds = (batches.size() + per_round - 1) / per_round;
+      static_cast<std::uint64_t>(job.round_work_units) * static_cast<std::uint64_t>(ranks);
+  const std::uint64_t rounds = (units.size() + per_round - 1) / per_round;
   if (rank == 0) {
+    // "batches" is the user's word for work units (--batch, [farm] batch).
     spdlog::info("{} of {} candidates pending: {} batches of up to {} on {} rank(s) x {} thread(s)",
-                 pending.size(), report.candidates, batches.size(), report.batch, ranks,
+                 pending.size(), report.candidates, units.size(), report.work_unit_size, ranks,
                  report.threads);
   }
 
   const Clock::time_point trial_start = Clock::now();
-  Progress progress(pending.size());
+  const ProgressLine progress(pending.size());
   RunnerCache runners(plan, job);
-  BatchClaims claims(comm, std::max<std::uint64_t>(rounds, 1));
+  WorkUnitClaims claims(comm, std::max<std::uint64_t>(rounds, 1));
   for (std::uint64_t round = 0; round < rounds; ++round) {
     const std::uint64_t first = round * per_round;
-    const std::uint64_t count = std::min<std::uint64_t>(per_round, batches.size() - first);
+    const std::uint64_t count = std::min<std::uint64_t>(per_round, units.size() - first);
     std::vector<io::CandidateResult> results;
     while (!stop_requested()) {
       const std::uint64_t k = claims.claim(round);
       if (k >= count) break;
-      const Batch& batch = batches[first + k];
+      const WorkUnit& unit = units[first + k];
       std::vector<const synth::Candidate*> candidates;
-      for (std::uint64_t id : batch.ids) candidates.push_back(&plan.candidates[id]);
-      const bool trajectory = plan.dataset.candidates[batch.ids.front()].frames;
+      for (std::uint64_t id : unit.ids) candidates.push_back(&plan.candidates[id]);
+      const bool trajectory = plan.dataset.candidates[unit.ids.front()].frames;
       for (trial::TrialOutcome& outcome :
-           runners.get(batch.object, batch.gripper)
-               .run(candidates, batch.ids, report.threads, trajectory)) {
+           runners.get(unit.object, unit.gripper)
+               .run(candidates, unit.ids, report.threads, trajectory)) {
         io::CandidateResult& result = outcome.result;
         if (!plan.dataset.candidates[result.record.id].stress) result.stress.reset();
         results.push_back(std::move(result));
@@ -218,7 +221,7 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
     std::uint64_t committed = results.size();
     MPI_Allreduce(MPI_IN_PLACE, &committed, 1, MPI_UINT64_T, MPI_SUM, comm);
     report.done += committed;
-    if (rank == 0) progress.report(report.done, seconds_since(trial_start));
+    if (rank == 0) progress.log(report.done, seconds_since(trial_start));
     int stop = stop_requested() ? 1 : 0;
     MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, comm);
     if (stop) {

@@ -1,7 +1,7 @@
 #pragma once
 // `grip farm JOB.toml`: plan the job (objects prepared and candidates synthesized in parallel
 // across ranks), create or resume its dataset, then run every pending candidate's trial in
-// batches that ranks claim as they go, committing the finished ones collectively once per
+// work units that ranks claim as they go, committing the finished ones collectively once per
 // round. One process with threads, or many MPI ranks: the same dataset (docs/farm.md).
 #include <mpi.h>
 
@@ -16,7 +16,7 @@ struct FarmOptions {
   std::filesystem::path output;  // the dataset; empty: the job's [job] output
   bool resume = false;           // continue an existing dataset of the same job
   int threads = 0;               // per rank; 0: this node's cores shared by its ranks
-  int batch = 0;                 // candidates per batch; 0: the job's, else 4 per thread
+  int work_unit_size = 0;        // candidates per work unit; 0: the job's, else 4 per thread
   std::string grip_version;      // recorded in the dataset's provenance
   std::string git_revision;
 };
@@ -25,7 +25,7 @@ struct FarmReport {
   std::filesystem::path dataset;
   int ranks = 1;
   int threads = 1;                // per rank
-  int batch = 1;                  // candidates per batch
+  int work_unit_size = 1;         // candidates per work unit
   std::uint64_t candidates = 0;   // in the dataset
   std::uint64_t done_before = 0;  // already committed when the run started (resume)
   std::uint64_t done = 0;         // committed by this run

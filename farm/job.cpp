@@ -108,7 +108,16 @@ ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_d
 GripperSetting read_gripper(const Table& t) {
   t.allow({"name", "bimanual", "candidates"});
   GripperSetting setting;
-  setting.kind = synth::parse_gripper_kind(t.choice("name", {"fin-ray", "parallel-jaw", "leap"}));
+  const std::string name = t.string("name");
+  const grippers::GripperType* type = grippers::find_gripper_type(name);
+  if (!type) {
+    std::string names;
+    for (const std::string& known : grippers::gripper_names()) {
+      names += (names.empty() ? "\"" : ", \"") + known + "\"";
+    }
+    t.fail("name", "is \"" + name + "\" but must be one of " + names);
+  }
+  setting.kind = type->kind;
   if (t.boolean_or("bimanual", false)) {
     t.fail("bimanual",
            "bimanual trials are not implemented yet (grip synth --bimanual "
@@ -205,10 +214,10 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
   if (auto t = root.optional_table("outputs")) read_outputs(*t, job);
   if (auto t = root.optional_table("farm")) {
     t->allow({"batch", "round_batches"});
-    job.round_batches = positive_integer(*t, "round_batches", job.round_batches);
-    const std::int64_t batch = t->integer_or("batch", 0);
-    if (batch < 0 || batch > 100000) t->fail("batch", "must be 0 (automatic) or a positive count");
-    job.batch = static_cast<int>(batch);
+    job.round_work_units = positive_integer(*t, "round_batches", job.round_work_units);
+    const std::int64_t size = t->integer_or("batch", 0);
+    if (size < 0 || size > 100000) t->fail("batch", "must be 0 (automatic) or a positive count");
+    job.work_unit_size = static_cast<int>(size);
   }
   return job;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // A farm job file (TOML, docs/job-format.md) read strictly: which objects (procedural
 // categories or mesh files) each gripper grasps, how many candidates per object, the solver,
-// trial and synthesis settings, what each candidate records, and the batch size.
+// trial and synthesis settings, what each candidate records, and the work unit size.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "io/provenance.hpp"
+#include "src/grippers/gripper_registry.hpp"
 #include "src/objects/domain_randomization.hpp"
-#include "src/synth/candidate.hpp"
 #include "src/trial/trial_parameters.hpp"
 
 namespace grip::farm {
@@ -31,7 +31,7 @@ struct ObjectGroup {
 
 // One [[grippers]] entry.
 struct GripperSetting {
-  synth::GripperKind kind = synth::GripperKind::kParallelJaw;
+  grippers::GripperKind kind = grippers::GripperKind::kParallelJaw;
   int candidates = 16;  // synthesized per object
 };
 
@@ -49,8 +49,10 @@ struct Job {
   double synthesis_margin = 5e-4;  // m, clearance beyond d_hat every candidate keeps
   bool record_frames = true;       // every candidate's trajectory
   bool record_stress = true;       // soft objects' von Mises stress at the settled grasp
-  int batch = 0;                   // candidates per batch; 0: 4 per worker thread
-  int round_batches = 4;           // batches per rank between two commits (checkpoints)
+  // [farm] batch: candidates per work unit; 0: 4 per worker thread.
+  int work_unit_size = 0;
+  // [farm] round_batches: work units per rank between two commits (checkpoints).
+  int round_work_units = 4;
 };
 
 // The job file's text. Throws config::ConfigError naming the file when it cannot be read.

@@ -27,7 +27,7 @@ std::vector<synth::Candidate> synthesize_for(const Job& job, const FarmObject& o
     spdlog::warn(
         "{} x {}: {} of {} candidates after {} attempts (the object may not fit the "
         "gripper)",
-        object.name, synth::gripper_name(gripper.kind), result.candidates.size(),
+        object.name, grippers::gripper_type(gripper.kind).name, result.candidates.size(),
         gripper.candidates, result.attempts);
   }
   return std::move(result.candidates);

@@ -1,10 +1,8 @@
 #include "farm/trial_runner.hpp"
 
+#include <string>
 #include <variant>
 
-#include "src/grippers/hand_model.hpp"
-#include "src/grippers/leap_hand.hpp"
-#include "src/grippers/parallel_gripper.hpp"
 #include "src/trial/grasp_trial.hpp"
 #include "src/trial/gripper_record.hpp"
 #include "src/trial/hand_trial.hpp"
@@ -17,25 +15,17 @@ struct TrialRunner::Scene {
   std::variant<std::unique_ptr<trial::TrialScene>, std::unique_ptr<trial::HandTrialScene>> scene;
 };
 
-TrialRunner::TrialRunner(const trial::TrialObject& object, synth::GripperKind gripper,
+TrialRunner::TrialRunner(const trial::TrialObject& object, grippers::GripperKind gripper,
                          const trial::TrialParameters& parameters)
     : scene_(std::make_unique<Scene>()) {
-  switch (gripper) {
-    case synth::GripperKind::kFinRay:
-      scene_->scene = std::make_unique<trial::TrialScene>(object, grippers::make_umi_soft_gripper(),
-                                                          parameters);
-      break;
-    case synth::GripperKind::kParallelJaw:
-      scene_->scene = std::make_unique<trial::TrialScene>(
-          object, grippers::make_rigid_jaw_gripper(), parameters);
-      break;
-    case synth::GripperKind::kLeap: {
-      const grippers::LeapHandFiles files = grippers::shipped_leap_hand(grippers::HandSide::kRight);
-      scene_->scene = std::make_unique<trial::HandTrialScene>(
-          object, grippers::load_hand_model(files.urdf, files.points),
-          std::string(synth::gripper_name(gripper)), parameters);
-      break;
-    }
+  const grippers::GripperType& type = grippers::gripper_type(gripper);
+  if (type.is_hand()) {
+    scene_->scene = std::make_unique<trial::HandTrialScene>(
+        object, grippers::make_hand(gripper, grippers::HandSide::kRight), std::string(type.name),
+        parameters);
+  } else {
+    scene_->scene = std::make_unique<trial::TrialScene>(
+        object, grippers::make_parallel_gripper(gripper), parameters);
   }
 }
 

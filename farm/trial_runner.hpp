@@ -1,11 +1,12 @@
 #pragma once
 // One object's trials with one gripper of the job, whichever kind: the trial scene (its solver
-// Model, shared by every environment) built once, then batches of candidates run through it.
+// Model, shared by every environment) built once, then work units of candidates run through it.
 #include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "io/gripper_record.hpp"
+#include "src/grippers/gripper_registry.hpp"
 #include "src/synth/candidate.hpp"
 #include "src/trial/trial_object.hpp"
 #include "src/trial/trial_outcome.hpp"
@@ -15,7 +16,7 @@ namespace grip::farm {
 
 class TrialRunner {
  public:
-  TrialRunner(const trial::TrialObject& object, synth::GripperKind gripper,
+  TrialRunner(const trial::TrialObject& object, grippers::GripperKind gripper,
               const trial::TrialParameters& parameters);
   ~TrialRunner();
   TrialRunner(const TrialRunner&) = delete;
@@ -23,7 +24,7 @@ class TrialRunner {
 
   io::GripperRecord gripper_record() const;
 
-  // The candidates' trials as one batch on `threads` threads; outcome k carries ids[k].
+  // The candidates' trials as one solver::Batch on `threads` threads; outcome k carries ids[k].
   std::vector<trial::TrialOutcome> run(const std::vector<const synth::Candidate*>& candidates,
                                        const std::vector<std::uint64_t>& ids, int threads,
                                        bool trajectory) const;

@@ -132,7 +132,7 @@ std::vector<synth::Candidate> unpack_candidates(std::string_view bytes) {
   Reader in(bytes);
   std::vector<synth::Candidate> candidates(in.value<std::uint64_t>());
   for (synth::Candidate& c : candidates) {
-    c.gripper = in.value<synth::GripperKind>();
+    c.gripper = in.value<grippers::GripperKind>();
     c.hands.resize(in.value<std::uint64_t>());
     for (synth::HandGrasp& hand : c.hands) {
       Eigen::Matrix4d pose;

@@ -135,7 +135,7 @@ const std::vector<trial::HandTrialGrasp>& hand_grasps(const geometry::SurfaceMes
     params.hand.steps = 300;
     const synth::PreparedObject object(cylinder);
     const synth::SynthesisResult result =
-        synth::synthesize(object, synth::GripperKind::kLeap, false, params, 1, 2);
+        synth::synthesize(object, grippers::GripperKind::kLeap, false, params, 1, 2);
     std::vector<trial::HandTrialGrasp> out;
     for (const synth::Candidate& c : result.candidates) {
       const synth::HandGrasp& h = c.hands.front();

@@ -12,6 +12,7 @@
 #include "src/app/logging.hpp"
 #include "src/app/petsc_args.hpp"
 #include "src/app/version.hpp"
+#include "src/grippers/gripper_registry.hpp"
 
 namespace {
 
@@ -87,9 +88,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   trial->add_option("--friction", trial_args.friction, "Object friction coefficient")
       ->capture_default_str();
-  trial->add_option("--gripper", trial_args.gripper, "Gripper: fin-ray, parallel-jaw or leap")
+  trial
+      ->add_option("--gripper", trial_args.gripper,
+                   "Gripper: " + grip::grippers::gripper_name_list())
       ->required()
-      ->check(CLI::IsMember({"fin-ray", "parallel-jaw", "leap"}));
+      ->check(CLI::IsMember(grip::grippers::gripper_names()));
   trial->add_option("--candidates", trial_args.candidates, "Candidate file from grip synth")
       ->required();
   trial->add_option("--index", trial_args.index, "Candidate I, or A-B (inclusive) as one batch")
@@ -117,9 +120,11 @@ int main(int argc, char** argv) {
       ->required();
   synth->add_option("--scale", synth_args.scale, "Multiply a mesh file's coordinates by this")
       ->capture_default_str();
-  synth->add_option("--gripper", synth_args.gripper, "Gripper: fin-ray, parallel-jaw or leap")
+  synth
+      ->add_option("--gripper", synth_args.gripper,
+                   "Gripper: " + grip::grippers::gripper_name_list())
       ->required()
-      ->check(CLI::IsMember({"fin-ray", "parallel-jaw", "leap"}));
+      ->check(CLI::IsMember(grip::grippers::gripper_names()));
   synth->add_flag("--bimanual", synth_args.bimanual,
                   "Two hands: compose right and left candidates");
   synth->add_option("--count", synth_args.count, "Number of candidates")->required();

@@ -109,7 +109,7 @@ struct FarmArgs {
   std::string output;  // the dataset; empty: the job's [job] output
   bool resume = false;
   int threads = 0;     // per rank; 0: the node's cores shared by its ranks
-  int batch = 0;       // candidates per batch; 0: the job's [farm] batch, else 4 per thread
+  int batch = 0;       // candidates per work unit; 0: the job's [farm] batch, else 4 per thread
   std::string report;  // JSON summary of the run (rank 0); none when empty
 };
 int farm(const FarmArgs& args);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "src/geometry/surface_sampling.hpp"
 #include "src/synth/candidate_random.hpp"
@@ -56,11 +57,13 @@ geometry::SurfaceMesh posed_parallel_surface(const grippers::ParallelGripper& gr
 }
 
 SynthesisResult sample_antipodal_grasps(const PreparedObject& object,
-                                        const grippers::ParallelGripper& gripper, GripperKind kind,
-                                        const AntipodalParams& params, std::uint64_t seed,
-                                        int count) {
-  if (kind == GripperKind::kLeap) {
-    throw std::invalid_argument("sample_antipodal_grasps: the leap hand is not a parallel gripper");
+                                        const grippers::ParallelGripper& gripper,
+                                        grippers::GripperKind kind, const AntipodalParams& params,
+                                        std::uint64_t seed, int count) {
+  const grippers::GripperType& type = grippers::gripper_type(kind);
+  if (type.is_hand()) {
+    throw std::invalid_argument("sample_antipodal_grasps: the " + std::string(type.name) +
+                                " hand is not a parallel gripper");
   }
   const geometry::SurfaceSamples cloud = geometry::sample_surface(
       object.surface(), params.cloud_points,

@@ -5,6 +5,7 @@
 // antipodality test, and an exact clearance test of the posed fingers.
 #include <cstdint>
 
+#include "src/grippers/gripper_registry.hpp"
 #include "src/grippers/parallel_gripper.hpp"
 #include "src/synth/attempt_driver.hpp"
 #include "src/synth/prepared_object.hpp"
@@ -32,12 +33,12 @@ struct AntipodalParams {
 // antipodal_angle (rad, the larger angle between a contact normal and the closing axis),
 // depth (m, deepening reached), width (m, object width between the contacts' jaw sides).
 //
-// `kind` is kFinRay or kParallelJaw and `gripper` the matching model. Every returned candidate
-// has opening in the gripper's range and exact clearance >= d_hat + margin.
+// `kind` names a parallel gripper (not a hand) and `gripper` is its model. Every returned
+// candidate has opening in the gripper's range and exact clearance >= d_hat + margin.
 SynthesisResult sample_antipodal_grasps(const PreparedObject& object,
-                                        const grippers::ParallelGripper& gripper, GripperKind kind,
-                                        const AntipodalParams& params, std::uint64_t seed,
-                                        int count);
+                                        const grippers::ParallelGripper& gripper,
+                                        grippers::GripperKind kind, const AntipodalParams& params,
+                                        std::uint64_t seed, int count);
 
 // The posed surface of a parallel-gripper hand (both fingers at the hand's opening), world frame.
 geometry::SurfaceMesh posed_parallel_surface(const grippers::ParallelGripper& gripper,

@@ -2,26 +2,18 @@
 // A synthesized grasp candidate as the trial consumes it: the gripper kind, one pose, joint
 // values and contacts per hand, and the named energy terms that produced it.
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "src/grippers/gripper_registry.hpp"
+
 namespace grip::synth {
-
-// fin-ray: UMI-style soft fingers; parallel-jaw: rigid box fingers; leap: the 16-DoF hand.
-enum class GripperKind { kFinRay, kParallelJaw, kLeap };
-
-std::string_view gripper_name(GripperKind kind);
-// Throws std::invalid_argument listing the known names.
-GripperKind parse_gripper_kind(std::string_view name);
-// Joint values per hand: 1 (the opening, m) for parallel grippers, 16 (rad) for the hand.
-int joints_per_hand(GripperKind kind);
 
 struct HandGrasp {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // world from hand (gripper frame)
-  Eigen::VectorXd joints;                                  // see joints_per_hand
+  Eigen::VectorXd joints;  // GripperType::joints: the opening (m), or the hand's joints (rad)
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contacts;        // world, m
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contact_normals;  // object's, outward
 };
@@ -33,7 +25,7 @@ struct EnergyTerm {
 };
 
 struct Candidate {
-  GripperKind gripper = GripperKind::kFinRay;
+  grippers::GripperKind gripper = grippers::GripperKind::kFinRay;
   // One hand, or two for a bimanual grasp: the right hand (or first gripper) first.
   std::vector<HandGrasp> hands;
   std::vector<EnergyTerm> energies;  // the synthesizer's terms, documented in docs/synthesis.md

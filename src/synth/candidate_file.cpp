@@ -101,7 +101,8 @@ class LineReader {
 }  // namespace
 
 void write_candidates(const std::filesystem::path& file, const std::vector<Candidate>& candidates) {
-  const GripperKind gripper = candidates.empty() ? GripperKind::kFinRay : candidates[0].gripper;
+  const grippers::GripperType& gripper = grippers::gripper_type(
+      candidates.empty() ? grippers::GripperKind::kFinRay : candidates[0].gripper);
   const std::size_t hands = candidates.empty() ? 1 : candidates[0].hands.size();
   const std::vector<EnergyTerm> first_terms =
       candidates.empty() ? std::vector<EnergyTerm>{} : candidates[0].energies;
@@ -110,7 +111,7 @@ void write_candidates(const std::filesystem::path& file, const std::vector<Candi
     for (std::size_t i = 0; same_names && i < first_terms.size(); ++i) {
       same_names = c.energies[i].name == first_terms[i].name;
     }
-    if (c.gripper != gripper || c.hands.size() != hands || !same_names) {
+    if (c.gripper != gripper.kind || c.hands.size() != hands || !same_names) {
       throw std::invalid_argument("write_candidates: all candidates of one file must share the "
                                   "gripper, the hand count and the energy terms");
     }
@@ -119,9 +120,9 @@ void write_candidates(const std::filesystem::path& file, const std::vector<Candi
   if (!out) throw std::runtime_error(file.string() + ": cannot open for writing");
   out << "# grip synthesized grasp candidates (docs/synthesis.md)\n";
   out << kMagic << ' ' << kVersion << '\n';
-  out << "gripper " << gripper_name(gripper) << '\n';
+  out << "gripper " << gripper.name << '\n';
   out << "hands " << hands << '\n';
-  out << "joints " << joints_per_hand(gripper) << '\n';
+  out << "joints " << gripper.joints << '\n';
   out << "energies " << first_terms.size();
   for (const EnergyTerm& term : first_terms) out << ' ' << term.name;
   out << '\n';
@@ -132,7 +133,7 @@ void write_candidates(const std::filesystem::path& file, const std::vector<Candi
     for (const EnergyTerm& term : c.energies) out << ' ' << number(term.value);
     out << '\n';
     for (const HandGrasp& hand : c.hands) {
-      if (hand.joints.size() != joints_per_hand(gripper) ||
+      if (hand.joints.size() != gripper.joints ||
           hand.contacts.rows() != hand.contact_normals.rows()) {
         throw std::invalid_argument("write_candidates: candidate " + std::to_string(i) +
                                     " has the wrong number of joints or contact normals");
@@ -167,9 +168,9 @@ std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
   }
   reader.end();
   reader.next("gripper");
-  GripperKind gripper{};
+  const grippers::GripperType* gripper = nullptr;
   try {
-    gripper = parse_gripper_kind(reader.word("gripper name"));
+    gripper = &grippers::gripper_type(reader.word("gripper name"));
   } catch (const std::invalid_argument& e) {
     reader.fail(e.what());
   }
@@ -179,9 +180,9 @@ std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
   if (hands < 1 || hands > 2) reader.fail("hands must be 1 or 2");
   reader.end();
   reader.next("joints");
-  if (reader.count("joint count") != joints_per_hand(gripper)) {
-    reader.fail("joints must be " + std::to_string(joints_per_hand(gripper)) + " for " +
-                std::string(gripper_name(gripper)));
+  if (reader.count("joint count") != gripper->joints) {
+    reader.fail("joints must be " + std::to_string(gripper->joints) + " for " +
+                std::string(gripper->name));
   }
   reader.end();
   reader.next("energies");
@@ -195,7 +196,7 @@ std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
   std::vector<Candidate> candidates(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
     Candidate& c = candidates[static_cast<std::size_t>(i)];
-    c.gripper = gripper;
+    c.gripper = gripper->kind;
     reader.next("candidate");
     if (reader.count("candidate index") != i) reader.fail("candidate index must be " + std::to_string(i));
     reader.expect("min_distance");
@@ -225,7 +226,7 @@ std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
         reader.fail("the matrix disagrees with the position and quaternion");
       }
       reader.expect("joints");
-      hand.joints.resize(joints_per_hand(gripper));
+      hand.joints.resize(gripper->joints);
       for (int k = 0; k < hand.joints.size(); ++k) hand.joints(k) = reader.real("joint value");
       reader.expect("contacts");
       const int contacts = reader.count("contact count");

@@ -122,7 +122,7 @@ SynthesisResult optimize_hand_grasps(const PreparedObject& object, const Prepare
       grasp.contact_normals.row(i) = object.tree().face_normal(object.tree().closest(x).face).transpose();
     }
     Candidate candidate;
-    candidate.gripper = GripperKind::kLeap;
+    candidate.gripper = grippers::GripperKind::kLeap;
     candidate.hands.push_back(std::move(grasp));
     candidate.energies = {{"fc", terms.fc},         {"dis", terms.dis},
                           {"pen", terms.pen},       {"spen", terms.spen},

@@ -4,21 +4,11 @@
 #include <cmath>
 #include <optional>
 
-#include "src/grippers/leap_hand.hpp"
+#include "src/grippers/gripper_registry.hpp"
 #include "src/synth/prepared_hand.hpp"
 
 namespace grip::synth {
 namespace {
-
-PreparedHand leap_hand(grippers::HandSide side) {
-  const grippers::LeapHandFiles files = grippers::shipped_leap_hand(side);
-  return PreparedHand(grippers::load_hand_model(files.urdf, files.points));
-}
-
-grippers::ParallelGripper parallel_gripper(GripperKind kind) {
-  return kind == GripperKind::kFinRay ? grippers::make_umi_soft_gripper()
-                                      : grippers::make_rigid_jaw_gripper();
-}
 
 void add(SynthesisResult& total, const SynthesisResult& part) {
   total.attempts += part.attempts;
@@ -28,11 +18,16 @@ void add(SynthesisResult& total, const SynthesisResult& part) {
 
 }  // namespace
 
-SynthesisResult synthesize(const PreparedObject& object, GripperKind gripper, bool bimanual,
-                           const SynthesisParams& params, std::uint64_t seed, int count) {
+SynthesisResult synthesize(const PreparedObject& object, grippers::GripperKind gripper,
+                           bool bimanual, const SynthesisParams& params, std::uint64_t seed,
+                           int count) {
   const auto start = std::chrono::steady_clock::now();
+  const bool is_hand = grippers::gripper_type(gripper).is_hand();
+  const auto prepared_hand = [&](grippers::HandSide side) {
+    return PreparedHand(grippers::make_hand(gripper, side));
+  };
   std::optional<grippers::ParallelGripper> jaws;
-  if (gripper != GripperKind::kLeap) jaws = parallel_gripper(gripper);
+  if (!is_hand) jaws = grippers::make_parallel_gripper(gripper);
   const auto unimanual = [&](const PreparedHand* hand, std::uint64_t s, int n) {
     return hand ? optimize_hand_grasps(object, *hand, params.hand, s, n)
                 : sample_antipodal_grasps(object, *jaws, gripper, params.antipodal, s, n);
@@ -40,13 +35,13 @@ SynthesisResult synthesize(const PreparedObject& object, GripperKind gripper, bo
   SynthesisResult result;
   if (!bimanual) {
     const std::optional<PreparedHand> right =
-        gripper == GripperKind::kLeap ? std::optional(leap_hand(grippers::HandSide::kRight)) : std::nullopt;
+        is_hand ? std::optional(prepared_hand(grippers::HandSide::kRight)) : std::nullopt;
     result = unimanual(right ? &*right : nullptr, seed, count);
   } else {
     std::optional<PreparedHand> right, left;
-    if (gripper == GripperKind::kLeap) {
-      right.emplace(leap_hand(grippers::HandSide::kRight));
-      left.emplace(leap_hand(grippers::HandSide::kLeft));
+    if (is_hand) {
+      right.emplace(prepared_hand(grippers::HandSide::kRight));
+      left.emplace(prepared_hand(grippers::HandSide::kLeft));
     }
     const int pool = static_cast<int>(std::ceil(
         params.pool_factor * std::sqrt(count / params.bimanual.pair_fraction)));

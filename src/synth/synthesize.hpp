@@ -21,8 +21,10 @@ struct SynthesisParams {
 
 // `count` candidates (fewer if the attempt limits are reached; the result says how many
 // attempts it took). Same object, gripper, parameters and seed give the same candidates
-// whatever the thread count. The hands and grippers are loaded here (the shipped LEAP assets).
-SynthesisResult synthesize(const PreparedObject& object, GripperKind gripper, bool bimanual,
-                           const SynthesisParams& params, std::uint64_t seed, int count);
+// whatever the thread count. The gripper is built here from its registry entry (a hand from its
+// shipped assets).
+SynthesisResult synthesize(const PreparedObject& object, grippers::GripperKind gripper,
+                           bool bimanual, const SynthesisParams& params, std::uint64_t seed,
+                           int count);
 
 }  // namespace grip::synth

@@ -1,5 +1,5 @@
 // The same job gives the same dataset, record by record, on 3, 2 and 1 ranks, with 1 or 2
-// threads and any batch size; a second run refuses to overwrite it, and a resume of a
+// threads and any work unit size; a second run refuses to overwrite it, and a resume of a
 // finished dataset has nothing to do. Runs under mpirun -np 3.
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -27,7 +27,7 @@ FarmReport run_on(int ranks, const FarmOptions& options) {
   return report;
 }
 
-TEST(FarmRanks, SameDatasetForAnyRankThreadAndBatchCount) {
+TEST(FarmRanks, SameDatasetForAnyRankThreadAndWorkUnitSize) {
   int rank = 0, world = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &world);
@@ -40,16 +40,16 @@ TEST(FarmRanks, SameDatasetForAnyRankThreadAndBatchCount) {
   FarmOptions options;
   options.job = job;
   struct Run {
-    int ranks, threads, batch;
+    int ranks, threads, work_unit_size;
   };
   const std::vector<Run> runs = {{3, 1, 1}, {2, 1, 2}, {1, 2, 3}, {1, 1, 0}};
   std::vector<std::filesystem::path> datasets;
   for (const Run& run : runs) {
     options.output =
         dir / ("ranks" + std::to_string(run.ranks) + "_threads" + std::to_string(run.threads) +
-               "_batch" + std::to_string(run.batch) + ".h5");
+               "_unit" + std::to_string(run.work_unit_size) + ".h5");
     options.threads = run.threads;
-    options.batch = run.batch;
+    options.work_unit_size = run.work_unit_size;
     const FarmReport report = run_on(run.ranks, options);
     if (rank < run.ranks) {
       EXPECT_EQ(report.candidates, 9u);

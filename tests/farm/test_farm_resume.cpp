@@ -24,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-constexpr int kCandidates = 12;  // 3 cylinders x 4, one batch each commit per rank
+constexpr int kCandidates = 12;  // 3 cylinders x 4, one work unit per rank each commit
 
 // Starts argv in its own process group with output to `log`.
 pid_t start(const std::vector<std::string>& args, const fs::path& log) {
@@ -66,7 +66,7 @@ std::vector<std::uint64_t> committed(const fs::path& dataset) {
   return io::Journal::read(journal).done;
 }
 
-// Waits until the journal holds at least one committed batch (or the process ended).
+// Waits until the journal holds at least one committed round (or the process ended).
 void wait_for_first_commit(pid_t pid, const fs::path& dataset) {
   const auto deadline = std::chrono::steady_clock::now() + 120s;
   while (committed(dataset).empty() && std::chrono::steady_clock::now() < deadline) {

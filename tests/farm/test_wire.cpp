@@ -30,7 +30,7 @@ TEST(Wire, ObjectRecordRoundTrips) {
 
 TEST(Wire, CandidatesRoundTrip) {
   synth::Candidate c;
-  c.gripper = synth::GripperKind::kLeap;
+  c.gripper = grippers::GripperKind::kLeap;
   synth::HandGrasp hand;
   hand.pose = Eigen::Translation3d(0.1, 0.2, 1.0 / 7.0) *
               Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized());

@@ -54,7 +54,7 @@ TEST(SynthAntipodalSamplerTest, RigidJawCandidatesOnACylinderAreClearAndAntipoda
   const grippers::ParallelGripper gripper = grippers::make_rigid_jaw_gripper();
   const AntipodalParams params = small_params();
   const SynthesisResult result =
-      sample_antipodal_grasps(object, gripper, GripperKind::kParallelJaw, params, 42, 8);
+      sample_antipodal_grasps(object, gripper, grippers::GripperKind::kParallelJaw, params, 42, 8);
   ASSERT_EQ(result.candidates.size(), 8u);
   EXPECT_GE(result.attempts, result.accepted);
   expect_valid(object, gripper, params, result.candidates);
@@ -65,7 +65,7 @@ TEST(SynthAntipodalSamplerTest, FinRayCandidatesOnAMugAreClearAndAntipodal) {
   const grippers::ParallelGripper gripper = grippers::make_umi_soft_gripper();
   const AntipodalParams params = small_params();
   const SynthesisResult result =
-      sample_antipodal_grasps(object, gripper, GripperKind::kFinRay, params, 7, 5);
+      sample_antipodal_grasps(object, gripper, grippers::GripperKind::kFinRay, params, 7, 5);
   ASSERT_EQ(result.candidates.size(), 5u);
   expect_valid(object, gripper, params, result.candidates);
 }
@@ -76,7 +76,8 @@ TEST(SynthAntipodalSamplerTest, SameSeedSameCandidatesWhateverTheThreads) {
   const AntipodalParams params = small_params();
   const auto run = [&](int threads, std::uint64_t seed) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    return sample_antipodal_grasps(object, gripper, GripperKind::kParallelJaw, params, seed, 6);
+    return sample_antipodal_grasps(object, gripper, grippers::GripperKind::kParallelJaw, params,
+                                   seed, 6);
   };
   const SynthesisResult one = run(1, 9), two = run(2, 9), other = run(2, 10);
   ASSERT_EQ(one.candidates.size(), 6u);
@@ -96,8 +97,9 @@ TEST(SynthAntipodalSamplerTest, ObjectWiderThanTheOpeningGivesNothing) {
   const PreparedObject object(geometry::make_sphere(0.1, 48, 24));
   AntipodalParams params = small_params();
   params.max_attempts_per_candidate = 256;
-  const SynthesisResult result = sample_antipodal_grasps(
-      object, grippers::make_rigid_jaw_gripper(), GripperKind::kParallelJaw, params, 1, 1);
+  const SynthesisResult result =
+      sample_antipodal_grasps(object, grippers::make_rigid_jaw_gripper(),
+                              grippers::GripperKind::kParallelJaw, params, 1, 1);
   EXPECT_TRUE(result.candidates.empty());
   EXPECT_EQ(result.attempts, 256);
   EXPECT_EQ(result.accepted, 0);

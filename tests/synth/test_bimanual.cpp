@@ -20,7 +20,7 @@ std::vector<Candidate> group(const Eigen::Vector3d& centre, int n, std::uint64_t
   CandidateRandom random(seed, 0, 0);
   for (int i = 0; i < n; ++i) {
     Candidate c;
-    c.gripper = GripperKind::kParallelJaw;
+    c.gripper = grippers::GripperKind::kParallelJaw;
     HandGrasp h;
     h.pose.translation() = centre;
     h.joints = Eigen::VectorXd::Constant(1, 0.05);

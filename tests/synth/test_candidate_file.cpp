@@ -18,7 +18,7 @@ std::filesystem::path scratch(const std::string& name) {
 
 Candidate hand_candidate(double shift) {
   Candidate c;
-  c.gripper = GripperKind::kLeap;
+  c.gripper = grippers::GripperKind::kLeap;
   for (int h = 0; h < 2; ++h) {
     HandGrasp hand;
     hand.pose.linear() = Eigen::AngleAxisd(0.3 + h + shift, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();

@@ -41,7 +41,7 @@ TEST(SynthSynthesizeTest, BimanualParallelJawsKeepClearOfObjectAndEachOther) {
   SynthesisParams params;
   params.antipodal.cloud_points = 2000;
   const SynthesisResult result =
-      synthesize(object, GripperKind::kParallelJaw, true, params, 3, 6);
+      synthesize(object, grippers::GripperKind::kParallelJaw, true, params, 3, 6);
   ASSERT_GE(result.candidates.size(), 3u);
   ASSERT_LE(result.candidates.size(), 6u);
   const grippers::ParallelGripper gripper = grippers::make_rigid_jaw_gripper();

@@ -36,7 +36,7 @@ void write_report(const std::string& file, const farm::FarmReport& r) {
   const nlohmann::ordered_json report = {{"dataset", r.dataset.string()},
                                          {"ranks", r.ranks},
                                          {"threads", r.threads},
-                                         {"batch", r.batch},
+                                         {"batch", r.work_unit_size},
                                          {"candidates", r.candidates},
                                          {"done_before", r.done_before},
                                          {"done", r.done},
@@ -60,7 +60,7 @@ int farm(const FarmArgs& args) {
   options.output = args.output;
   options.resume = args.resume;
   options.threads = args.threads;
-  options.batch = args.batch;
+  options.work_unit_size = args.batch;
   options.grip_version = version();
   options.git_revision = git_revision();
   farm::FarmReport report;
@@ -75,7 +75,7 @@ int farm(const FarmArgs& args) {
     return 1;
   } catch (const std::exception& e) {
     // A failure on one rank would leave the others waiting in a collective: stop them all.
-    // Committed batches are safe; --resume continues from them.
+    // Committed rounds are safe; --resume continues from them.
     spdlog::error("rank {}: {}", rank, e.what());
     if (ranks > 1) MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;
@@ -87,8 +87,8 @@ int farm(const FarmArgs& args) {
         "thread(s), batches of %d); planning %.1f s, trials %.1f s\n",
         report.dataset.c_str(), static_cast<unsigned long long>(report.done_before + report.done),
         static_cast<unsigned long long>(report.candidates),
-        static_cast<unsigned long long>(report.done), report.ranks, report.threads, report.batch,
-        report.plan_seconds, report.trial_seconds);
+        static_cast<unsigned long long>(report.done), report.ranks, report.threads,
+        report.work_unit_size, report.plan_seconds, report.trial_seconds);
     if (!args.report.empty()) write_report(args.report, report);
     if (report.interrupted) {
       std::printf("stopped early: continue with  grip farm %s --resume\n", args.job.c_str());

@@ -3,18 +3,19 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
-#include <system_error>
 #include <string>
+#include <system_error>
 
 #include <Eigen/Core>
 
 #include "src/app/commands.hpp"
 #include "src/geometry/mesh_io.hpp"
 #include "src/geometry/tet_quality.hpp"
+#include "src/grippers/gripper_registry.hpp"
 #include "src/grippers/kinematic_tree.hpp"
 #include "src/grippers/leap_hand.hpp"
-#include "src/grippers/parallel_gripper.hpp"
 #include "src/objects/object_library.hpp"
 
 namespace grip::commands {
@@ -64,17 +65,21 @@ int asset_gallery(const AssetGalleryArgs& args) {
     ++object_count;
   }
 
-  const grippers::ParallelGripper umi = grippers::make_umi_soft_gripper();
-  const geometry::TetQuality quality = geometry::tet_quality(umi.soft_finger->mesh);
-  spdlog::info("fin-ray finger: {} vertices, {} tets, dihedral angles {:.1f} to {:.1f} deg, {} "
-               "inverted, {} mount vertices",
-               umi.soft_finger->mesh.vertices.rows(), umi.soft_finger->mesh.tets.rows(),
-               quality.min_dihedral_deg, quality.max_dihedral_deg, quality.inverted_count,
-               umi.soft_finger->mount_vertices.size());
-  write_parallel_gripper(grippers_dir, umi);
-  geometry::write_msh(grippers_dir / "fin_ray_finger.msh", umi.soft_finger->mesh);
-  geometry::write_vtu(grippers_dir / "fin_ray_finger.vtu", umi.soft_finger->mesh);
-  write_parallel_gripper(grippers_dir, grippers::make_rigid_jaw_gripper());
+  for (const grippers::GripperType& type : grippers::gripper_types()) {
+    if (type.is_hand()) continue;
+    const grippers::ParallelGripper gripper = grippers::make_parallel_gripper(type.kind);
+    if (const std::optional<grippers::FinRayFinger>& finger = gripper.soft_finger) {
+      const geometry::TetQuality quality = geometry::tet_quality(finger->mesh);
+      spdlog::info(
+          "fin-ray finger: {} vertices, {} tets, dihedral angles {:.1f} to {:.1f} deg, {} "
+          "inverted, {} mount vertices",
+          finger->mesh.vertices.rows(), finger->mesh.tets.rows(), quality.min_dihedral_deg,
+          quality.max_dihedral_deg, quality.inverted_count, finger->mount_vertices.size());
+      geometry::write_msh(grippers_dir / "fin_ray_finger.msh", finger->mesh);
+      geometry::write_vtu(grippers_dir / "fin_ray_finger.vtu", finger->mesh);
+    }
+    write_parallel_gripper(grippers_dir, gripper);
+  }
 
   // The hand packages are regenerated here (identical to assets/grippers/leap_*), then loaded
   // back through the URDF path a user's own hand takes.

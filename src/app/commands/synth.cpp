@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "src/app/commands.hpp"
+#include "src/grippers/gripper_registry.hpp"
 #include "src/synth/candidate_file.hpp"
 #include "src/synth/object_spec.hpp"
 #include "src/synth/synthesize.hpp"
@@ -24,7 +25,7 @@ int synth(const SynthArgs& args) {
     throw std::invalid_argument("--out: the folder '" + folder.string() +
                                 "' does not exist; create it first");
   }
-  const synth::GripperKind gripper = synth::parse_gripper_kind(args.gripper);
+  const grippers::GripperKind gripper = grippers::gripper_type(args.gripper).kind;
   const synth::PreparedObject object(synth::load_object(args.object, args.seed, args.scale));
   spdlog::info("object '{}': {} vertices, {} triangles", args.object,
                object.surface().vertices.rows(), object.surface().triangles.rows());

@@ -12,9 +12,7 @@
 #include "src/app/commands.hpp"
 #include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/tetrahedralize.hpp"
-#include "src/grippers/hand_model.hpp"
-#include "src/grippers/leap_hand.hpp"
-#include "src/grippers/parallel_gripper.hpp"
+#include "src/grippers/gripper_registry.hpp"
 #include "src/synth/candidate_file.hpp"
 #include "src/synth/object_spec.hpp"
 #include "src/trial/grasp_trial.hpp"
@@ -50,11 +48,6 @@ std::vector<std::size_t> parse_indices(const std::string& text, std::size_t coun
   return indices;
 }
 
-grippers::ParallelGripper make_gripper(const std::string& name) {
-  if (name == "fin-ray") return grippers::make_umi_soft_gripper();
-  if (name == "parallel-jaw") return grippers::make_rigid_jaw_gripper();
-  throw std::invalid_argument("--gripper '" + name +
-                              "': grip trial runs fin-ray, parallel-jaw or leap");
 }
 
 // Runs the candidates as one batch with `run(scene, grasps, options)`, optionally one by one
@@ -121,19 +114,20 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
 }  // namespace
 
 int trial(const TrialArgs& args) {
-  const synth::GripperKind kind = synth::parse_gripper_kind(args.gripper);
+  const grippers::GripperType& type = grippers::gripper_type(args.gripper);
   const std::vector<synth::Candidate> candidates = synth::read_candidates(args.candidates);
   if (candidates.empty()) throw std::invalid_argument(args.candidates + ": no candidates");
   const std::vector<std::size_t> indices = parse_indices(args.index, candidates.size());
   std::vector<std::uint64_t> ids;
   for (std::size_t i : indices) {
     const synth::Candidate& c = candidates[i];
-    if (c.gripper != kind || c.hands.size() != 1 ||
-        c.hands.front().joints.size() != synth::joints_per_hand(kind)) {
-      throw std::invalid_argument(
-          args.candidates + ": candidate " + std::to_string(i) + " is for '" +
-          std::string(synth::gripper_name(c.gripper)) + "' with " + std::to_string(c.hands.size()) +
-          " hand(s), not one '" + args.gripper + "'; synthesize with the same --gripper");
+    if (c.gripper != type.kind || c.hands.size() != 1 ||
+        c.hands.front().joints.size() != type.joints) {
+      throw std::invalid_argument(args.candidates + ": candidate " + std::to_string(i) +
+                                  " is for '" +
+                                  std::string(grippers::gripper_type(c.gripper).name) + "' with " +
+                                  std::to_string(c.hands.size()) + " hand(s), not one '" +
+                                  args.gripper + "'; synthesize with the same --gripper");
     }
     ids.push_back(i);
   }
@@ -157,10 +151,10 @@ int trial(const TrialArgs& args) {
   parameters.closing_speed = args.closing_speed;
   parameters.squeeze_speed = args.squeeze_speed;
 
-  if (kind == synth::GripperKind::kLeap) {
-    const grippers::LeapHandFiles files = grippers::shipped_leap_hand(grippers::HandSide::kRight);
-    const trial::HandTrialScene scene(object, grippers::load_hand_model(files.urdf, files.points),
-                                      args.gripper, parameters);
+  if (type.is_hand()) {
+    const trial::HandTrialScene scene(object,
+                                      grippers::make_hand(type.kind, grippers::HandSide::kRight),
+                                      std::string(type.name), parameters);
     std::vector<trial::HandTrialGrasp> grasps;
     for (std::size_t i : indices) {
       const synth::HandGrasp& hand = candidates[i].hands.front();
@@ -171,7 +165,7 @@ int trial(const TrialArgs& args) {
                             return trial::run_hand_trials(s, g, o);
                           });
   }
-  const trial::TrialScene scene(object, make_gripper(args.gripper), parameters);
+  const trial::TrialScene scene(object, grippers::make_parallel_gripper(type.kind), parameters);
   std::vector<trial::ParallelGrasp> grasps;
   for (std::size_t i : indices) {
     grasps.push_back({candidates[i].hands.front().pose, candidates[i].hands.front().joints[0]});

@@ -1,10 +1,10 @@
-#include "farm/batch_claims.hpp"
+#include "farm/work_unit_claims.hpp"
 
 #include <stdexcept>
 
 namespace grip::farm {
 
-BatchClaims::BatchClaims(MPI_Comm comm, std::uint64_t rounds) : rounds_(rounds) {
+WorkUnitClaims::WorkUnitClaims(MPI_Comm comm, std::uint64_t rounds) : rounds_(rounds) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const MPI_Aint bytes = rank == 0 ? static_cast<MPI_Aint>(rounds * sizeof(std::uint64_t)) : 0;
@@ -15,13 +15,13 @@ BatchClaims::BatchClaims(MPI_Comm comm, std::uint64_t rounds) : rounds_(rounds) 
   MPI_Win_lock_all(MPI_MODE_NOCHECK, window_);
 }
 
-BatchClaims::~BatchClaims() {
+WorkUnitClaims::~WorkUnitClaims() {
   MPI_Win_unlock_all(window_);
   MPI_Win_free(&window_);
 }
 
-std::uint64_t BatchClaims::claim(std::uint64_t round) {
-  if (round >= rounds_) throw std::out_of_range("BatchClaims: no such round");
+std::uint64_t WorkUnitClaims::claim(std::uint64_t round) {
+  if (round >= rounds_) throw std::out_of_range("WorkUnitClaims: no such round");
   const std::uint64_t one = 1;
   std::uint64_t previous = 0;
   MPI_Fetch_and_op(&one, &previous, MPI_UINT64_T, 0, static_cast<MPI_Aint>(round), MPI_SUM,

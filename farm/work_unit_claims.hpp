@@ -1,21 +1,21 @@
 #pragma once
-// Where workers ask for their next batch: one counter per commit round, held in an MPI window
-// on rank 0 and taken with a one-sided atomic fetch-and-add. A rank that finishes a batch
+// Where ranks ask for their next work unit: one counter per commit round, held in an MPI window
+// on rank 0 and taken with a one-sided atomic fetch-and-add. A rank that finishes a work unit
 // takes the next one at once, without waiting for any other rank (rank 0 included) to answer,
-// so fast ranks run more batches than slow ones.
+// so fast ranks run more work units than slow ones.
 #include <mpi.h>
 
 #include <cstdint>
 
 namespace grip::farm {
 
-class BatchClaims {
+class WorkUnitClaims {
  public:
   // Collective over `comm`: every counter starts at 0.
-  BatchClaims(MPI_Comm comm, std::uint64_t rounds);
-  ~BatchClaims();  // collective
-  BatchClaims(const BatchClaims&) = delete;
-  BatchClaims& operator=(const BatchClaims&) = delete;
+  WorkUnitClaims(MPI_Comm comm, std::uint64_t rounds);
+  ~WorkUnitClaims();  // collective
+  WorkUnitClaims(const WorkUnitClaims&) = delete;
+  WorkUnitClaims& operator=(const WorkUnitClaims&) = delete;
 
   // The round's counter before this rank's increment: 0, 1, 2, ... over all ranks, each value
   // handed out once.

@@ -5,12 +5,12 @@
 
 namespace grip::farm {
 
-class Progress {
+class ProgressLine {
  public:
-  explicit Progress(std::uint64_t total) : total_(total) {}
+  explicit ProgressLine(std::uint64_t total) : total_(total) {}
   // "48/120 trials (40.0%), 1.25 trials/s, ETA 58 s"
-  std::string line(std::uint64_t done, double seconds) const;
-  void report(std::uint64_t done, double seconds) const;  // logs line() (spdlog)
+  std::string text(std::uint64_t done, double seconds) const;
+  void log(std::uint64_t done, double seconds) const;  // logs text() (spdlog)
 
  private:
   std::uint64_t total_;

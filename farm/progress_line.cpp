@@ -1,4 +1,4 @@
-#include "farm/progress.hpp"
+#include "farm/progress_line.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -16,19 +16,19 @@ std::string duration(double seconds) {
 
 }  // namespace
 
-std::string Progress::line(std::uint64_t done, double seconds) const {
+std::string ProgressLine::text(std::uint64_t done, double seconds) const {
   const double fraction = total_ ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
   const double rate = seconds > 0 ? static_cast<double>(done) / seconds : 0.0;
-  std::string text =
+  std::string line =
       fmt::format("{}/{} trials ({:.1f}%), {:.2f} trials/s", done, total_, 100.0 * fraction, rate);
   if (done < total_ && rate > 0) {
-    text += ", ETA " + duration(static_cast<double>(total_ - done) / rate);
+    line += ", ETA " + duration(static_cast<double>(total_ - done) / rate);
   }
-  return text;
+  return line;
 }
 
-void Progress::report(std::uint64_t done, double seconds) const {
-  spdlog::info("{}", line(done, seconds));
+void ProgressLine::log(std::uint64_t done, double seconds) const {
+  spdlog::info("{}", text(done, seconds));
 }
 
 }  // namespace grip::farm

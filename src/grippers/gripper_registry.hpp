@@ -1,0 +1,48 @@
+#pragma once
+// The gripper kinds grip knows, in one table: the name users type (--gripper, job files,
+// candidate files), whether it is a parallel gripper or a hand, its joint count, how to build it.
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "src/grippers/hand_model.hpp"
+#include "src/grippers/leap_hand.hpp"
+#include "src/grippers/parallel_gripper.hpp"
+
+namespace grip::grippers {
+
+// fin-ray: UMI-style soft fingers; parallel-jaw: rigid box fingers; leap: the 16-DoF hand.
+enum class GripperKind { kFinRay, kParallelJaw, kLeap };
+
+// One row of the table. Exactly one of make_parallel and hand_files is set.
+struct GripperType {
+  GripperKind kind;
+  std::string_view name;  // as typed; also a hand's name in the dataset
+  int joints;             // joint values per hand: 1 (the opening, m) or the hand's DoFs (rad)
+  ParallelGripper (*make_parallel)();     // a parallel gripper's default build
+  LeapHandFiles (*hand_files)(HandSide);  // a hand's shipped URDF and points, per side
+
+  bool is_hand() const { return hand_files != nullptr; }
+};
+
+// Every kind, in the order names are listed.
+std::span<const GripperType> gripper_types();
+const GripperType& gripper_type(GripperKind kind);
+// The row typed as `name`, or nullptr.
+const GripperType* find_gripper_type(std::string_view name);
+// The row typed as `name`; throws std::invalid_argument naming the known names.
+const GripperType& gripper_type(std::string_view name);
+
+// The names as typed, in table order.
+std::vector<std::string> gripper_names();
+// The same for people: "fin-ray, parallel-jaw or leap".
+std::string gripper_name_list();
+
+// Throws std::invalid_argument when `kind` is a hand.
+ParallelGripper make_parallel_gripper(GripperKind kind);
+// Loads one side of a hand from its shipped files; throws std::invalid_argument when `kind` is
+// a parallel gripper.
+HandModel make_hand(GripperKind kind, HandSide side);
+
+}  // namespace grip::grippers
