@@ -25,7 +25,7 @@ Eigen::Vector3d rest_position(const Model& model, int collision_vertex) {
 
 }  // namespace
 
-std::vector<ContactPair> find_contact_pairs(const Model& model, const Vertices& start,
+std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
                                             const Vertices& end, double d_hat) {
   const CollisionMesh& mesh = model.collision();
   // Two boxes each inflated by half of d_hat overlap whenever their contents come within d_hat.
@@ -77,7 +77,7 @@ std::vector<ContactPair> find_contact_pairs(const Model& model, const Vertices& 
     }
   };
 
-  std::vector<ContactPair> pairs;
+  std::vector<ContactCandidate> pairs;
   for (int v = 0; v < mesh.size(); ++v) {
     const int body_v = mesh.vertex_body[v];
     query(faces, free_face_tree, free_faces, kinematic(v), swept_box(start, end, {v}, margin),
