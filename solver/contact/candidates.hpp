@@ -10,6 +10,7 @@
 
 namespace grip::solver {
 
+// A broad-phase candidate: two primitives that may come within d_hat.
 struct ContactCandidate {
   bool edge_edge = false;     // else point-triangle
   std::array<int, 4> vertex;  // collision vertices: (p, t0, t1, t2) or (ea0, ea1, eb0, eb1)
@@ -20,6 +21,6 @@ struct ContactCandidate {
 // Pairs near the path start -> end (both collision vertex positions, one row per vertex), in a
 // deterministic order. Pairs that share a vertex, and pairs of bodies that never touch, are left out.
 std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
-                                            const Vertices& end, double d_hat);
+                                                      const Vertices& end, double d_hat);
 
 }  // namespace grip::solver
