@@ -6,51 +6,18 @@
 // environment with a reason, and a failed environment stays failed.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <limits>
 #include <memory>
 #include <string>
-#include <vector>
 
+#include "solver/contact/contact_forces.hpp"
+#include "solver/diagnostics.hpp"
 #include "solver/linear/linear_system_solver.hpp"
-#include "solver/linear/sparse_assembly.hpp"
-#include "solver/linear/sparse_cholesky.hpp"
 #include "solver/model.hpp"
-#include "solver/newton/incremental_potential.hpp"
+#include "solver/newton/newton_solver.hpp"
+#include "solver/newton/step_policy.hpp"
+#include "solver/state.hpp"
 
 namespace grip::solver {
-
-// The total contact force (barrier and friction) that body_b exerts on body_a, body_a < body_b.
-struct PairForce {
-  int body_a = -1;
-  int body_b = -1;
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // on body_a, N
-  double normal_force = 0.0;  // sum of the contacts' barrier force magnitudes, N
-};
-
-// Contact forces on each collision vertex (rows follow Model::collision()), N.
-struct VertexContactForces {
-  Vertices normal;    // barrier (normal) force
-  Vertices friction;  // lagged friction force of the last step
-};
-
-struct StepDiagnostics {
-  int newton_iterations = 0;
-  int line_search_steps = 0;  // Armijo halvings and inversion halvings
-  double min_distance = std::numeric_limits<double>::infinity();  // over pairs within d_hat
-  double min_volume_ratio = 1.0;  // smallest det F over all tets (1 without FEM)
-  double kappa = 0.0;
-  int friction_contacts = 0;  // lagged friction contacts of the last lag
-  double residual =
-      0.0;  // infinity norm of the free DOFs' gradient at the end, scaled by 1/h^2 (N)
-  std::vector<PairForce> contact_forces;
-};
-
-// Totals over every step an environment has taken.
-struct EnvironmentStatistics {
-  long steps = 0;
-  long newton_iterations = 0;
-  int max_step_iterations = 0;  // most Newton iterations in one step
-};
 
 class Environment {
  public:
@@ -69,29 +36,21 @@ class Environment {
 
   // The same step in parts, for a batch that runs the Newton iterations of many environments
   // in rounds: begin_step(), then iterate() until it no longer returns kIterating.
-  // kConverged only comes with hold_converged (below).
+  // kConverged only comes when the policy holds converged steps open (StepPolicy).
   enum class Progress { kIterating, kStepDone, kFailed, kConverged };
   Progress begin_step();
   Progress iterate();
 
-  // Off by default. On, a step whose Newton converged is held open instead of finished, the
-  // way one global convergence test of a monolithic solver keeps every part iterating until
-  // the slowest converges: iterate() reports kConverged, each further iterate() takes one more
-  // Newton step from there (and reports kConverged again), and finish_held_step() ends the step.
-  // A held step has no iteration limit (the slowest environment's bounds it), and its line
-  // search does not halve for its own energy (in a monolithic solve that energy is one term of
-  // a sum whose decrease decides). step() finishes a held step itself. Only for measuring what
-  // freezing converged environments saves (Batch::set_freeze_converged).
-  void set_hold_converged(bool hold) { hold_converged_ = hold; }
+  // Finishes a step held open under a policy without freeze_converged (StepPolicy): iterate()
+  // reports kConverged for such a step, and each further iterate() takes one more Newton step.
   Progress finish_held_step();
 
-  // Off by default: contact pairs with mu = 0 get no friction terms. On, they get them anyway
-  // (each adds zero force at the full cost of its lag and its derivatives); only for measuring
-  // what skipping them saves.
-  void set_friction_terms_at_zero_mu(bool on) { friction_terms_at_zero_mu_ = on; }
+  // Departures from the default step, only for measuring what the defaults save (StepPolicy).
+  void set_policy(const StepPolicy& policy) { policy_ = policy; }
+  const StepPolicy& policy() const { return policy_; }
 
   // Between steps, the caller may redirect gravity and change kinematic scripts.
-  void set_gravity(const Eigen::Vector3d& gravity) { gravity_ = gravity; }
+  void set_gravity(const Eigen::Vector3d& gravity) { state_.gravity = gravity; }
   void set_script(int body, const Script& script);
 
   // Newton systems of at least `min_dofs` rows (all DOFs, prescribed ones included) are solved
@@ -101,14 +60,15 @@ class Environment {
   void use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, int min_dofs);
 
   const Model& model() const { return *model_; }
-  double time() const { return time_; }
+  double time() const { return state_.time; }
   bool failed() const { return !failure_.empty(); }
   const std::string& failure() const { return failure_; }
   const StepDiagnostics& last_step() const { return diagnostics_; }
   const EnvironmentStatistics& statistics() const { return statistics_; }
 
-  const Eigen::VectorXd& dofs() const { return q_; }
-  const Eigen::VectorXd& velocities() const { return v_; }
+  const State& state() const { return state_; }
+  const Eigen::VectorXd& dofs() const { return state_.q; }
+  const Eigen::VectorXd& velocities() const { return state_.v; }
   // World positions of the collision vertices (one row each).
   Vertices collision_positions() const;
   // World positions of all vertices of one body (FEM: every vertex, including interior ones).
@@ -125,37 +85,18 @@ class Environment {
   VertexContactForces vertex_contact_forces() const;
 
  private:
-  struct StepTargets;
-  struct StepState;
-  enum class NewtonOutcome { kContinue, kConverged, kFailed };
-  Vertices positions_at(const Eigen::VectorXd& q, const StepTargets& targets,
-                        double progress) const;
-  std::vector<FrictionContact> lag_friction(const Vertices& positions) const;
-  NewtonOutcome newton_iteration(StepState& state);
   void finish_step();
   Progress fail(const std::string& reason);
-  void record_diagnostics(const StepTargets& targets);
+  void record_diagnostics();
 
   std::shared_ptr<const Model> model_;
-  Eigen::VectorXd q_;
-  Eigen::VectorXd v_;
-  std::vector<Pose> poses_;  // kinematic bodies' current poses (others unused)
-  std::vector<Eigen::Vector3d> kinematic_velocity_;  // over the last step
-  std::vector<Script> scripts_;
-  Eigen::Vector3d gravity_;
-  double kappa_;
-  double time_ = 0.0;
+  State state_;
+  StepPolicy policy_;
   std::string failure_;
   StepDiagnostics diagnostics_;
   EnvironmentStatistics statistics_;
-  std::unique_ptr<StepState> step_;  // while a step is under way
-  IncrementalPotential potential_;
-  SparseAssembly assembly_;
-  SparseCholesky cholesky_;
-  std::shared_ptr<LinearSystemSolver> linear_solver_;  // null: cholesky_ solves every system
-  int linear_solver_min_dofs_ = 0;
-  bool hold_converged_ = false;
-  bool friction_terms_at_zero_mu_ = false;
+  std::unique_ptr<NewtonStep> step_;  // while a step is under way
+  NewtonSolver newton_;
 };
 
 }  // namespace grip::solver

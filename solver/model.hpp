@@ -92,6 +92,12 @@ class Model {
   const std::shared_ptr<const std::vector<int>>& ordering() const { return ordering_; }
 
  private:
+  // The steps of build(), in order.
+  void build_bodies();
+  void build_pair_friction();
+  void build_pins();
+  void build_collision_mesh();
+
   SceneDescription scene_;
   SimParameters sim_;
   std::vector<BodyModel> bodies_;

@@ -62,7 +62,7 @@ struct BatchMember {
 // every one has converged.
 VariantRun batched(const std::vector<BatchMember>& members, int threads, bool freeze) {
   solver::Batch batch(threads);
-  batch.set_freeze_converged(freeze);
+  batch.set_policy({.freeze_converged = freeze});
   for (const BatchMember& member : members) {
     batch.environment(batch.add(member.scene->model)).place(0, member.placement);
   }

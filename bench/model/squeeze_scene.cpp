@@ -165,7 +165,7 @@ SqueezeResult run_squeeze(const SqueezeOptions& options, const SqueezeScene& sce
                           const Eigen::Isometry3d& place, bool friction_terms_at_zero_mu) {
   solver::Environment environment(scene.model);
   environment.place(0, place);
-  environment.set_friction_terms_at_zero_mu(friction_terms_at_zero_mu);
+  environment.set_policy({.friction_terms_at_zero_mu = friction_terms_at_zero_mu});
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   SqueezeProgress progress;

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 
-
 namespace grip::solver {
 
 namespace {
@@ -19,7 +18,7 @@ Batch::Batch(int threads) : threads_(resolve_threads(threads)), arena_(threads_)
 
 int Batch::add(std::shared_ptr<const Model> model) {
   environments_.push_back(std::make_unique<Environment>(std::move(model)));
-  environments_.back()->set_hold_converged(!freeze_converged_);
+  environments_.back()->set_policy(policy_);
   active_.push_back(1);
   return size() - 1;
 }
@@ -35,10 +34,10 @@ bool Batch::any_active() const {
   return false;
 }
 
-void Batch::set_freeze_converged(bool freeze) {
-  freeze_converged_ = freeze;
+void Batch::set_policy(const StepPolicy& policy) {
+  policy_ = policy;
   for (const std::unique_ptr<Environment>& environment : environments_) {
-    environment->set_hold_converged(!freeze);
+    environment->set_policy(policy);
   }
 }
 

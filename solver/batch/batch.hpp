@@ -47,11 +47,11 @@ class Batch {
   bool active(int index) const;
   bool any_active() const;
 
-  // On by default: an environment whose Newton converged is frozen for the rest of the step.
-  // Off, every environment keeps iterating until all have converged (one global convergence
-  // test, as a monolithic solver of all environments would have; Environment::
-  // set_hold_converged); only for measuring what freezing saves (bench/model).
-  void set_freeze_converged(bool freeze);
+  // The step policy of every environment, present and future (StepPolicy). By default an
+  // environment whose Newton converged is frozen for the rest of the step; without
+  // freeze_converged every environment keeps iterating until all have converged (one global
+  // convergence test, as a monolithic solver of all environments would have).
+  void set_policy(const StepPolicy& policy);
 
   // One time step (each environment's own dt) of every active environment.
   BatchStepReport step();
@@ -61,7 +61,7 @@ class Batch {
   tbb::task_arena arena_;
   std::vector<std::unique_ptr<Environment>> environments_;
   std::vector<char> active_;
-  bool freeze_converged_ = true;
+  StepPolicy policy_;
 };
 
 }  // namespace grip::solver

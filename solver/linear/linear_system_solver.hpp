@@ -1,6 +1,7 @@
 #pragma once
-// A solver of Newton systems that can take the place of the environment's own sparse Cholesky
-// (Environment::use_linear_solver), e.g. an iterative solve across MPI ranks for big systems.
+// A solver of Newton systems. Every environment has its own sparse Cholesky (CHOLMOD); another
+// solver can take its place for big systems (Environment::use_linear_solver), e.g. an iterative
+// solve across MPI ranks (farm/petsc).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <string>

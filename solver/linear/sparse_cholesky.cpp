@@ -117,6 +117,11 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
   return result;
 }
 
+bool SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+  x = static_cast<const SparseCholesky&>(*this).solve(rhs);
+  return true;
+}
+
 int SparseCholesky::analyses() const { return impl_->analyses; }
 
 }  // namespace grip::solver

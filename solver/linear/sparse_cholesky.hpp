@@ -5,11 +5,14 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <string>
 #include <vector>
+
+#include "solver/linear/linear_system_solver.hpp"
 
 namespace grip::solver {
 
-class SparseCholesky {
+class SparseCholesky : public LinearSystemSolver {
  public:
   // CHOLMOD computes the ordering at each analysis: METIS (nested dissection) suits the large
   // FEM systems of soft fingers and objects; AMD is cheaper to compute for small or very
@@ -29,9 +32,12 @@ class SparseCholesky {
   // Factorizes the symmetric matrix whose lower triangle (column-major, compressed) is given.
   // Re-analyses only when the pattern differs from the last one. Returns false when the
   // matrix is not numerically positive definite (solve() must then not be called).
-  bool factorize(const Eigen::SparseMatrix<double>& lower);
+  bool factorize(const Eigen::SparseMatrix<double>& lower) override;
 
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  // The LinearSystemSolver form of solve(): never fails after a successful factorize().
+  bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) override;
+  std::string failure() const override { return "the matrix is not positive definite"; }
 
   // Symbolic analyses done so far: one per distinct pattern seen in a row.
   int analyses() const;

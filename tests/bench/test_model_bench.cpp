@@ -86,7 +86,7 @@ struct BatchRun {
 
 BatchRun run_batch(const SqueezeOptions& options, const SqueezeScene& scene, bool freeze) {
   solver::Batch batch(1);
-  if (!freeze) batch.set_freeze_converged(false);
+  if (!freeze) batch.set_policy({.freeze_converged = false});
   for (const Eigen::Isometry3d& placement : turned_cubes()) {
     batch.environment(batch.add(scene.model)).place(0, placement);
   }
@@ -141,7 +141,7 @@ TEST(ModelBench, FreezingIsTheDefaultAndMatchesSoloRunsBitForBit) {
   }
   // Solo, a held step is finished at once by step(): the same trajectory.
   solver::Environment plain(scene.model), holding(scene.model);
-  holding.set_hold_converged(true);
+  holding.set_policy({.freeze_converged = false});
   SqueezeProgress plain_progress, holding_progress;
   while (next_squeeze_step(options, scene, plain, plain_progress)) {
     ASSERT_TRUE(next_squeeze_step(options, scene, holding, holding_progress));

@@ -1,0 +1,202 @@
+#include "solver/body/fem_body.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "solver/body/body.hpp"
+#include "solver/kernels/neo_hookean.hpp"
+
+namespace grip::solver::fem {
+namespace {
+
+using Vector12 = Eigen::Matrix<double, 12, 1>;
+using Matrix12 = Eigen::Matrix<double, 12, 12>;
+
+Vector12 tet_positions(const Eigen::VectorXd& q, int dof_offset, const FemTet& tet) {
+  Vector12 x;
+  for (int i = 0; i < 4; ++i) x.segment<3>(3 * i) = q.segment<3>(dof_offset + 3 * tet.vertices[i]);
+  return x;
+}
+
+FemTet rest_tet(const BodyDescription& description, const BodyModel& body, Eigen::Index t) {
+  FemTet tet;
+  for (int i = 0; i < 4; ++i) tet.vertices[i] = description.tets(t, i);
+  const Eigen::Vector3d x0 = body.rest.row(tet.vertices[0]), x1 = body.rest.row(tet.vertices[1]),
+                        x2 = body.rest.row(tet.vertices[2]), x3 = body.rest.row(tet.vertices[3]);
+  tet.rest_volume = kernels::tet_rest_volume(x0, x1, x2, x3);
+  if (!(tet.rest_volume > 0)) {
+    invalid_body(description, "tetrahedron " + std::to_string(t) +
+                                  " is inverted or flat at rest (volume " +
+                                  std::to_string(tet.rest_volume) + " m^3)");
+  }
+  tet.rest_shape_inverse = kernels::tet_rest_shape_inverse(x0, x1, x2, x3);
+  return tet;
+}
+
+void check(const BodyDescription& description) {
+  if (description.tets.rows() == 0) invalid_body(description, "is FEM but has no tetrahedra");
+  if (description.tets.minCoeff() < 0 ||
+      description.tets.maxCoeff() >= description.vertices.rows()) {
+    invalid_body(description, "has a tetrahedron index outside its vertices");
+  }
+  const Material& m = description.material;
+  if (m.density <= 0 || m.youngs <= 0 || m.poisson <= -1 || m.poisson >= 0.5) {
+    invalid_body(description, "needs density > 0, youngs > 0 and -1 < poisson < 0.5");
+  }
+}
+
+}  // namespace
+
+void build(const BodyDescription& description, BodyModel& body) {
+  check(description);
+  const Eigen::Matrix3d r = description.pose.rotation.normalized().toRotationMatrix();
+  body.rest = (description.vertices * r.transpose()).rowwise() +
+              description.pose.position.transpose();
+  body.vertex_mass = Eigen::VectorXd::Zero(body.rest.rows());
+  body.elasticity = kernels::stable_neo_hookean_parameters(description.material.youngs,
+                                                           description.material.poisson);
+  for (Eigen::Index t = 0; t < description.tets.rows(); ++t) {
+    const FemTet tet = rest_tet(description, body, t);
+    for (int i = 0; i < 4; ++i) {
+      body.vertex_mass[tet.vertices[i]] += description.material.density * tet.rest_volume / 4.0;
+    }
+    body.tets.push_back(tet);
+  }
+  if ((body.vertex_mass.array() <= 0).any()) {
+    invalid_body(description, "has a vertex that belongs to no tetrahedron");
+  }
+  body.dof_count = 3 * static_cast<int>(body.rest.rows());
+}
+
+void initial_state(const BodyModel& body, const BodyDescription& description, Eigen::VectorXd& q,
+                   Eigen::VectorXd& v) {
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
+    com += body.vertex_mass[i] * body.rest.row(i).transpose();
+  }
+  com /= body.vertex_mass.sum();
+  for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
+    const Eigen::Vector3d x = body.rest.row(i);
+    q.segment<3>(body.dof_offset + 3 * i) = x;
+    v.segment<3>(body.dof_offset + 3 * i) =
+        description.velocity + description.angular_velocity.cross(x - com);
+  }
+}
+
+void place(const BodyModel& body, const Eigen::Isometry3d& motion, Eigen::VectorXd& q,
+           Eigen::VectorXd& v) {
+  const Eigen::Matrix3d r = motion.linear();
+  const Eigen::Vector3d t = motion.translation();
+  for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
+    const int o = body.dof_offset + 3 * static_cast<int>(i);
+    q.segment<3>(o) = r * q.segment<3>(o) + t;
+    v.segment<3>(o) = r * v.segment<3>(o);
+  }
+}
+
+double max_displacement(const BodyModel& body, const Eigen::VectorXd& dq) {
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
+    largest = std::max(largest, dq.segment<3>(body.dof_offset + 3 * i).norm());
+  }
+  return largest;
+}
+
+double add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
+                   Eigen::VectorXd& q_tilde) {
+  for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
+    q_tilde.segment<3>(body.dof_offset + 3 * i) += h * h * gravity;
+  }
+  return body.vertex_mass.sum() * gravity.norm();
+}
+
+Eigen::Vector3d mass_weighted_mean(const BodyModel& body, const Eigen::VectorXd& values) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
+    sum += body.vertex_mass[i] * values.segment<3>(body.dof_offset + 3 * i);
+  }
+  return sum / body.vertex_mass.sum();
+}
+
+Eigen::Matrix3d rotation(const BodyModel& body, const Eigen::VectorXd& q) {
+  const double mass = body.vertex_mass.sum();
+  Eigen::Vector3d rest_com = Eigen::Vector3d::Zero();
+  for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
+    rest_com += body.vertex_mass[i] * body.rest.row(i).transpose();
+  }
+  rest_com /= mass;
+  const Eigen::Vector3d com = mass_weighted_mean(body, q);
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
+    covariance += body.vertex_mass[i] * (q.segment<3>(body.dof_offset + 3 * i) - com) *
+                  (body.rest.row(i).transpose() - rest_com).transpose();
+  }
+  return nearest_rotation(covariance);
+}
+
+double min_volume_ratio(const BodyModel& body, const Eigen::VectorXd& q) {
+  double ratio = 1.0;
+  for (const FemTet& tet : body.tets) {
+    const Vector12 x = tet_positions(q, body.dof_offset, tet);
+    ratio = std::min(ratio, kernels::deformation_gradient(x, tet.rest_shape_inverse).determinant());
+  }
+  return ratio;
+}
+
+void add_inertia_energy(const BodyModel& body, const Eigen::VectorXd& q,
+                        const Eigen::VectorXd& q_tilde, double& sum) {
+  const int n = static_cast<int>(body.rest.rows());
+  for (int i = 0; i < n; ++i) {
+    const auto dx = q.segment<3>(body.dof_offset + 3 * i) -
+                    q_tilde.segment<3>(body.dof_offset + 3 * i);
+    sum += 0.5 * body.vertex_mass[i] * dx.squaredNorm();
+  }
+}
+
+void add_inertia_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
+                             const Eigen::VectorXd& q_tilde, double scale,
+                             Eigen::VectorXd& gradient,
+                             std::vector<Eigen::Triplet<double>>& hessian) {
+  const int n = static_cast<int>(body.rest.rows());
+  for (int i = 0; i < n; ++i) {
+    const int o = body.dof_offset + 3 * i;
+    const double mass = scale * body.vertex_mass[i];
+    gradient.segment<3>(o) += mass * (q.segment<3>(o) - q_tilde.segment<3>(o));
+    for (int k = 0; k < 3; ++k) hessian.emplace_back(o + k, o + k, mass);
+  }
+}
+
+void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double& sum) {
+  for (const FemTet& tet : body.tets) {
+    sum += kernels::tet_stable_neo_hookean_energy(tet_positions(q, body.dof_offset, tet),
+                                                  tet.rest_shape_inverse, tet.rest_volume,
+                                                  body.elasticity);
+  }
+}
+
+void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
+                             Eigen::VectorXd& gradient,
+                             std::vector<Eigen::Triplet<double>>& hessian) {
+  for (const FemTet& tet : body.tets) {
+    const Vector12 x = tet_positions(q, body.dof_offset, tet);
+    const Vector12 g = scale * kernels::tet_stable_neo_hookean_gradient(
+                                   x, tet.rest_shape_inverse, tet.rest_volume, body.elasticity);
+    const Matrix12 h =
+        scale * kernels::tet_stable_neo_hookean_hessian(x, tet.rest_shape_inverse,
+                                                        tet.rest_volume, body.elasticity, true);
+    for (int a = 0; a < 4; ++a) {
+      const int row = body.dof_offset + 3 * tet.vertices[a];
+      gradient.segment<3>(row) += g.segment<3>(3 * a);
+      for (int b = 0; b < 4; ++b) {
+        const int col = body.dof_offset + 3 * tet.vertices[b];
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) {
+            if (row + i >= col + j) hessian.emplace_back(row + i, col + j, h(3 * a + i, 3 * b + j));
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace grip::solver::fem

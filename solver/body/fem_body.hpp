@@ -1,0 +1,58 @@
+#pragma once
+// A soft body: a tetrahedral mesh whose DOFs are its vertices' world positions (3 each), with
+// lumped masses and stable Neo-Hookean elasticity. Everything the solver does that depends on
+// a body being FEM: its model, start state, placement, vertex positions, inertia, elasticity.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "solver/model.hpp"
+
+namespace grip::solver::fem {
+
+// The FEM part of `body` from its description: rest shape (the start shape, in world
+// coordinates), tets, lumped masses, elastic parameters. Throws std::invalid_argument.
+void build(const BodyDescription& description, BodyModel& body);
+
+// Start positions and velocities (the description's linear and angular velocity about the
+// centre of mass) into q and v.
+void initial_state(const BodyModel& body, const BodyDescription& description, Eigen::VectorXd& q,
+                   Eigen::VectorXd& v);
+void place(const BodyModel& body, const Eigen::Isometry3d& motion, Eigen::VectorXd& q,
+           Eigen::VectorXd& v);
+
+inline Eigen::Vector3d vertex_position(const BodyModel& body, const Eigen::VectorXd& q,
+                                       int vertex) {
+  return q.segment<3>(body.dof_offset + 3 * vertex);
+}
+// The largest displacement of the body's vertices under the DOF change dq.
+double max_displacement(const BodyModel& body, const Eigen::VectorXd& dq);
+
+// Adds h^2 g to the inertia target of every vertex; returns the body's weight |m g| (N).
+double add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
+                   Eigen::VectorXd& q_tilde);
+
+// The lumped-mass-weighted mean of the body's per-vertex 3-vectors (positions or velocities).
+Eigen::Vector3d mass_weighted_mean(const BodyModel& body, const Eigen::VectorXd& values);
+// The rotation of the best rigid fit of the vertices to the rest shape.
+Eigen::Matrix3d rotation(const BodyModel& body, const Eigen::VectorXd& q);
+// The smallest det F over the body's tets (1 without tets).
+double min_volume_ratio(const BodyModel& body, const Eigen::VectorXd& q);
+
+// 1/2 |x - x_tilde|_M^2 added to `sum`; `scale` times its gradient and (diagonal) Hessian
+// added to the gradient and the lower-triangle triplets.
+void add_inertia_energy(const BodyModel& body, const Eigen::VectorXd& q,
+                        const Eigen::VectorXd& q_tilde, double& sum);
+void add_inertia_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
+                             const Eigen::VectorXd& q_tilde, double scale,
+                             Eigen::VectorXd& gradient,
+                             std::vector<Eigen::Triplet<double>>& hessian);
+// The elastic energy added to `sum`; `scale` times its gradient and PSD-projected Hessian added
+// to the gradient and the lower-triangle triplets.
+void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double& sum);
+void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
+                             Eigen::VectorXd& gradient,
+                             std::vector<Eigen::Triplet<double>>& hessian);
+
+}  // namespace grip::solver::fem

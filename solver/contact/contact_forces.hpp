@@ -1,0 +1,37 @@
+#pragma once
+// The contact forces of a configuration, as the trial and the dataset report them: per collision
+// vertex, and summed per pair of bodies.
+#include <Eigen/Core>
+#include <limits>
+#include <vector>
+
+#include "solver/model.hpp"
+#include "solver/potential/incremental_potential.hpp"
+
+namespace grip::solver {
+
+// The total contact force (barrier and friction) that body_b exerts on body_a, body_a < body_b.
+struct PairForce {
+  int body_a = -1;
+  int body_b = -1;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // on body_a, N
+  double normal_force = 0.0;  // sum of the contacts' barrier force magnitudes, N
+};
+
+// Contact forces on each collision vertex (rows follow Model::collision()), N.
+struct VertexContactForces {
+  Vertices normal;    // barrier (normal) force
+  Vertices friction;  // lagged friction force of the last step
+};
+
+// Barrier forces of the contacts at `positions` and the friction forces of the potential's
+// lagged contacts there.
+VertexContactForces vertex_contact_forces(const Model& model, const IncrementalPotential& potential,
+                                          const Vertices& positions);
+
+// Per pair of distinct bodies, the forces as above, in (body_a, body_b) order; also the
+// smallest distance over the contacts within d_hat (infinity without one).
+std::vector<PairForce> pair_forces(const Model& model, const IncrementalPotential& potential,
+                                   const Vertices& positions, double& min_distance);
+
+}  // namespace grip::solver

@@ -1,0 +1,25 @@
+#include "solver/contact/friction_lag.hpp"
+
+#include "solver/contact/candidates.hpp"
+#include "solver/contact/contact_frame.hpp"
+
+namespace grip::solver {
+
+std::vector<FrictionContact> lag_friction(const Model& model, const BarrierTerm& barrier,
+                                          const Vertices& positions, bool at_zero_mu) {
+  std::vector<FrictionContact> contacts;
+  const double d_hat = model.sim().d_hat;
+  for (const ContactCandidate& c : find_contact_candidates(model, positions, positions, d_hat)) {
+    if (c.friction <= 0.0 && !at_zero_mu) continue;  // none where mu = 0
+    const ContactForce force = barrier.contact_force(c, positions);
+    if (force.magnitude <= 0.0) continue;
+    Eigen::Vector3d x[4];
+    for (int i = 0; i < 4; ++i) x[i] = positions.row(c.vertex[i]);
+    const ContactFrame frame = c.edge_edge ? edge_edge_frame(x) : point_triangle_frame(x);
+    contacts.push_back(
+        {c.vertex, c.edge_edge, c.friction * force.magnitude, frame.tangent_operator()});
+  }
+  return contacts;
+}
+
+}  // namespace grip::solver

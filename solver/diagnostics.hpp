@@ -1,0 +1,30 @@
+#pragma once
+// What an environment reports about its steps: the last step's diagnostics (Newton and line
+// search counts, closest contact, worst tet, contact forces per pair of bodies) and totals.
+#include <limits>
+#include <vector>
+
+#include "solver/contact/contact_forces.hpp"
+
+namespace grip::solver {
+
+struct StepDiagnostics {
+  int newton_iterations = 0;
+  int line_search_steps = 0;  // Armijo halvings and inversion halvings
+  double min_distance = std::numeric_limits<double>::infinity();  // over pairs within d_hat
+  double min_volume_ratio = 1.0;  // smallest det F over all tets (1 without FEM)
+  double kappa = 0.0;
+  int friction_contacts = 0;  // lagged friction contacts of the last lag
+  // The infinity norm of the free DOFs' gradient at the end, scaled by 1/h^2 (N).
+  double residual = 0.0;
+  std::vector<PairForce> contact_forces;
+};
+
+// Totals over every step an environment has taken.
+struct EnvironmentStatistics {
+  long steps = 0;
+  long newton_iterations = 0;
+  int max_step_iterations = 0;  // most Newton iterations in one step
+};
+
+}  // namespace grip::solver

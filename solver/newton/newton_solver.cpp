@@ -1,0 +1,183 @@
+#include "solver/newton/newton_solver.hpp"
+
+#include <cmath>
+
+#include "solver/body/body.hpp"
+#include "solver/contact/candidates.hpp"
+#include "solver/contact/friction_lag.hpp"
+#include "solver/newton/line_search.hpp"
+
+namespace grip::solver {
+namespace {
+
+// The largest displacement of any vertex under the DOF change dq (m).
+double max_vertex_displacement(const Model& model, const Eigen::VectorXd& dq) {
+  double largest = 0.0;
+  for (const BodyModel& body : model.bodies()) {
+    largest = std::max(largest, max_displacement(body, dq));
+  }
+  return largest;
+}
+
+}  // namespace
+
+NewtonSolver::NewtonSolver(const Model& model)
+    : model_(model), potential_(model), cholesky_(model.ordering()) {}
+
+void NewtonSolver::use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, int min_dofs) {
+  linear_solver_ = std::move(solver);
+  linear_solver_min_dofs_ = min_dofs;
+}
+
+void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonStep& step,
+                              bool friction_at_zero_mu) {
+  // The inertia target: x_tilde = x + h v + h^2 M^-1 f_gravity.
+  const double h = model_.sim().dt;
+  Eigen::VectorXd q_tilde = state.q + h * state.v;
+  for (const BodyModel& body : model_.bodies()) {
+    step.weight += add_gravity(body, state.gravity, h, q_tilde);
+  }
+  potential_.begin_step(q_tilde, start, state.kappa);
+  potential_.set_friction(
+      solver::lag_friction(model_, potential_.barrier(), start, friction_at_zero_mu));
+}
+
+void NewtonSolver::lag_friction(const State& state, const NewtonStep& step,
+                                bool friction_at_zero_mu) {
+  const Vertices x = collision_positions(model_, state.q, step.targets, step.progress);
+  potential_.set_friction(solver::lag_friction(model_, potential_.barrier(), x, friction_at_zero_mu));
+}
+
+NewtonSolver::Outcome NewtonSolver::iterate(State& state, NewtonStep& step,
+                                            StepDiagnostics& diagnostics, std::string& failure) {
+  const bool first = step.iteration++ == 0;
+  System system;
+  if (!assemble(state, step, system, failure)) return Outcome::kFailed;
+  // The residual's scale: this solve's first residual, and never less than the weight of
+  // the dynamic bodies, so a body resting in equilibrium is not asked for round-off.
+  const double h = model_.sim().dt;
+  if (first) step.first_residual = std::max(system.residual, step.weight * h * h);
+  diagnostics.residual = system.residual / (h * h);
+  Eigen::VectorXd p;
+  if (!solve(step, system, p, failure)) return Outcome::kFailed;
+  if (converged(step, system, p)) return Outcome::kConverged;
+  double alpha = 1.0;
+  if (!filter_step(state, step, system, p, alpha, diagnostics, failure)) return Outcome::kFailed;
+  commit(state, step, p, alpha);
+  return Outcome::kContinue;
+}
+
+bool NewtonSolver::assemble(const State& state, NewtonStep& step, System& system,
+                            std::string& failure) {
+  const SimParameters& sim = model_.sim();
+  system.x = collision_positions(model_, state.q, step.targets, step.progress);
+  system.near = find_contact_candidates(model_, system.x, system.x, sim.d_hat);
+  system.moving = step.progress < 1.0;
+  const Vertices kinematic_motion =
+      collision_positions(model_, state.q, step.targets, 1.0) - system.x;
+  potential_.derivatives(state.q, system.x, system.near, step.gradient, step.triplets,
+                         system.moving ? &kinematic_motion : nullptr, &step.kinematic_force);
+  if (!step.gradient.allFinite()) {
+    failure = "non-finite gradient in Newton iteration";
+    return false;
+  }
+  eliminate_prescribed(state, step, system);
+  return true;
+}
+
+void NewtonSolver::eliminate_prescribed(const State& state, NewtonStep& step,
+                                        System& system) const {
+  const int n = model_.dof_count();
+  const std::vector<char>& prescribed = model_.prescribed();
+  // The prescribed DOFs' motion still to come.
+  Eigen::VectorXd lift = Eigen::VectorXd::Zero(n);
+  if (system.moving) {
+    for (int i = 0; i < n; ++i) {
+      if (prescribed[i]) lift[i] = step.targets.prescribed_target[i] - state.q[i];
+    }
+  }
+  system.rhs = -step.gradient - step.kinematic_force;
+  step.free_triplets.clear();
+  for (const auto& e : step.triplets) {
+    const int r = static_cast<int>(e.row()), c = static_cast<int>(e.col());
+    if (system.moving) {
+      system.rhs[r] -= e.value() * lift[c];
+      if (r != c) system.rhs[c] -= e.value() * lift[r];
+    }
+    if (!prescribed[r] && !prescribed[c]) step.free_triplets.push_back(e);
+  }
+  system.residual = 0.0;
+  for (int i = 0; i < n; ++i) {
+    if (prescribed[i]) {
+      step.free_triplets.emplace_back(i, i, 1.0);
+      system.rhs[i] = lift[i];
+    } else {
+      system.residual = std::max(system.residual, std::abs(step.gradient[i]));
+    }
+  }
+}
+
+bool NewtonSolver::solve(NewtonStep& step, const System& system, Eigen::VectorXd& p,
+                         std::string& failure) {
+  const int n = model_.dof_count();
+  LinearSystemSolver& solver =
+      linear_solver_ && n >= linear_solver_min_dofs_ ? *linear_solver_ : cholesky_;
+  if (!solver.factorize(assembly_.assemble(n, step.free_triplets)) ||
+      !solver.solve(system.rhs, p)) {
+    failure = "Newton system not solved: " + solver.failure();
+    return false;
+  }
+  if (!p.allFinite()) {
+    failure = "non-finite Newton step";
+    return false;
+  }
+  return true;
+}
+
+// Converged: the residual fell by newton_tol against its scale, or the step would change no
+// vertex's velocity by more than newton_velocity_tol. A test on the step's length alone is not
+// enough: near d_hat the barrier (and sticking friction) is so stiff that a micrometre off
+// leaves the normal force, and friction's lagged lambda, wrong.
+bool NewtonSolver::converged(const NewtonStep& step, const System& system,
+                             const Eigen::VectorXd& p) const {
+  const SimParameters& sim = model_.sim();
+  if (system.moving || step.held) return false;
+  return system.residual <= sim.newton_tol * step.first_residual ||
+         max_vertex_displacement(model_, p) <= sim.newton_velocity_tol * sim.dt;
+}
+
+// CCD's safe fraction of the step, then positive volumes, then (once the prescribed motion is
+// done) Armijo on the incremental potential.
+bool NewtonSolver::filter_step(const State& state, const NewtonStep& step, const System& system,
+                               const Eigen::VectorXd& p, double& alpha,
+                               StepDiagnostics& diagnostics, std::string& failure) const {
+  const SimParameters& sim = model_.sim();
+  const Vertices x_end = collision_positions(model_, state.q + p, step.targets, 1.0);
+  const std::vector<ContactCandidate> swept =
+      find_contact_candidates(model_, system.x, x_end, sim.d_hat);
+  alpha = collision_free_fraction(swept, system.x, x_end, sim.ccd_rescaling);
+  if (!(alpha > 0.0)) {
+    failure = "continuous collision detection allows no motion";
+    return false;
+  }
+  if (!halve_until_no_inversion(model_, state.q, p, alpha, diagnostics.line_search_steps)) {
+    failure = "no step keeps every tetrahedron positively oriented";
+    return false;
+  }
+  if (system.moving) return true;
+  const double energy = potential_.energy(state.q, system.x, swept);
+  if (!armijo(potential_, model_, step.targets, swept, state.q, p, energy, step.gradient.dot(p),
+              step.held, alpha, diagnostics.line_search_steps)) {
+    failure = "line search cannot decrease the incremental potential";
+    return false;
+  }
+  return true;
+}
+
+void NewtonSolver::commit(State& state, NewtonStep& step, const Eigen::VectorXd& p,
+                          double alpha) {
+  state.q += alpha * p;
+  step.progress = alpha >= 1.0 ? 1.0 : step.progress + alpha * (1.0 - step.progress);
+}
+
+}  // namespace grip::solver

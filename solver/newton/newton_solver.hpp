@@ -1,0 +1,89 @@
+#pragma once
+// Projected Newton on one environment's incremental potential, one iteration at a time, as named
+// stages: find contacts, assemble (pinned DOFs eliminated), solve, test convergence, filter the
+// step (CCD, inversion, Armijo), commit. The solver holds what is reused from one iteration to
+// the next (the potential's terms, the assembly pattern, the factorizations); the step under way
+// is a NewtonStep, and the environment's state a State.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/diagnostics.hpp"
+#include "solver/linear/linear_system_solver.hpp"
+#include "solver/linear/sparse_assembly.hpp"
+#include "solver/linear/sparse_cholesky.hpp"
+#include "solver/model.hpp"
+#include "solver/newton/step_targets.hpp"
+#include "solver/potential/incremental_potential.hpp"
+#include "solver/state.hpp"
+
+namespace grip::solver {
+
+// Where a step under way stands: its targets, how much of the prescribed motion is done, which
+// friction lag and Newton iteration it is in, and the residual scale of the current solve.
+struct NewtonStep {
+  StepTargets targets;
+  double progress = 0.0;
+  int lag = 0;
+  int iteration = 0;  // within the current lag's solve
+  bool held = false;  // converged, held open (StepPolicy::freeze_converged off)
+  double first_residual = 0.0;
+  double weight = 0.0;  // N, of the dynamic bodies under the current gravity
+  Eigen::VectorXd gradient;
+  Eigen::VectorXd kinematic_force;
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<Eigen::Triplet<double>> free_triplets;
+};
+
+class NewtonSolver {
+ public:
+  enum class Outcome { kContinue, kConverged, kFailed };
+
+  explicit NewtonSolver(const Model& model);
+
+  // Systems of at least `min_dofs` rows are solved by `solver` instead of the own Cholesky.
+  void use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, int min_dofs);
+
+  // The step's constants: its inertia target under `state`'s gravity (and the weight it
+  // carries), the potential's start positions and kappa, and the first friction lag.
+  void begin_step(const State& state, const Vertices& start, NewtonStep& step,
+                  bool friction_at_zero_mu);
+  // A further friction lag at the step's current positions.
+  void lag_friction(const State& state, const NewtonStep& step, bool friction_at_zero_mu);
+
+  // One Newton iteration from state.q. kFailed sets `failure`.
+  Outcome iterate(State& state, NewtonStep& step, StepDiagnostics& diagnostics,
+                  std::string& failure);
+
+  const IncrementalPotential& potential() const { return potential_; }
+
+ private:
+  // The Newton system at the current iterate, pinned DOFs eliminated:
+  // H_ff p_f = -(g_f + H_fp lift_p + H_fk dk), p_p = lift_p.
+  struct System {
+    Vertices x;                               // collision vertices now
+    std::vector<ContactCandidate> near;       // within d_hat of them
+    Eigen::VectorXd rhs;
+    double residual = 0.0;                    // largest |g| over the free DOFs
+    bool moving = false;                      // prescribed motion still to come
+  };
+  bool assemble(const State& state, NewtonStep& step, System& system, std::string& failure);
+  void eliminate_prescribed(const State& state, NewtonStep& step, System& system) const;
+  bool solve(NewtonStep& step, const System& system, Eigen::VectorXd& p, std::string& failure);
+  bool converged(const NewtonStep& step, const System& system, const Eigen::VectorXd& p) const;
+  bool filter_step(const State& state, const NewtonStep& step, const System& system,
+                   const Eigen::VectorXd& p, double& alpha, StepDiagnostics& diagnostics,
+                   std::string& failure) const;
+  static void commit(State& state, NewtonStep& step, const Eigen::VectorXd& p, double alpha);
+
+  const Model& model_;
+  IncrementalPotential potential_;
+  SparseAssembly assembly_;
+  SparseCholesky cholesky_;
+  std::shared_ptr<LinearSystemSolver> linear_solver_;  // null: cholesky_ solves every system
+  int linear_solver_min_dofs_ = 0;
+};
+
+}  // namespace grip::solver

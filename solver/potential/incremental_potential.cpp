@@ -1,0 +1,41 @@
+#include "solver/potential/incremental_potential.hpp"
+
+namespace grip::solver {
+
+IncrementalPotential::IncrementalPotential(const Model& model)
+    : model_(model), inertia_(model), elasticity_(model), barrier_(model), friction_(model) {}
+
+void IncrementalPotential::begin_step(Eigen::VectorXd q_tilde, Vertices start_positions,
+                                      double kappa) {
+  inertia_.set_target(std::move(q_tilde));
+  barrier_.set_kappa(kappa);
+  friction_.begin_step(std::move(start_positions));
+}
+
+double IncrementalPotential::energy(const Eigen::VectorXd& q, const Vertices& positions,
+                                    const std::vector<ContactCandidate>& candidates) const {
+  const PotentialPoint at{q, positions, candidates};
+  double inertia = 0.0;
+  inertia_.add_energy(at, inertia);
+  double potential = 0.0;
+  for (const PotentialTerm* term : potential_energies()) term->add_energy(at, potential);
+  return inertia + model_.sim().dt * model_.sim().dt * potential;
+}
+
+void IncrementalPotential::derivatives(const Eigen::VectorXd& q, const Vertices& positions,
+                                       const std::vector<ContactCandidate>& candidates,
+                                       Eigen::VectorXd& gradient,
+                                       std::vector<Eigen::Triplet<double>>& hessian,
+                                       const Vertices* kinematic_motion,
+                                       Eigen::VectorXd* kinematic_force) const {
+  gradient.setZero(model_.dof_count());
+  hessian.clear();
+  if (kinematic_force) kinematic_force->setZero(model_.dof_count());
+  const PotentialPoint at{q, positions, candidates};
+  PotentialDerivatives out{gradient, hessian, kinematic_motion, kinematic_force};
+  inertia_.add_derivatives(at, 1.0, out);
+  const double h2 = model_.sim().dt * model_.sim().dt;
+  for (const PotentialTerm* term : potential_energies()) term->add_derivatives(at, h2, out);
+}
+
+}  // namespace grip::solver

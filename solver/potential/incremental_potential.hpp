@@ -1,0 +1,62 @@
+#pragma once
+// The incremental potential of one implicit Euler step (IPC):
+//   E(x) = 1/2 |x - x_tilde|_M^2 + h^2 [ elasticity + kappa sum_k b(d_k)
+//                                        + sum_k mu lambda_k f0(|u_k|) ]
+// the sum of an inertia term and three potential-energy terms (potential/*_term.hpp). kappa is a
+// stiffness (N/m) and lambda_k a force (N): at equilibrium M (x - x_tilde) / h^2 balances the
+// physical forces. Derivatives are per element, projected to positive semi-definite before they
+// are summed (projected Newton).
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <array>
+#include <vector>
+
+#include "solver/contact/candidates.hpp"
+#include "solver/model.hpp"
+#include "solver/potential/barrier_term.hpp"
+#include "solver/potential/body_terms.hpp"
+#include "solver/potential/friction_term.hpp"
+
+namespace grip::solver {
+
+class IncrementalPotential {
+ public:
+  explicit IncrementalPotential(const Model& model);
+
+  // The step's constants: inertia target, start positions of the collision vertices and the
+  // barrier stiffness. Clears the friction contacts.
+  void begin_step(Eigen::VectorXd q_tilde, Vertices start_positions, double kappa);
+  // The contacts frozen at this friction lag iteration.
+  void set_friction(std::vector<FrictionContact> friction) {
+    friction_.set_contacts(std::move(friction));
+  }
+
+  // positions: the collision vertices at q (kinematic ones where the step has moved them).
+  double energy(const Eigen::VectorXd& q, const Vertices& positions,
+                const std::vector<ContactCandidate>& candidates) const;
+
+  // The gradient, and the lower triangle of the PSD-projected Hessian as triplets; with
+  // `kinematic_motion`, also the force it adds to first order (PotentialDerivatives).
+  void derivatives(const Eigen::VectorXd& q, const Vertices& positions,
+                   const std::vector<ContactCandidate>& candidates, Eigen::VectorXd& gradient,
+                   std::vector<Eigen::Triplet<double>>& hessian,
+                   const Vertices* kinematic_motion = nullptr,
+                   Eigen::VectorXd* kinematic_force = nullptr) const;
+
+  const BarrierTerm& barrier() const { return barrier_; }
+  const FrictionTerm& friction() const { return friction_; }
+
+ private:
+  // The terms multiplied by h^2, in the order they are summed.
+  std::array<const PotentialTerm*, 3> potential_energies() const {
+    return {&elasticity_, &barrier_, &friction_};
+  }
+
+  const Model& model_;
+  InertiaTerm inertia_;
+  ElasticityTerm elasticity_;
+  BarrierTerm barrier_;
+  FrictionTerm friction_;
+};
+
+}  // namespace grip::solver
