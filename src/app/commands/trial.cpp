@@ -48,8 +48,6 @@ std::vector<std::size_t> parse_indices(const std::string& text, std::size_t coun
   return indices;
 }
 
-}
-
 // Runs the candidates as one batch with `run(scene, grasps, options)`, optionally one by one
 // too, writes the VTK series and the report; 1 when a solo run differs from the batch.
 template <class Scene, class Grasp, class Run>
