@@ -12,7 +12,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev
   libsuitesparse-dev libopenblas0-pthread
   libeigen3-dev libspdlog-dev libfmt-dev libtbb-dev
-  libtomlplusplus-dev libcli11-dev liburdfdom-dev nlohmann-json3-dev
+  libtomlplusplus-dev libcli11-dev liburdfdom-dev clang-format nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-matplotlib python3-numpy
 )
