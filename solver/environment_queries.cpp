@@ -30,9 +30,7 @@ Eigen::Matrix3d Environment::rotation(int index) const {
   return body_rotation(model_->bodies()[index], index, state_);
 }
 
-double Environment::min_volume_ratio() const {
-  return solver::min_volume_ratio(*model_, state_.q);
-}
+double Environment::min_volume_ratio() const { return solver::min_volume_ratio(*model_, state_.q); }
 
 VertexContactForces Environment::vertex_contact_forces() const {
   return solver::vertex_contact_forces(*model_, newton_.potential(), collision_positions());

@@ -119,7 +119,8 @@ void Model::build_pins() {
       const BodyDescription& mount = scene_.bodies[pin.kinematic_body];
       const Eigen::Matrix3d mount_r = mount.pose.rotation.normalized().toRotationMatrix();
       for (int v : pin.vertices) {
-        if (v < 0 || v >= body.vertices.rows()) invalid_body(body, "pins a vertex it does not have");
+        if (v < 0 || v >= body.vertices.rows())
+          invalid_body(body, "pins a vertex it does not have");
         const BodyModel& b = bodies_[index];
         const Eigen::Vector3d world = b.rest.row(v);
         pins_.push_back(

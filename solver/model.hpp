@@ -49,18 +49,18 @@ struct BodyModel {
 
 // The surface all contacts are found on: vertices of every body, and their edges and faces.
 struct CollisionMesh {
-  std::vector<int> vertex_body;   // body of each collision vertex
-  std::vector<int> vertex_local;  // its index among the body's rest vertices
+  std::vector<int> vertex_body;           // body of each collision vertex
+  std::vector<int> vertex_local;          // its index among the body's rest vertices
   std::vector<std::array<int, 2>> edges;  // collision vertex indices
   std::vector<std::array<int, 3>> faces;
   int size() const { return static_cast<int>(vertex_body.size()); }
 };
 
 struct PinnedVertex {
-  int body = -1;             // the FEM body
-  int vertex = -1;           // its local vertex
+  int body = -1;    // the FEM body
+  int vertex = -1;  // its local vertex
   int kinematic_body = -1;
-  Eigen::Vector3d offset;    // the vertex in the kinematic body's frame
+  Eigen::Vector3d offset;  // the vertex in the kinematic body's frame
 };
 
 class Model {

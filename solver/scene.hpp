@@ -53,16 +53,16 @@ struct Pin {
 struct BodyDescription {
   std::string name;
   BodyType type = BodyType::kAffine;
-  Vertices vertices;      // in the body frame, metres
-  Triangles triangles;    // closed, outward boundary surface (of the tet mesh for FEM)
-  Tetrahedra tets;        // FEM only, positively oriented
-  Pose pose;              // where the body frame starts
+  Vertices vertices;    // in the body frame, metres
+  Triangles triangles;  // closed, outward boundary surface (of the tet mesh for FEM)
+  Tetrahedra tets;      // FEM only, positively oriented
+  Pose pose;            // where the body frame starts
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          // initial, of the centre of mass
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // initial, rad/s, world frame
-  Script script;          // kinematic only
+  Script script;                                               // kinematic only
   Material material;
   double orthogonality_stiffness = 1e9;  // affine only, Pa (docs/simulation.md says why)
-  std::vector<Pin> pins;  // FEM only
+  std::vector<Pin> pins;                 // FEM only
 };
 
 // The friction coefficient of one pair of bodies, overriding the default combination
@@ -74,17 +74,17 @@ struct ContactOverride {
 };
 
 struct SimParameters {
-  double dt = 0.01;                                       // s
+  double dt = 0.01;                                        // s
   Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);  // m/s^2
-  double d_hat = 1e-3;                                    // m, barrier activation distance
-  double kappa = 3e6;                                     // N/m, barrier stiffness
-  bool adaptive_kappa = false;  // start at kappa, double it when contacts come too close
-  double eps_v = 1e-3;          // m/s, static-to-dynamic friction transition
-  double newton_tol = 1e-3;     // relative: residual against its first value (or the weight)
+  double d_hat = 1e-3;                                     // m, barrier activation distance
+  double kappa = 3e6;                                      // N/m, barrier stiffness
+  bool adaptive_kappa = false;        // start at kappa, double it when contacts come too close
+  double eps_v = 1e-3;                // m/s, static-to-dynamic friction transition
+  double newton_tol = 1e-3;           // relative: residual against its first value (or the weight)
   double newton_velocity_tol = 1e-6;  // m/s: a Newton step changing no velocity more is done
   int max_newton_iters = 100;
   int friction_lag_iterations = 1;
-  double ccd_rescaling = 0.1;   // ACCD's s: keep at least s of each gap per line search
+  double ccd_rescaling = 0.1;  // ACCD's s: keep at least s of each gap per line search
 };
 
 struct SceneDescription {

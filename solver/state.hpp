@@ -10,8 +10,8 @@
 namespace grip::solver {
 
 struct State {
-  Eigen::VectorXd q;  // DOFs: 3 per FEM vertex, 12 per affine body
-  Eigen::VectorXd v;  // their velocities
+  Eigen::VectorXd q;        // DOFs: 3 per FEM vertex, 12 per affine body
+  Eigen::VectorXd v;        // their velocities
   std::vector<Pose> poses;  // per body; kinematic bodies' current poses (others unused)
   std::vector<Eigen::Vector3d> kinematic_velocity;  // per body, over the last step
   std::vector<Script> scripts;                      // per body

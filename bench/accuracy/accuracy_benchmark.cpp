@@ -97,12 +97,11 @@ void write_csv(const fs::path& path, const std::vector<AccuracyRow>& rows) {
     }
     csv << r.scene << ',' << r.sweep << ',' << number(r.value) << ',' << r.is_default << ','
         << fmt::format("{:.4f}", r.seconds) << ',' << fmt::format("{:.4f}", r.cpu_seconds) << ','
-        << r.newton_iterations << ',' << r.steps << ','
-        << r.held << ',' << r.error.candidates << ',' << fmt::format("{:.6g}", r.error.translation)
-        << ',' << fmt::format("{:.6g}", r.error.rotation) << ','
-        << fmt::format("{:.6g}", r.error.slip) << ',' << fmt::format("{:.6g}", r.error.vertices)
-        << ',' << r.error.agreeing << ',' << r.on_sweep_front << ',' << r.on_scene_front << ','
-        << runs << '\n';
+        << r.newton_iterations << ',' << r.steps << ',' << r.held << ',' << r.error.candidates
+        << ',' << fmt::format("{:.6g}", r.error.translation) << ','
+        << fmt::format("{:.6g}", r.error.rotation) << ',' << fmt::format("{:.6g}", r.error.slip)
+        << ',' << fmt::format("{:.6g}", r.error.vertices) << ',' << r.error.agreeing << ','
+        << r.on_sweep_front << ',' << r.on_scene_front << ',' << runs << '\n';
   }
 }
 
@@ -124,7 +123,8 @@ void write_markdown(const fs::path& path, const std::vector<AccuracyRow>& rows,
   md << "- **bimanual**: not run; there is no bimanual trial scene in the code.\n";
   for (const AccuracyScene& s : scenes) {
     md << "\n### " << s.name << "\n\n"
-       << "| sweep | value | wall (s) | CPU (s) | Newton it. | steps | pose (mm) | rotation (mrad) | "
+       << "| sweep | value | wall (s) | CPU (s) | Newton it. | steps | pose (mm) | rotation (mrad) "
+          "| "
           "slip (mm) | vertices (mm) | verdicts | front (sweep / scene) |\n"
        << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     for (const AccuracyRow& r : rows) {
@@ -132,9 +132,8 @@ void write_markdown(const fs::path& path, const std::vector<AccuracyRow>& rows,
       const bool reference = r.sweep == "reference";
       md << "| " << r.sweep << " | " << (reference ? "" : number(r.value))
          << (r.is_default ? " (default)" : "") << " | " << fmt::format("{:.2f}", r.seconds) << " | "
-         << fmt::format("{:.2f}", r.cpu_seconds) << " | "
-         << r.newton_iterations << " | " << r.steps << " | "
-         << (reference ? "0" : milli(r.error.translation)) << " | "
+         << fmt::format("{:.2f}", r.cpu_seconds) << " | " << r.newton_iterations << " | " << r.steps
+         << " | " << (reference ? "0" : milli(r.error.translation)) << " | "
          << (reference ? "0" : milli(r.error.rotation)) << " | "
          << (reference ? "0" : milli(r.error.slip)) << " | "
          << (reference ? "0" : milli(r.error.vertices)) << " | " << r.error.agreeing << "/"

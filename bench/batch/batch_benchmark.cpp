@@ -138,7 +138,8 @@ BatchBenchmarkResult run_batch_benchmark(const scene::SceneFile& scene, const st
         << std::setprecision(2) << row.speedup << std::setw(12) << row.newton_iterations
         << std::setw(8) << std::setprecision(3) << row.frozen_fraction << std::setw(9)
         << std::setprecision(2) << row.memory_per_env_mib << std::setw(11)
-        << row.memory_per_added_env_mib << std::setw(11) << (row.identical ? "yes" : "NO") << (row.failed ? "  (failures)" : "") << "\n"
+        << row.memory_per_added_env_mib << std::setw(11) << (row.identical ? "yes" : "NO")
+        << (row.failed ? "  (failures)" : "") << "\n"
         << std::defaultfloat << std::flush;
     result.rows.push_back(row);
   }

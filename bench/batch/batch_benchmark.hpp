@@ -22,20 +22,20 @@ struct BatchBenchmarkOptions {
 
 struct BatchBenchmarkRow {
   int envs = 0;
-  int steps = 0;               // per environment
-  double sequential_s = 0.0;   // wall time, one environment after another, one thread
-  double batched_s = 0.0;      // wall time as one batch on the given threads
-  double speedup = 0.0;        // sequential / batched
-  long newton_iterations = 0;  // over all environments and steps (the same both ways)
+  int steps = 0;                 // per environment
+  double sequential_s = 0.0;     // wall time, one environment after another, one thread
+  double batched_s = 0.0;        // wall time as one batch on the given threads
+  double speedup = 0.0;          // sequential / batched
+  long newton_iterations = 0;    // over all environments and steps (the same both ways)
   double frozen_fraction = 0.0;  // environment-rounds spent frozen / all environment-rounds
-  double memory_mib = 0.0;     // peak resident memory of the batched run (the shared model and
-                               // every environment) above what the process held before it
+  double memory_mib = 0.0;       // peak resident memory of the batched run (the shared model and
+                                 // every environment) above what the process held before it
   double memory_per_env_mib = 0.0;
   // (memory_mib - the 1-environment row's) / (envs - 1): what each environment after the first
   // adds; NaN without a 1-environment row or for it.
   double memory_per_added_env_mib = 0.0;
-  int failed = 0;              // environments that failed (their reasons are logged)
-  bool identical = true;       // batched final states equal the sequential ones bit for bit
+  int failed = 0;         // environments that failed (their reasons are logged)
+  bool identical = true;  // batched final states equal the sequential ones bit for bit
 };
 
 struct BatchBenchmarkResult {

@@ -33,7 +33,8 @@ BodyDescription kinematic_box(const std::string& name, const Eigen::Vector3d& si
 
 BodyDescription affine_box(const std::string& name, const Eigen::Vector3d& size,
                            const Eigen::Vector3d& position, double density) {
-  BodyDescription body = scene::surface_body(name, BodyType::kAffine, geometry::make_box(size), position);
+  BodyDescription body =
+      scene::surface_body(name, BodyType::kAffine, geometry::make_box(size), position);
   body.material.density = density;
   return body;
 }
@@ -250,8 +251,8 @@ HardCase needle_into_soft_block() {
   SceneDescription s;
   s.bodies.push_back(ground());
   s.bodies.push_back(fem_box("block", {0.02, 0.02, 0.02}, 0.004, {0, 0, 0.0105}, 1e5));
-  BodyDescription needle = scene::surface_body("needle", BodyType::kKinematic, cone(0.0003, 0.015, 12),
-                                        {0.0011, 0.0007, kTop + 0.001});
+  BodyDescription needle = scene::surface_body(
+      "needle", BodyType::kKinematic, cone(0.0003, 0.015, 12), {0.0011, 0.0007, kTop + 0.001});
   move_linearly(needle, {0.0011, 0.0007, kTop - 0.003}, 0.2);
   s.bodies.push_back(needle);
   return {"needle_into_soft_block",
@@ -525,15 +526,15 @@ HardCase degenerate_meshes() {
   // Needle and near-zero-area triangles and nearly coplanar faces, on a tilted falling box, a
   // box resting flat, and the slab they land on.
   SceneDescription s;
-  s.bodies.push_back(
-      scene::surface_body("slab", BodyType::kKinematic, degenerate_box({0.2, 0.2, 0.02}), {0, 0, -0.01}));
-  BodyDescription falling = scene::surface_body("falling", BodyType::kAffine,
-                                         degenerate_box({0.02, 0.02, 0.02}), {0.03, 0, 0.018});
+  s.bodies.push_back(scene::surface_body("slab", BodyType::kKinematic,
+                                         degenerate_box({0.2, 0.2, 0.02}), {0, 0, -0.01}));
+  BodyDescription falling = scene::surface_body(
+      "falling", BodyType::kAffine, degenerate_box({0.02, 0.02, 0.02}), {0.03, 0, 0.018});
   falling.pose.rotation =
       about(Eigen::Vector3d::UnitX(), 0.1) * about(Eigen::Vector3d::UnitY(), 0.05);
   s.bodies.push_back(falling);
-  s.bodies.push_back(scene::surface_body("resting", BodyType::kAffine, degenerate_box({0.02, 0.02, 0.02}),
-                                  {-0.03, 0, 0.0105}));
+  s.bodies.push_back(scene::surface_body("resting", BodyType::kAffine,
+                                         degenerate_box({0.02, 0.02, 0.02}), {-0.03, 0, 0.0105}));
   return {"degenerate_meshes",
           "sliver, near-zero-area and nearly coplanar triangles",
           s,

@@ -12,8 +12,8 @@
 #include <iomanip>
 #include <random>
 
-#include "solver/batch/batch.hpp"
 #include "bench/common/subprocess.hpp"
+#include "solver/batch/batch.hpp"
 
 namespace grip::bench {
 namespace {
@@ -168,8 +168,8 @@ std::vector<ModelComparison> run_model_benchmark(const ModelBenchmarkOptions& op
   std::vector<BatchMember> members;
   for (const Eigen::Isometry3d& placement : placements(options.batch_envs)) {
     const bool held = members.size() % 2 == 0;
-    members.push_back({held ? &lean : &frictionless, held ? &lean_scene : &frictionless_scene,
-                       placement});
+    members.push_back(
+        {held ? &lean : &frictionless, held ? &lean_scene : &frictionless_scene, placement});
   }
   char youngs[32];
   std::snprintf(youngs, sizeof youngs, "%.0e", lean.stiff_youngs);
@@ -207,12 +207,12 @@ std::vector<ModelComparison> run_model_benchmark(const ModelBenchmarkOptions& op
         const bool is_lean = (k == 0) == (r % 2 == 0);
         const Variant& variant = is_lean ? comparisons[c].lean : comparisons[c].full;
         const VariantRun run = variant.run();
-        log << "  repeat " << r + 1 << "/" << options.repeats << "  " << comparisons[c].name
-            << ", " << (is_lean ? "lean" : "full") << ": " << std::fixed << std::setprecision(3)
-            << run.wall_s << " s (CPU " << run.cpu_s << " s), " << run.iterations << " Newton iterations, closing force "
-            << std::setprecision(2) << run.results[0].closing_force << " N, cube centre "
-            << std::setprecision(4) << 1e3 * run.results[0].center.transpose() << " mm"
-            << std::defaultfloat << std::endl;
+        log << "  repeat " << r + 1 << "/" << options.repeats << "  " << comparisons[c].name << ", "
+            << (is_lean ? "lean" : "full") << ": " << std::fixed << std::setprecision(3)
+            << run.wall_s << " s (CPU " << run.cpu_s << " s), " << run.iterations
+            << " Newton iterations, closing force " << std::setprecision(2)
+            << run.results[0].closing_force << " N, cube centre " << std::setprecision(4)
+            << 1e3 * run.results[0].center.transpose() << " mm" << std::defaultfloat << std::endl;
         (is_lean ? row.lean_runs : row.full_runs).push_back(run.wall_s);
         (is_lean ? row.lean_cpu_runs : row.full_cpu_runs).push_back(run.cpu_s);
         VariantRun& first = is_lean ? first_lean[c] : first_full[c];
@@ -275,8 +275,9 @@ void write_model_table(std::ostream& out, const std::vector<ModelComparison>& co
   }
   for (const ModelComparison& c : comparisons) {
     if (std::isfinite(c.frozen_fraction)) {
-      out << "\n" << c.name << ": " << std::fixed << std::setprecision(1)
-          << 100.0 * c.frozen_fraction << std::defaultfloat
+      out << "\n"
+          << c.name << ": " << std::fixed << std::setprecision(1) << 100.0 * c.frozen_fraction
+          << std::defaultfloat
           << "% of the frozen batch's environment-rounds were spent frozen. Max vertex error "
              "per environment (um):";
       for (const double error : c.vertex_errors_m) out << " " << micrometres(error);
@@ -289,7 +290,8 @@ void write_model_table(std::ostream& out, const std::vector<ModelComparison>& co
 
 void write_model_csv(std::ostream& out, const std::vector<ModelComparison>& comparisons) {
   out << "comparison,lean,full,lean_dofs,full_dofs,lean_iterations,full_iterations,lean_s,full_s,"
-         "lean_cpu_s,full_cpu_s,center_error_m,rotation_error_rad,vertex_error_m,force_error_relative,frozen_fraction,"
+         "lean_cpu_s,full_cpu_s,center_error_m,rotation_error_rad,vertex_error_m,force_error_"
+         "relative,frozen_fraction,"
          "failed,lean_runs_s,full_runs_s,lean_cpu_runs_s,full_cpu_runs_s\n";
   auto runs = [](const std::vector<double>& values) {
     std::string text;
@@ -302,10 +304,10 @@ void write_model_csv(std::ostream& out, const std::vector<ModelComparison>& comp
   out << std::setprecision(6);
   for (const ModelComparison& c : comparisons) {
     out << csv_field(c.name) << "," << csv_field(c.lean) << "," << csv_field(c.full) << ","
-        << c.lean_dofs << "," << c.full_dofs
-        << "," << c.lean_iterations << "," << c.full_iterations << "," << c.lean_s << ","
-        << c.full_s << "," << c.lean_cpu_s << "," << c.full_cpu_s << "," << c.error.center_m << "," << c.error.rotation_rad << ","
-        << c.error.vertex_m << "," << c.error.force_relative << ",";
+        << c.lean_dofs << "," << c.full_dofs << "," << c.lean_iterations << "," << c.full_iterations
+        << "," << c.lean_s << "," << c.full_s << "," << c.lean_cpu_s << "," << c.full_cpu_s << ","
+        << c.error.center_m << "," << c.error.rotation_rad << "," << c.error.vertex_m << ","
+        << c.error.force_relative << ",";
     if (std::isfinite(c.frozen_fraction)) out << c.frozen_fraction;
     out << "," << (c.failure.empty() ? 0 : 1) << "," << runs(c.lean_runs) << ","
         << runs(c.full_runs) << "," << runs(c.lean_cpu_runs) << "," << runs(c.full_cpu_runs)

@@ -18,9 +18,9 @@
 namespace grip::bench {
 
 struct ModelBenchmarkOptions {
-  int repeats = 5;     // runs per variant, interleaved; the table reports the median
-  int threads = 1;     // of the batch comparison
-  int batch_envs = 8;  // environments of the batch comparison, each cube placed its own way
+  int repeats = 5;       // runs per variant, interleaved; the table reports the median
+  int threads = 1;       // of the batch comparison
+  int batch_envs = 8;    // environments of the batch comparison, each cube placed its own way
   SqueezeOptions scene;  // the lean scene every comparison starts from
 };
 
@@ -45,8 +45,8 @@ struct ModelComparison {
   SqueezeError error;  // lean against full at the end (the largest over the batch's environments)
   double frozen_fraction = std::numeric_limits<double>::quiet_NaN();  // the batch's, frozen
   std::vector<double> vertex_errors_m;  // per environment of the batch (one elsewhere)
-  std::string failure;      // a variant's solver failure; empty when both ran through
-  bool reproducible = true;  // every repeat of a variant ended in the same state
+  std::string failure;                  // a variant's solver failure; empty when both ran through
+  bool reproducible = true;             // every repeat of a variant ended in the same state
 };
 
 // Runs the four comparisons, logging each run's progress to `log`.

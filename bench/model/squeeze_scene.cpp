@@ -12,9 +12,9 @@
 namespace grip::bench {
 namespace {
 
-constexpr double kPadDepth = 0.01;    // m, along the closing axis
-constexpr double kPadHeight = 0.06;   // m, across it (the pads overhang the cube)
-constexpr double kGravity = 9.81;     // m/s^2, along -z once the pads hold
+constexpr double kPadDepth = 0.01;   // m, along the closing axis
+constexpr double kPadHeight = 0.06;  // m, across it (the pads overhang the cube)
+constexpr double kGravity = 9.81;    // m/s^2, along -z once the pads hold
 
 solver::Pose at(const Eigen::Vector3d& position) {
   solver::Pose pose;
@@ -145,8 +145,8 @@ SqueezeResult squeeze_result(const SqueezeScene& scene, const solver::Environmen
   result.failed = environment.failed();
   result.failure = environment.failure();
   const solver::Model& model = environment.model();
-  result.free_dofs = model.dof_count() - static_cast<int>(std::count(
-                                             model.prescribed().begin(), model.prescribed().end(), 1));
+  result.free_dofs = model.dof_count() - static_cast<int>(std::count(model.prescribed().begin(),
+                                                                     model.prescribed().end(), 1));
   result.newton_iterations = environment.statistics().newton_iterations;
   const solver::Vertices body = environment.body_vertices(0);
   result.object_surface.resize(scene.object_surface.size(), 3);
@@ -155,7 +155,8 @@ SqueezeResult squeeze_result(const SqueezeScene& scene, const solver::Environmen
   }
   result.center = environment.center_of_mass(0);
   result.rotation = environment.rotation(0);
-  result.closing_force = 0.5 * (pad_force(scene, environment, 0) + pad_force(scene, environment, 1));
+  result.closing_force =
+      0.5 * (pad_force(scene, environment, 0) + pad_force(scene, environment, 1));
   result.friction_contacts = environment.last_step().friction_contacts;
   result.dofs = environment.dofs();
   return result;
@@ -186,9 +187,10 @@ SqueezeError squeeze_error(const SqueezeResult& lean, const SqueezeResult& full)
   const double cosine = 0.5 * ((lean.rotation.transpose() * full.rotation).trace() - 1.0);
   error.rotation_rad = std::acos(std::clamp(cosine, -1.0, 1.0));
   error.vertex_m = (lean.object_surface - full.object_surface).rowwise().norm().maxCoeff();
-  error.force_relative = full.closing_force > 0.0
-                             ? std::abs(lean.closing_force - full.closing_force) / full.closing_force
-                             : 0.0;
+  error.force_relative =
+      full.closing_force > 0.0
+          ? std::abs(lean.closing_force - full.closing_force) / full.closing_force
+          : 0.0;
   return error;
 }
 

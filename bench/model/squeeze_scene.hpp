@@ -33,9 +33,9 @@ struct SqueezeOptions {
   // kappa = 3e6 N/m, 5 um inside d_hat is some 10 N over a face; 0.1 mm, some 100 N per contact).
   double gap = 1.002e-3;
   double closing_speed = 1e-4;  // m/s per pad
-  double stop_force = 10.0;       // N, normal force on the cube that stops a pad
-  int max_closing_steps = 40;     // gravity off, pads closing (at most)
-  int hold_steps = 20;            // gravity on (-z), pads still
+  double stop_force = 10.0;     // N, normal force on the cube that stops a pad
+  int max_closing_steps = 40;   // gravity off, pads closing (at most)
+  int hold_steps = 20;          // gravity on (-z), pads still
 };
 
 // Bodies: 0 the cube, 1 and 2 the pads (+x, -x), then the jaw blocks (FEM pads), then the floor.
@@ -51,16 +51,16 @@ SqueezeScene make_squeeze_scene(const SqueezeOptions& options);
 struct SqueezeResult {
   bool failed = false;
   std::string failure;
-  int free_dofs = 0;               // DOFs solved for (pinned ones left out)
+  int free_dofs = 0;  // DOFs solved for (pinned ones left out)
   long newton_iterations = 0;
-  double wall_s = 0.0;             // the steps alone (not building the model)
-  double cpu_s = 0.0;              // the process's CPU time over the same steps
+  double wall_s = 0.0;              // the steps alone (not building the model)
+  double cpu_s = 0.0;               // the process's CPU time over the same steps
   solver::Vertices object_surface;  // world positions, in the order of the cube's surface
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();     // the cube's centre of mass
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // the cube's centre of mass
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  double closing_force = 0.0;      // N, mean over the pads of the normal force on the cube
-  int friction_contacts = 0;       // lagged friction contacts of the last step
-  Eigen::VectorXd dofs;            // the final state, for bit-for-bit comparisons
+  double closing_force = 0.0;  // N, mean over the pads of the normal force on the cube
+  int friction_contacts = 0;   // lagged friction contacts of the last step
+  Eigen::VectorXd dofs;        // the final state, for bit-for-bit comparisons
 };
 
 // Freezes the end state of `environment` (the cube's pose and surface, the closing force).

@@ -26,9 +26,9 @@ SceneDescription soft_body_in_contact() {
   cube.material.youngs = 1e5;
   scene.bodies.push_back(cube);
   scene.bodies.push_back(scene::surface_body("ground", BodyType::kKinematic,
-                                      geometry::make_box({0.3, 0.3, 0.02}), {0, 0, -0.01}));
+                                             geometry::make_box({0.3, 0.3, 0.02}), {0, 0, -0.01}));
   BodyDescription plate = scene::surface_body("plate", BodyType::kKinematic,
-                                       geometry::make_box({0.1, 0.1, 0.01}), {0, 0, 0.0665});
+                                              geometry::make_box({0.1, 0.1, 0.01}), {0, 0, 0.0665});
   plate.script.velocity = {0, 0, -0.05};
   scene.bodies.push_back(plate);
   return scene;
@@ -39,8 +39,8 @@ SceneDescription affine_body_on_dense_mesh() {
   SceneDescription scene;
   const geometry::SurfaceMesh sphere = geometry::make_sphere(0.2, 100, 50);
   scene.bodies.push_back(scene::surface_body("sphere", BodyType::kKinematic, sphere, {0, 0, -0.2}));
-  scene.bodies.push_back(scene::surface_body("cube", BodyType::kAffine,
-                                      geometry::make_box({0.04, 0.04, 0.04}), {0, 0, 0.0205}));
+  scene.bodies.push_back(scene::surface_body(
+      "cube", BodyType::kAffine, geometry::make_box({0.04, 0.04, 0.04}), {0, 0, 0.0205}));
   return scene;
 }
 

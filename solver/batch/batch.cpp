@@ -73,9 +73,8 @@ BatchStepReport Batch::step() {
              progress[i] != Environment::Progress::kConverged;
     });
     if (iterating.empty()) break;
-    if (std::all_of(iterating.begin(), iterating.end(), [&](int i) {
-          return progress[i] == Environment::Progress::kConverged;
-        })) {
+    if (std::all_of(iterating.begin(), iterating.end(),
+                    [&](int i) { return progress[i] == Environment::Progress::kConverged; })) {
       for_each_iterating([&](int i) { progress[i] = environments_[i]->finish_held_step(); });
       break;
     }

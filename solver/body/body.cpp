@@ -38,9 +38,8 @@ void initial_body_state(const BodyModel& body, int index, const BodyDescription&
                         State& state) {
   state.poses[index] = description.pose;
   state.scripts[index] = description.script;
-  state.kinematic_velocity[index] = description.script.keyframes.empty()
-                                        ? description.script.velocity
-                                        : Eigen::Vector3d::Zero();
+  state.kinematic_velocity[index] =
+      description.script.keyframes.empty() ? description.script.velocity : Eigen::Vector3d::Zero();
   switch (body.type) {
     case BodyType::kFem:
       return fem::initial_state(body, description, state.q, state.v);

@@ -50,8 +50,8 @@ void check(const BodyDescription& description) {
 void build(const BodyDescription& description, BodyModel& body) {
   check(description);
   const Eigen::Matrix3d r = description.pose.rotation.normalized().toRotationMatrix();
-  body.rest = (description.vertices * r.transpose()).rowwise() +
-              description.pose.position.transpose();
+  body.rest =
+      (description.vertices * r.transpose()).rowwise() + description.pose.position.transpose();
   body.vertex_mass = Eigen::VectorXd::Zero(body.rest.rows());
   body.elasticity = kernels::stable_neo_hookean_parameters(description.material.youngs,
                                                            description.material.poisson);
@@ -147,8 +147,8 @@ void add_inertia_energy(const BodyModel& body, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& q_tilde, double& sum) {
   const int n = static_cast<int>(body.rest.rows());
   for (int i = 0; i < n; ++i) {
-    const auto dx = q.segment<3>(body.dof_offset + 3 * i) -
-                    q_tilde.segment<3>(body.dof_offset + 3 * i);
+    const auto dx =
+        q.segment<3>(body.dof_offset + 3 * i) - q_tilde.segment<3>(body.dof_offset + 3 * i);
     sum += 0.5 * body.vertex_mass[i] * dx.squaredNorm();
   }
 }
@@ -182,8 +182,8 @@ void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, do
     const Vector12 g = scale * kernels::tet_stable_neo_hookean_gradient(
                                    x, tet.rest_shape_inverse, tet.rest_volume, body.elasticity);
     const Matrix12 h =
-        scale * kernels::tet_stable_neo_hookean_hessian(x, tet.rest_shape_inverse,
-                                                        tet.rest_volume, body.elasticity, true);
+        scale * kernels::tet_stable_neo_hookean_hessian(x, tet.rest_shape_inverse, tet.rest_volume,
+                                                        body.elasticity, true);
     for (int a = 0; a < 4; ++a) {
       const int row = body.dof_offset + 3 * tet.vertices[a];
       gradient.segment<3>(row) += g.segment<3>(3 * a);

@@ -90,9 +90,8 @@ PrimitiveTrees edge_trees(const Model& model, const Vertices& start, const Verti
   return PrimitiveTrees(model, std::move(boxes), first);
 }
 
-void add_point_triangle_candidates(const Model& model, const Vertices& start,
-                                   const Vertices& end, double margin,
-                                   std::vector<ContactCandidate>& candidates) {
+void add_point_triangle_candidates(const Model& model, const Vertices& start, const Vertices& end,
+                                   double margin, std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
   const PrimitiveTrees faces = face_trees(model, start, end, margin);
   for (int v = 0; v < mesh.size(); ++v) {

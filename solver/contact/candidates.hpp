@@ -12,14 +12,15 @@ namespace grip::solver {
 
 // A broad-phase candidate: two primitives that may come within d_hat.
 struct ContactCandidate {
-  bool edge_edge = false;     // else point-triangle
-  std::array<int, 4> vertex;  // collision vertices: (p, t0, t1, t2) or (ea0, ea1, eb0, eb1)
-  double friction = 0.0;      // mu of the two bodies
-  double mollifier_eps = 0.0; // edge-edge: eps_x of the parallel-edge mollifier (rest lengths)
+  bool edge_edge = false;      // else point-triangle
+  std::array<int, 4> vertex;   // collision vertices: (p, t0, t1, t2) or (ea0, ea1, eb0, eb1)
+  double friction = 0.0;       // mu of the two bodies
+  double mollifier_eps = 0.0;  // edge-edge: eps_x of the parallel-edge mollifier (rest lengths)
 };
 
 // Pairs near the path start -> end (both collision vertex positions, one row per vertex), in a
-// deterministic order. Pairs that share a vertex, and pairs of bodies that never touch, are left out.
+// deterministic order. Pairs that share a vertex, and pairs of bodies that never touch, are left
+// out.
 std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
                                                       const Vertices& end, double d_hat);
 

@@ -52,9 +52,15 @@ GRIP_HD inline ContactFrame point_triangle_frame(const Eigen::Vector3d x[4]) {
   ContactFrame f{{1.0, 0.0, 0.0, 0.0}, {}};
   // The triangle's weights are negative: u is the point's motion relative to the triangle's.
   switch (kernels::point_triangle_distance_type(x[0], x[1], x[2], x[3])) {
-    case T::P_T0: f.weight[1] = -1.0; break;
-    case T::P_T1: f.weight[2] = -1.0; break;
-    case T::P_T2: f.weight[3] = -1.0; break;
+    case T::P_T0:
+      f.weight[1] = -1.0;
+      break;
+    case T::P_T1:
+      f.weight[2] = -1.0;
+      break;
+    case T::P_T2:
+      f.weight[3] = -1.0;
+      break;
     case T::P_E0: {
       const double s = segment_parameter(x[0], x[1], x[2]);
       f.weight[1] = -(1.0 - s), f.weight[2] = -s;
@@ -84,14 +90,29 @@ GRIP_HD inline ContactFrame edge_edge_frame(const Eigen::Vector3d x[4]) {
   using contact_frame_detail::segment_parameter;
   double a = 0.0, b = 0.0;  // closest points ea0 + a (ea1 - ea0) and eb0 + b (eb1 - eb0)
   switch (kernels::edge_edge_distance_type(x[0], x[1], x[2], x[3])) {
-    case T::EA0_EB0: break;
-    case T::EA0_EB1: b = 1.0; break;
-    case T::EA1_EB0: a = 1.0; break;
-    case T::EA1_EB1: a = 1.0, b = 1.0; break;
-    case T::EA_EB0: a = segment_parameter(x[2], x[0], x[1]); break;
-    case T::EA_EB1: a = segment_parameter(x[3], x[0], x[1]), b = 1.0; break;
-    case T::EA0_EB: b = segment_parameter(x[0], x[2], x[3]); break;
-    case T::EA1_EB: a = 1.0, b = segment_parameter(x[1], x[2], x[3]); break;
+    case T::EA0_EB0:
+      break;
+    case T::EA0_EB1:
+      b = 1.0;
+      break;
+    case T::EA1_EB0:
+      a = 1.0;
+      break;
+    case T::EA1_EB1:
+      a = 1.0, b = 1.0;
+      break;
+    case T::EA_EB0:
+      a = segment_parameter(x[2], x[0], x[1]);
+      break;
+    case T::EA_EB1:
+      a = segment_parameter(x[3], x[0], x[1]), b = 1.0;
+      break;
+    case T::EA0_EB:
+      b = segment_parameter(x[0], x[2], x[3]);
+      break;
+    case T::EA1_EB:
+      a = 1.0, b = segment_parameter(x[1], x[2], x[3]);
+      break;
     case T::EA_EB: {
       const Eigen::Vector2d ab = kernels::edge_edge_closest_point(x[0], x[1], x[2], x[3]);
       a = ab[0], b = ab[1];

@@ -14,7 +14,15 @@ enum class PointTriangleDistanceType { P_T0, P_T1, P_T2, P_E0, P_E1, P_E2, P_T }
 // Edge a (ea0, ea1) to edge b (eb0, eb1): endpoint to endpoint, edge interior to endpoint,
 // endpoint to edge interior, or interior to interior (the only case using the line-line distance).
 enum class EdgeEdgeDistanceType {
-  EA0_EB0, EA0_EB1, EA1_EB0, EA1_EB1, EA_EB0, EA_EB1, EA0_EB, EA1_EB, EA_EB
+  EA0_EB0,
+  EA0_EB1,
+  EA1_EB0,
+  EA1_EB1,
+  EA_EB0,
+  EA_EB1,
+  EA0_EB,
+  EA1_EB,
+  EA_EB
 };
 
 // sin^2 of the angle between two edge vectors below which the face normal (or the common normal

@@ -63,20 +63,30 @@ GRIP_HD inline double edge_edge_distance_sq(const Eigen::Vector3d& ea0, const Ei
                                             EdgeEdgeDistanceType type) {
   using T = EdgeEdgeDistanceType;
   switch (type) {
-    case T::EA0_EB0: return point_point_distance_sq(ea0, eb0);
-    case T::EA0_EB1: return point_point_distance_sq(ea0, eb1);
-    case T::EA1_EB0: return point_point_distance_sq(ea1, eb0);
-    case T::EA1_EB1: return point_point_distance_sq(ea1, eb1);
-    case T::EA_EB0: return point_line_distance_sq(eb0, ea0, ea1);
-    case T::EA_EB1: return point_line_distance_sq(eb1, ea0, ea1);
-    case T::EA0_EB: return point_line_distance_sq(ea0, eb0, eb1);
-    case T::EA1_EB: return point_line_distance_sq(ea1, eb0, eb1);
-    default: return line_line_distance_sq(ea0, ea1, eb0, eb1);
+    case T::EA0_EB0:
+      return point_point_distance_sq(ea0, eb0);
+    case T::EA0_EB1:
+      return point_point_distance_sq(ea0, eb1);
+    case T::EA1_EB0:
+      return point_point_distance_sq(ea1, eb0);
+    case T::EA1_EB1:
+      return point_point_distance_sq(ea1, eb1);
+    case T::EA_EB0:
+      return point_line_distance_sq(eb0, ea0, ea1);
+    case T::EA_EB1:
+      return point_line_distance_sq(eb1, ea0, ea1);
+    case T::EA0_EB:
+      return point_line_distance_sq(ea0, eb0, eb1);
+    case T::EA1_EB:
+      return point_line_distance_sq(ea1, eb0, eb1);
+    default:
+      return line_line_distance_sq(ea0, ea1, eb0, eb1);
   }
 }
 
 GRIP_HD inline double edge_edge_distance_sq(const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1,
-                                            const Eigen::Vector3d& eb0, const Eigen::Vector3d& eb1) {
+                                            const Eigen::Vector3d& eb0,
+                                            const Eigen::Vector3d& eb1) {
   return edge_edge_distance_sq(ea0, ea1, eb0, eb1, edge_edge_distance_type(ea0, ea1, eb0, eb1));
 }
 
@@ -101,7 +111,8 @@ GRIP_HD inline Eigen::Matrix<double, 12, 1> edge_edge_distance_sq_gradient(
       return scatter_gradient<4, 3>(point_line_distance_sq_gradient(ea0, eb0, eb1), {0, 2, 3});
     case T::EA1_EB:
       return scatter_gradient<4, 3>(point_line_distance_sq_gradient(ea1, eb0, eb1), {1, 2, 3});
-    default: return line_line_distance_sq_gradient(ea0, ea1, eb0, eb1);
+    default:
+      return line_line_distance_sq_gradient(ea0, ea1, eb0, eb1);
   }
 }
 
@@ -133,7 +144,8 @@ GRIP_HD inline Eigen::Matrix<double, 12, 12> edge_edge_distance_sq_hessian(
       return scatter_hessian<4, 3>(point_line_distance_sq_hessian(ea0, eb0, eb1), {0, 2, 3});
     case T::EA1_EB:
       return scatter_hessian<4, 3>(point_line_distance_sq_hessian(ea1, eb0, eb1), {1, 2, 3});
-    default: return line_line_distance_sq_hessian(ea0, ea1, eb0, eb1);
+    default:
+      return line_line_distance_sq_hessian(ea0, ea1, eb0, eb1);
   }
 }
 

@@ -20,7 +20,8 @@ GRIP_HD inline double edge_edge_mollifier_threshold(const Eigen::Vector3d& ea0_r
 }
 
 // x = ||a x b||^2 = |a|^2 |b|^2 - (a.b)^2 with a = ea1 - ea0, b = eb1 - eb0.
-GRIP_HD inline double edge_edge_cross_norm_sq(const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1,
+GRIP_HD inline double edge_edge_cross_norm_sq(const Eigen::Vector3d& ea0,
+                                              const Eigen::Vector3d& ea1,
                                               const Eigen::Vector3d& eb0,
                                               const Eigen::Vector3d& eb1) {
   return (ea1 - ea0).cross(eb1 - eb0).squaredNorm();
@@ -87,9 +88,11 @@ GRIP_HD inline double edge_edge_mollifier(const Eigen::Vector3d& ea0, const Eige
 }
 
 // grad m = m'(x) grad x
-GRIP_HD inline Eigen::Matrix<double, 12, 1> edge_edge_mollifier_gradient(
-    const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1, const Eigen::Vector3d& eb0,
-    const Eigen::Vector3d& eb1, double eps_x) {
+GRIP_HD inline Eigen::Matrix<double, 12, 1> edge_edge_mollifier_gradient(const Eigen::Vector3d& ea0,
+                                                                         const Eigen::Vector3d& ea1,
+                                                                         const Eigen::Vector3d& eb0,
+                                                                         const Eigen::Vector3d& eb1,
+                                                                         double eps_x) {
   const double x = edge_edge_cross_norm_sq(ea0, ea1, eb0, eb1);
   if (x >= eps_x) return Eigen::Matrix<double, 12, 1>::Zero();
   return edge_edge_mollifier_derivative(x, eps_x) *
@@ -97,9 +100,11 @@ GRIP_HD inline Eigen::Matrix<double, 12, 1> edge_edge_mollifier_gradient(
 }
 
 // hess m = m''(x) grad x grad x^T + m'(x) hess x
-GRIP_HD inline Eigen::Matrix<double, 12, 12> edge_edge_mollifier_hessian(
-    const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1, const Eigen::Vector3d& eb0,
-    const Eigen::Vector3d& eb1, double eps_x) {
+GRIP_HD inline Eigen::Matrix<double, 12, 12> edge_edge_mollifier_hessian(const Eigen::Vector3d& ea0,
+                                                                         const Eigen::Vector3d& ea1,
+                                                                         const Eigen::Vector3d& eb0,
+                                                                         const Eigen::Vector3d& eb1,
+                                                                         double eps_x) {
   const double x = edge_edge_cross_norm_sq(ea0, ea1, eb0, eb1);
   if (x >= eps_x) return Eigen::Matrix<double, 12, 12>::Zero();
   const Eigen::Matrix<double, 12, 1> g = edge_edge_cross_norm_sq_gradient(ea0, ea1, eb0, eb1);

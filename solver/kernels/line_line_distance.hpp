@@ -29,15 +29,15 @@ GRIP_HD inline double line_line_distance_sq(const Eigen::Vector3d& ea0, const Ei
 GRIP_HD inline Eigen::Matrix<double, 12, 1> line_line_distance_sq_gradient(
     const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1, const Eigen::Vector3d& eb0,
     const Eigen::Vector3d& eb1) {
-  return pull_back_gradient<3, 4>(detail::line_line_map(),
-                                  spanned_plane_distance_sq_gradient(eb0 - ea0, ea1 - ea0, eb1 - eb0));
+  return pull_back_gradient<3, 4>(
+      detail::line_line_map(), spanned_plane_distance_sq_gradient(eb0 - ea0, ea1 - ea0, eb1 - eb0));
 }
 
 GRIP_HD inline Eigen::Matrix<double, 12, 12> line_line_distance_sq_hessian(
     const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1, const Eigen::Vector3d& eb0,
     const Eigen::Vector3d& eb1) {
-  return pull_back_hessian<3, 4>(detail::line_line_map(),
-                                 spanned_plane_distance_sq_hessian(eb0 - ea0, ea1 - ea0, eb1 - eb0));
+  return pull_back_hessian<3, 4>(
+      detail::line_line_map(), spanned_plane_distance_sq_hessian(eb0 - ea0, ea1 - ea0, eb1 - eb0));
 }
 
 }  // namespace grip::solver::kernels

@@ -25,11 +25,15 @@ GRIP_HD inline PointEdgeDistanceType point_edge_distance_type(const Eigen::Vecto
 }
 
 GRIP_HD inline double point_edge_distance_sq(const Eigen::Vector3d& p, const Eigen::Vector3d& e0,
-                                             const Eigen::Vector3d& e1, PointEdgeDistanceType type) {
+                                             const Eigen::Vector3d& e1,
+                                             PointEdgeDistanceType type) {
   switch (type) {
-    case PointEdgeDistanceType::P_E0: return point_point_distance_sq(p, e0);
-    case PointEdgeDistanceType::P_E1: return point_point_distance_sq(p, e1);
-    default: return point_line_distance_sq(p, e0, e1);
+    case PointEdgeDistanceType::P_E0:
+      return point_point_distance_sq(p, e0);
+    case PointEdgeDistanceType::P_E1:
+      return point_point_distance_sq(p, e1);
+    default:
+      return point_line_distance_sq(p, e0, e1);
   }
 }
 
@@ -46,7 +50,8 @@ GRIP_HD inline Eigen::Matrix<double, 9, 1> point_edge_distance_sq_gradient(
       return scatter_gradient<3, 2>(point_point_distance_sq_gradient(p, e0), {0, 1});
     case PointEdgeDistanceType::P_E1:
       return scatter_gradient<3, 2>(point_point_distance_sq_gradient(p, e1), {0, 2});
-    default: return point_line_distance_sq_gradient(p, e0, e1);
+    default:
+      return point_line_distance_sq_gradient(p, e0, e1);
   }
 }
 
@@ -63,7 +68,8 @@ GRIP_HD inline Eigen::Matrix<double, 9, 9> point_edge_distance_sq_hessian(
       return scatter_hessian<3, 2>(point_point_distance_sq_hessian(p, e0), {0, 1});
     case PointEdgeDistanceType::P_E1:
       return scatter_hessian<3, 2>(point_point_distance_sq_hessian(p, e1), {0, 2});
-    default: return point_line_distance_sq_hessian(p, e0, e1);
+    default:
+      return point_line_distance_sq_hessian(p, e0, e1);
   }
 }
 

@@ -8,7 +8,8 @@
 
 namespace grip::solver::kernels {
 
-GRIP_HD inline double point_point_distance_sq(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) {
+GRIP_HD inline double point_point_distance_sq(const Eigen::Vector3d& p0,
+                                              const Eigen::Vector3d& p1) {
   return (p0 - p1).squaredNorm();
 }
 

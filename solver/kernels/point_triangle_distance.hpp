@@ -51,23 +51,32 @@ GRIP_HD inline PointTriangleDistanceType point_triangle_distance_type(const Eige
   return best;
 }
 
-GRIP_HD inline double point_triangle_distance_sq(const Eigen::Vector3d& p, const Eigen::Vector3d& t0,
+GRIP_HD inline double point_triangle_distance_sq(const Eigen::Vector3d& p,
+                                                 const Eigen::Vector3d& t0,
                                                  const Eigen::Vector3d& t1,
                                                  const Eigen::Vector3d& t2,
                                                  PointTriangleDistanceType type) {
   using T = PointTriangleDistanceType;
   switch (type) {
-    case T::P_T0: return point_point_distance_sq(p, t0);
-    case T::P_T1: return point_point_distance_sq(p, t1);
-    case T::P_T2: return point_point_distance_sq(p, t2);
-    case T::P_E0: return point_line_distance_sq(p, t0, t1);
-    case T::P_E1: return point_line_distance_sq(p, t1, t2);
-    case T::P_E2: return point_line_distance_sq(p, t2, t0);
-    default: return point_plane_distance_sq(p, t0, t1, t2);
+    case T::P_T0:
+      return point_point_distance_sq(p, t0);
+    case T::P_T1:
+      return point_point_distance_sq(p, t1);
+    case T::P_T2:
+      return point_point_distance_sq(p, t2);
+    case T::P_E0:
+      return point_line_distance_sq(p, t0, t1);
+    case T::P_E1:
+      return point_line_distance_sq(p, t1, t2);
+    case T::P_E2:
+      return point_line_distance_sq(p, t2, t0);
+    default:
+      return point_plane_distance_sq(p, t0, t1, t2);
   }
 }
 
-GRIP_HD inline double point_triangle_distance_sq(const Eigen::Vector3d& p, const Eigen::Vector3d& t0,
+GRIP_HD inline double point_triangle_distance_sq(const Eigen::Vector3d& p,
+                                                 const Eigen::Vector3d& t0,
                                                  const Eigen::Vector3d& t1,
                                                  const Eigen::Vector3d& t2) {
   return point_triangle_distance_sq(p, t0, t1, t2, point_triangle_distance_type(p, t0, t1, t2));
@@ -78,16 +87,20 @@ GRIP_HD inline Eigen::Matrix<double, 12, 1> point_triangle_distance_sq_gradient(
     const Eigen::Vector3d& t2, PointTriangleDistanceType type) {
   using T = PointTriangleDistanceType;
   switch (type) {
-    case T::P_T0: return scatter_gradient<4, 2>(point_point_distance_sq_gradient(p, t0), {0, 1});
-    case T::P_T1: return scatter_gradient<4, 2>(point_point_distance_sq_gradient(p, t1), {0, 2});
-    case T::P_T2: return scatter_gradient<4, 2>(point_point_distance_sq_gradient(p, t2), {0, 3});
+    case T::P_T0:
+      return scatter_gradient<4, 2>(point_point_distance_sq_gradient(p, t0), {0, 1});
+    case T::P_T1:
+      return scatter_gradient<4, 2>(point_point_distance_sq_gradient(p, t1), {0, 2});
+    case T::P_T2:
+      return scatter_gradient<4, 2>(point_point_distance_sq_gradient(p, t2), {0, 3});
     case T::P_E0:
       return scatter_gradient<4, 3>(point_line_distance_sq_gradient(p, t0, t1), {0, 1, 2});
     case T::P_E1:
       return scatter_gradient<4, 3>(point_line_distance_sq_gradient(p, t1, t2), {0, 2, 3});
     case T::P_E2:
       return scatter_gradient<4, 3>(point_line_distance_sq_gradient(p, t2, t0), {0, 3, 1});
-    default: return point_plane_distance_sq_gradient(p, t0, t1, t2);
+    default:
+      return point_plane_distance_sq_gradient(p, t0, t1, t2);
   }
 }
 
@@ -103,16 +116,20 @@ GRIP_HD inline Eigen::Matrix<double, 12, 12> point_triangle_distance_sq_hessian(
     const Eigen::Vector3d& t2, PointTriangleDistanceType type) {
   using T = PointTriangleDistanceType;
   switch (type) {
-    case T::P_T0: return scatter_hessian<4, 2>(point_point_distance_sq_hessian(p, t0), {0, 1});
-    case T::P_T1: return scatter_hessian<4, 2>(point_point_distance_sq_hessian(p, t1), {0, 2});
-    case T::P_T2: return scatter_hessian<4, 2>(point_point_distance_sq_hessian(p, t2), {0, 3});
+    case T::P_T0:
+      return scatter_hessian<4, 2>(point_point_distance_sq_hessian(p, t0), {0, 1});
+    case T::P_T1:
+      return scatter_hessian<4, 2>(point_point_distance_sq_hessian(p, t1), {0, 2});
+    case T::P_T2:
+      return scatter_hessian<4, 2>(point_point_distance_sq_hessian(p, t2), {0, 3});
     case T::P_E0:
       return scatter_hessian<4, 3>(point_line_distance_sq_hessian(p, t0, t1), {0, 1, 2});
     case T::P_E1:
       return scatter_hessian<4, 3>(point_line_distance_sq_hessian(p, t1, t2), {0, 2, 3});
     case T::P_E2:
       return scatter_hessian<4, 3>(point_line_distance_sq_hessian(p, t2, t0), {0, 3, 1});
-    default: return point_plane_distance_sq_hessian(p, t0, t1, t2);
+    default:
+      return point_plane_distance_sq_hessian(p, t0, t1, t2);
   }
 }
 

@@ -13,7 +13,8 @@ namespace detail {
 template <int N>
 GRIP_HD inline Eigen::Matrix<double, 3, 3 * N> weighted_identities(const double (&w)[N]) {
   Eigen::Matrix<double, 3, 3 * N> gamma;
-  for (int i = 0; i < N; ++i) gamma.template block<3, 3>(0, 3 * i) = w[i] * Eigen::Matrix3d::Identity();
+  for (int i = 0; i < N; ++i)
+    gamma.template block<3, 3>(0, 3 * i) = w[i] * Eigen::Matrix3d::Identity();
   return gamma;
 }
 }  // namespace detail

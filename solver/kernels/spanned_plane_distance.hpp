@@ -73,8 +73,7 @@ GRIP_HD inline Eigen::Matrix<double, 9, 9> spanned_plane_distance_sq_hessian(
   hq.block<3, 3>(6, 3) = hq.block<3, 3>(3, 6).transpose();
 
   const double g = t.g, q = t.q;
-  const Eigen::Matrix<double, 9, 9> cross_terms =
-      t.dg * t.dq.transpose() + t.dq * t.dg.transpose();
+  const Eigen::Matrix<double, 9, 9> cross_terms = t.dg * t.dq.transpose() + t.dq * t.dg.transpose();
   return (2.0 / q) * t.dg * t.dg.transpose() + (2.0 * g / q) * hg -
          (2.0 * g / (q * q)) * cross_terms - (g * g / (q * q)) * hq +
          (2.0 * g * g / (q * q * q)) * t.dq * t.dq.transpose();

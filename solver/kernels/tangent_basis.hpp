@@ -31,7 +31,7 @@ GRIP_HD inline Eigen::Matrix<double, 3, 2> basis_from(const Eigen::Vector3d& t1,
   basis.col(0) = t1;
   const double cc = c.squaredNorm();
   basis.col(1) = (cc > kParallelSinSq * scale_sq) ? Eigen::Vector3d(c / std::sqrt(cc))
-                                                   : perpendicular_unit(t1);
+                                                  : perpendicular_unit(t1);
   return basis;
 }
 }  // namespace detail

@@ -10,7 +10,8 @@ const Eigen::SparseMatrix<double>& SparseAssembly::assemble(
     return static_cast<long long>(t.col()) * n + t.row();
   };
   bool same = matrix_.rows() == n && positions_.size() == triplets.size();
-  for (std::size_t i = 0; same && i < triplets.size(); ++i) same = positions_[i] == key(triplets[i]);
+  for (std::size_t i = 0; same && i < triplets.size(); ++i)
+    same = positions_[i] == key(triplets[i]);
   if (same) {
     double* values = matrix_.valuePtr();
     std::fill(values, values + matrix_.nonZeros(), 0.0);
@@ -28,7 +29,8 @@ const Eigen::SparseMatrix<double>& SparseAssembly::assemble(
     const int* rows = matrix_.innerIndexPtr();
     const int begin = matrix_.outerIndexPtr()[triplets[i].col()];
     const int end = matrix_.outerIndexPtr()[triplets[i].col() + 1];
-    slot_[i] = static_cast<int>(std::lower_bound(rows + begin, rows + end, triplets[i].row()) - rows);
+    slot_[i] =
+        static_cast<int>(std::lower_bound(rows + begin, rows + end, triplets[i].row()) - rows);
   }
   ++pattern_builds_;
   return matrix_;

@@ -10,7 +10,8 @@ namespace grip::solver {
 class SparseAssembly {
  public:
   // The matrix of `triplets` (duplicates summed), size n x n, compressed.
-  const Eigen::SparseMatrix<double>& assemble(int n, const std::vector<Eigen::Triplet<double>>& triplets);
+  const Eigen::SparseMatrix<double>& assemble(int n,
+                                              const std::vector<Eigen::Triplet<double>>& triplets);
 
   // How many times the pattern was built from scratch.
   int pattern_builds() const { return pattern_builds_; }

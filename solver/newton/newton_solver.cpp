@@ -45,7 +45,8 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
 void NewtonSolver::lag_friction(const State& state, const NewtonStep& step,
                                 bool friction_at_zero_mu) {
   const Vertices x = collision_positions(model_, state.q, step.targets, step.progress);
-  potential_.set_friction(solver::lag_friction(model_, potential_.barrier(), x, friction_at_zero_mu));
+  potential_.set_friction(
+      solver::lag_friction(model_, potential_.barrier(), x, friction_at_zero_mu));
 }
 
 NewtonSolver::Outcome NewtonSolver::iterate(State& state, NewtonStep& step,
@@ -174,8 +175,7 @@ bool NewtonSolver::filter_step(const State& state, const NewtonStep& step, const
   return true;
 }
 
-void NewtonSolver::commit(State& state, NewtonStep& step, const Eigen::VectorXd& p,
-                          double alpha) {
+void NewtonSolver::commit(State& state, NewtonStep& step, const Eigen::VectorXd& p, double alpha) {
   state.q += alpha * p;
   step.progress = alpha >= 1.0 ? 1.0 : step.progress + alpha * (1.0 - step.progress);
 }

@@ -63,11 +63,11 @@ class NewtonSolver {
   // The Newton system at the current iterate, pinned DOFs eliminated:
   // H_ff p_f = -(g_f + H_fp lift_p + H_fk dk), p_p = lift_p.
   struct System {
-    Vertices x;                               // collision vertices now
-    std::vector<ContactCandidate> near;       // within d_hat of them
+    Vertices x;                          // collision vertices now
+    std::vector<ContactCandidate> near;  // within d_hat of them
     Eigen::VectorXd rhs;
-    double residual = 0.0;                    // largest |g| over the free DOFs
-    bool moving = false;                      // prescribed motion still to come
+    double residual = 0.0;  // largest |g| over the free DOFs
+    bool moving = false;    // prescribed motion still to come
   };
   bool assemble(const State& state, NewtonStep& step, System& system, std::string& failure);
   void eliminate_prescribed(const State& state, NewtonStep& step, System& system) const;

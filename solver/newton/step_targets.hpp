@@ -15,7 +15,7 @@ struct StepTargets {
   Eigen::VectorXd prescribed_target;  // valid at prescribed DOFs
   Vertices kinematic_start;           // valid at kinematic collision vertices
   Vertices kinematic_target;
-  std::vector<Pose> pose_target;      // per body (kinematic: the script's next pose)
+  std::vector<Pose> pose_target;  // per body (kinematic: the script's next pose)
 };
 
 // The targets of the step from `state` (its scripts advanced by one dt).

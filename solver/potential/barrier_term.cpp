@@ -125,9 +125,9 @@ ContactForce BarrierTerm::contact_force(const ContactCandidate& c,
   force.force = -b.gradient;
   double m = 1.0;
   if (c.edge_edge) m = kernels::edge_edge_mollifier(x[0], x[1], x[2], x[3], c.mollifier_eps);
-  force.magnitude =
-      force.distance < d_hat ? -kappa_ * m * kernels::barrier_first_derivative(force.distance, d_hat)
-                             : 0.0;
+  force.magnitude = force.distance < d_hat
+                        ? -kappa_ * m * kernels::barrier_first_derivative(force.distance, d_hat)
+                        : 0.0;
   return force;
 }
 

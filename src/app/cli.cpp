@@ -224,7 +224,8 @@ int main(int argc, char** argv) {
                    "Settings: dt, newton_tol, d_hat, kappa, eps_v, friction_lag_iterations, "
                    "mesh (default: all)")
       ->delimiter(',');
-  bench_accuracy->add_option("--threads", bench_accuracy_args.threads, "Threads (default: all cores)")
+  bench_accuracy
+      ->add_option("--threads", bench_accuracy_args.threads, "Threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   bench_accuracy->add_option("--repeats", bench_accuracy_args.repeats, "Runs per setting (median)")
       ->capture_default_str()
@@ -253,7 +254,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   bench_model->add_option("--out", bench_model_args.out, "Folder for tables and plots")
       ->capture_default_str();
-  bench_model->callback([&] { run = [&] { return grip::commands::bench_model(bench_model_args); }; });
+  bench_model->callback(
+      [&] { run = [&] { return grip::commands::bench_model(bench_model_args); }; });
   grip::commands::BenchLinearArgs bench_linear_args;
   CLI::App* bench_linear = bench->add_subcommand(
       "linear",

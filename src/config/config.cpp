@@ -1,10 +1,10 @@
 #include "src/config/config.hpp"
 
+#include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
 
 namespace grip::config {
 
@@ -21,16 +21,26 @@ const toml::node& as_node(const void* node) { return *static_cast<const toml::no
 
 std::string type_name(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    default: return "nothing";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
   }
 }
 
@@ -71,8 +81,8 @@ double finite_number(const toml::node& node, const std::filesystem::path& file,
     raise(file, line_of(node), "key '" + key_path + "' must be a number, not " + type_name(node));
   }
   if (!std::isfinite(value)) {
-    raise(file, line_of(node), "key '" + key_path + "' must be a finite number, not " +
-                                   std::to_string(value));
+    raise(file, line_of(node),
+          "key '" + key_path + "' must be a finite number, not " + std::to_string(value));
   }
   return value;
 }
@@ -227,8 +237,8 @@ std::vector<double> Table::numbers(std::string_view key) const {
   }
   std::vector<double> values;
   for (std::size_t i = 0; i < array->size(); ++i) {
-    values.push_back(finite_number((*array)[i], source_->file,
-                                   key_path(key) + "[" + std::to_string(i) + "]"));
+    values.push_back(
+        finite_number((*array)[i], source_->file, key_path(key) + "[" + std::to_string(i) + "]"));
   }
   return values;
 }
@@ -257,8 +267,7 @@ std::vector<std::string> Table::strings(std::string_view key) const {
     }
   }
   if (!array || values.size() != array->size()) {
-    raise(source_->file, line_of(node),
-          "key '" + key_path(key) + "' must be an array of strings");
+    raise(source_->file, line_of(node), "key '" + key_path(key) + "' must be an array of strings");
   }
   return values;
 }
@@ -287,8 +296,8 @@ std::vector<Table> Table::tables(std::string_view key) const {
   }
   std::vector<Table> result;
   for (std::size_t i = 0; i < array->size(); ++i) {
-    result.push_back(Table(source_, (*array)[i].as_table(),
-                           key_path(key) + "[" + std::to_string(i) + "]"));
+    result.push_back(
+        Table(source_, (*array)[i].as_table(), key_path(key) + "[" + std::to_string(i) + "]"));
   }
   return result;
 }

@@ -9,7 +9,8 @@ namespace grip::geometry {
 
 SurfaceMesh boundary_surface(const TetMesh& mesh, Eigen::VectorXi* surface_to_tet_vertex) {
   // Faces of tet (v0, v1, v2, v3) seen from outside, counter-clockwise when it is positive.
-  constexpr std::array<std::array<int, 3>, 4> kFaces = {{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
+  constexpr std::array<std::array<int, 3>, 4> kFaces = {
+      {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
   // Sorted corner triple -> (count, oriented face); an ordered map keeps the output order
   // independent of hashing.
   std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> faces;

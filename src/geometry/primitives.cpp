@@ -101,8 +101,8 @@ SurfaceMesh make_capsule(double radius, double length, int segments, int rings) 
 SurfaceMesh make_cylinder(double radius, double length, int segments) {
   require(radius > 0.0 && length > 0.0, "make_cylinder: need radius > 0 and length > 0");
   require(segments >= 3, "make_cylinder: need segments >= 3");
-  SurfaceMesh mesh = revolve_about_x(
-      {{0.0, 0.0}, {0.0, radius}, {length, radius}, {length, 0.0}}, segments);
+  SurfaceMesh mesh =
+      revolve_about_x({{0.0, 0.0}, {0.0, radius}, {length, radius}, {length, 0.0}}, segments);
   // Revolved about x from 0 to length; turn x into z and centre it (a proper rotation: x->z,
   // y->x, z->y keeps the orientation).
   geometry::Vertices rotated(mesh.vertices.rows(), 3);

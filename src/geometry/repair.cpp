@@ -75,9 +75,9 @@ std::vector<std::array<CgalMesh::Vertex_index, 3>> face_corners(const CgalMesh& 
 std::string RepairReport::summary() const {
   std::ostringstream out;
   out << "removed " << points_removed << " duplicate/unused points and " << faces_removed
-      << " degenerate/duplicate faces, split " << points_split
-      << " non-manifold points, stitched " << edges_stitched << " edges, filled " << holes_filled
-      << " holes, reoriented " << faces_reoriented << " faces";
+      << " degenerate/duplicate faces, split " << points_split << " non-manifold points, stitched "
+      << edges_stitched << " edges, filled " << holes_filled << " holes, reoriented "
+      << faces_reoriented << " faces";
   if (self_intersecting) out << "; the surface intersected itself";
   out << (alpha_wrapped ? "; result: alpha-wrapped" : "; result: repaired input");
   return out.str();

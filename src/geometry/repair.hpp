@@ -20,16 +20,16 @@ struct RepairOptions {
 
 // What repair_surface changed, in counts.
 struct RepairReport {
-  int points_removed = 0;             // duplicate and unused points
-  int faces_removed = 0;              // degenerate and duplicate faces
-  int points_split = 0;               // copies made to resolve non-manifold vertices
-  int faces_reoriented = 0;           // faces whose winding was flipped
-  int edges_stitched = 0;             // border edge pairs glued together
-  int holes_filled = 0;               // border loops closed by triangulation
-  bool self_intersecting = false;     // whether the surface intersected itself before wrapping
-  bool alpha_wrapped = false;         // whether the alpha-wrap fallback produced the result
-  double input_volume = 0.0;          // signed volume of the input soup (m^3), indicative only
-  double volume = 0.0;                // volume of the repaired surface (m^3)
+  int points_removed = 0;          // duplicate and unused points
+  int faces_removed = 0;           // degenerate and duplicate faces
+  int points_split = 0;            // copies made to resolve non-manifold vertices
+  int faces_reoriented = 0;        // faces whose winding was flipped
+  int edges_stitched = 0;          // border edge pairs glued together
+  int holes_filled = 0;            // border loops closed by triangulation
+  bool self_intersecting = false;  // whether the surface intersected itself before wrapping
+  bool alpha_wrapped = false;      // whether the alpha-wrap fallback produced the result
+  double input_volume = 0.0;       // signed volume of the input soup (m^3), indicative only
+  double volume = 0.0;             // volume of the repaired surface (m^3)
 
   // One line for people: "merged 3 duplicate points, stitched 12 edges, ...".
   std::string summary() const;

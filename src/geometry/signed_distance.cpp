@@ -31,7 +31,8 @@ struct SignedDistance::Impl {
   std::unique_ptr<Inside> inside;  // holds a pointer to `tree`, so Impl never moves
 };
 
-SignedDistance::SignedDistance(const SurfaceMesh& closed_surface) : impl_(std::make_unique<Impl>()) {
+SignedDistance::SignedDistance(const SurfaceMesh& closed_surface)
+    : impl_(std::make_unique<Impl>()) {
   std::optional<CgalMesh> mesh = cgal::to_cgal(closed_surface);
   if (closed_surface.triangles.rows() == 0 || !mesh) {
     throw std::invalid_argument(
@@ -74,9 +75,8 @@ Eigen::Vector3d SignedDistance::closest_point(const Eigen::Vector3d& point) cons
 
 Eigen::VectorXd SignedDistance::evaluate(const Vertices& points) const {
   Eigen::VectorXd result(points.rows());
-  tbb::parallel_for(Eigen::Index{0}, points.rows(), [&](Eigen::Index i) {
-    result[i] = (*this)(points.row(i).transpose());
-  });
+  tbb::parallel_for(Eigen::Index{0}, points.rows(),
+                    [&](Eigen::Index i) { result[i] = (*this)(points.row(i).transpose()); });
   return result;
 }
 

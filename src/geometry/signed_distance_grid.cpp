@@ -69,8 +69,8 @@ double SignedDistanceGrid::operator()(const Eigen::Vector3d& point) const {
     const int di = corner & 1;
     const int dj = (corner >> 1) & 1;
     const int dk = (corner >> 2) & 1;
-    const double weight = (di ? t[0] : 1.0 - t[0]) * (dj ? t[1] : 1.0 - t[1]) *
-                          (dk ? t[2] : 1.0 - t[2]);
+    const double weight =
+        (di ? t[0] : 1.0 - t[0]) * (dj ? t[1] : 1.0 - t[1]) * (dk ? t[2] : 1.0 - t[2]);
     value += weight * node_value(cell[0] + di, cell[1] + dj, cell[2] + dk);
   }
   return value;

@@ -69,8 +69,9 @@ std::vector<std::pair<Point, Domain::Index>> spread_surface_points(const Surface
     const Eigen::Index current = next;
     const Eigen::Vector3d c = centroids.row(current);
     const Eigen::Vector3d d = 0.1 * edge_length * normals.row(current);
-    const auto hit = intersection(Kernel::Segment_3(Point(c.x() + d.x(), c.y() + d.y(), c.z() + d.z()),
-                                                    Point(c.x() - d.x(), c.y() - d.y(), c.z() - d.z())));
+    const auto hit =
+        intersection(Kernel::Segment_3(Point(c.x() + d.x(), c.y() + d.y(), c.z() + d.z()),
+                                       Point(c.x() - d.x(), c.y() - d.y(), c.z() - d.z())));
     if (std::get<2>(hit) != 0) seeds.emplace_back(std::get<0>(hit), std::get<1>(hit));
     double farthest = -1.0;
     for (Eigen::Index f = 0; f < faces; ++f) {
@@ -92,7 +93,8 @@ std::vector<std::pair<Point, Domain::Index>> spread_surface_points(const Surface
 Complex initial_complex(const SurfaceMesh& surface, const Domain& domain, const Criteria& criteria,
                         const TetOptions& options) {
   Complex complex;
-  using Sizing = CGAL::Mesh_3::internal::Edge_criteria_sizing_field_wrapper<Criteria::Edge_criteria>;
+  using Sizing =
+      CGAL::Mesh_3::internal::Edge_criteria_sizing_field_wrapper<Criteria::Edge_criteria>;
   CGAL::Mesh_3::Protect_edges_sizing_field<Complex, Domain, Sizing> protect(
       complex, domain, Sizing(criteria.edge_criteria_object()),
       options.minimal_ball_ratio * options.edge_length);
@@ -105,8 +107,8 @@ Complex initial_complex(const SurfaceMesh& surface, const Domain& domain, const 
   }
   if (!seeded) {
     const auto weighted = complex.triangulation().geom_traits().construct_weighted_point_3_object();
-    for (const auto& [point, index] : spread_surface_points(surface, domain, options.edge_length,
-                                                                options.seed)) {
+    for (const auto& [point, index] :
+         spread_surface_points(surface, domain, options.edge_length, options.seed)) {
       const auto vertex = complex.triangulation().insert(weighted(point));
       if (vertex == Triangulation::Vertex_handle()) continue;  // hidden by a protecting ball
       complex.set_dimension(vertex, 2);
@@ -154,11 +156,10 @@ TetMesh tetrahedralize(const SurfaceMesh& closed_surface, const TetOptions& opti
   Domain domain(mesh);
   domain.detect_features(options.feature_angle_deg);
   const double h = options.edge_length;
-  const Criteria criteria(params::edge_size = h, params::facet_angle = options.facet_angle_deg,
-                          params::facet_size = h,
-                          params::facet_distance = options.facet_distance_ratio * h,
-                          params::cell_radius_edge_ratio = options.cell_radius_edge_ratio,
-                          params::cell_size = h);
+  const Criteria criteria(
+      params::edge_size = h, params::facet_angle = options.facet_angle_deg, params::facet_size = h,
+      params::facet_distance = options.facet_distance_ratio * h,
+      params::cell_radius_edge_ratio = options.cell_radius_edge_ratio, params::cell_size = h);
   Complex complex = initial_complex(closed_surface, domain, criteria, options);
   CGAL::refine_mesh_3(complex, domain, criteria, params::no_odt(), params::no_lloyd(),
                       params::no_perturb(), params::no_exude(), params::no_reset_c3t3());
@@ -187,8 +188,8 @@ TetMesh tetrahedralize(const SurfaceMesh& closed_surface, const TetOptions& opti
     tets.push_back(tet);
   }
   if (tets.empty()) {
-    throw std::runtime_error("tetrahedralizing " + source +
-                             " produced no tets: the edge length " + std::to_string(h) +
+    throw std::runtime_error("tetrahedralizing " + source + " produced no tets: the edge length " +
+                             std::to_string(h) +
                              " m is too large for the object; use a smaller one");
   }
   TetMesh result;
@@ -207,7 +208,8 @@ TetMesh tetrahedralize(const SurfaceMesh& closed_surface, const TetOptions& opti
     const Eigen::Vector3d x1 = result.vertices.row(tets[t][1]);
     const Eigen::Vector3d x2 = result.vertices.row(tets[t][2]);
     const Eigen::Vector3d x3 = result.vertices.row(tets[t][3]);
-    if ((x1 - x0).cross(x2 - x0).dot(x3 - x0) < 0.0) std::swap(result.tets(row, 2), result.tets(row, 3));
+    if ((x1 - x0).cross(x2 - x0).dot(x3 - x0) < 0.0)
+      std::swap(result.tets(row, 2), result.tets(row, 3));
   }
   return result;
 }

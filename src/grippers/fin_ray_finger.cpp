@@ -95,8 +95,8 @@ Profile make_profile(const FinRayOptions& o) {
   cavity = clip(cavity, {{0.0, -1.0}, -o.base_thickness});
   cavity = clip(cavity, {back_normal, back_c});
   // The inner back wall is n . (y, z) = back_c; the cavity is top_cavity_width wide at `top`.
-  const double top = (back_c - back_normal.x() * (o.wall_thickness + o.top_cavity_width)) /
-                     back_normal.y();
+  const double top =
+      (back_c - back_normal.x() * (o.wall_thickness + o.top_cavity_width)) / back_normal.y();
   require(top > o.base_thickness + (o.rib_count + 1) * o.rib_thickness &&
               top < o.length - o.wall_thickness,
           "the walls leave no room for a cavity; make the finger wider or the walls thinner");
@@ -196,8 +196,9 @@ FinRayFinger make_fin_ray_finger(const FinRayOptions& options) {
       std::sort(t.begin(), t.end());
       const int a = l * n + t[0], b = l * n + t[1], c = l * n + t[2];
       const int a1 = a + n, b1 = b + n, c1 = c + n;
-      for (std::array<int, 4> tet : {std::array<int, 4>{a, b, c, c1}, std::array<int, 4>{a, b, b1, c1},
-                                     std::array<int, 4>{a, a1, b1, c1}}) {
+      for (std::array<int, 4> tet :
+           {std::array<int, 4>{a, b, c, c1}, std::array<int, 4>{a, b, b1, c1},
+            std::array<int, 4>{a, a1, b1, c1}}) {
         if (tet_volume(finger.mesh.vertices, tet) < 0.0) std::swap(tet[2], tet[3]);
         finger.mesh.tets.row(row++) << tet[0], tet[1], tet[2], tet[3];
       }

@@ -36,10 +36,10 @@ struct FinRayMaterial {
 };
 
 struct FinRayFinger {
-  geometry::TetMesh mesh;             // finger frame, positively oriented tets
-  std::vector<int> mount_vertices;    // increasing; the vertices with z <= base_thickness
+  geometry::TetMesh mesh;           // finger frame, positively oriented tets
+  std::vector<int> mount_vertices;  // increasing; the vertices with z <= base_thickness
   FinRayMaterial material;
-  double profile_area = 0.0;          // exact area of the meshed profile (m^2)
+  double profile_area = 0.0;  // exact area of the meshed profile (m^2)
 };
 
 // Builds the finger: CGAL's constrained Delaunay mesher triangulates the profile (minimum

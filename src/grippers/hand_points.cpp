@@ -109,7 +109,8 @@ HandPoints read_hand_points(const std::filesystem::path& file) {
       const EntryReader entry(file, "contact", i, *contacts->get(i));
       ContactCandidate contact{entry.text("link"), entry.vector("position"),
                                entry.vector("normal")};
-      if (std::abs(contact.normal.norm() - 1.0) > 1e-6) entry.fail("'normal' must be a unit vector");
+      if (std::abs(contact.normal.norm() - 1.0) > 1e-6)
+        entry.fail("'normal' must be a unit vector");
       points.contacts.push_back(contact);
     }
   }

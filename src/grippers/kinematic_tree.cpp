@@ -19,10 +19,10 @@ constexpr int kRoundRings = 6;
 
 Eigen::Isometry3d to_isometry(const urdf::Pose& pose) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y,
-                                  pose.rotation.z)
-                   .normalized()
-                   .toRotationMatrix();
+  t.linear() =
+      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
+          .normalized()
+          .toRotationMatrix();
   t.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
   return t;
 }
@@ -65,7 +65,9 @@ std::vector<std::filesystem::path> mesh_candidates(const std::filesystem::path& 
 class UrdfReader {
  public:
   UrdfReader(const std::filesystem::path& urdf, LinkGeometry geometry)
-      : urdf_(urdf), urdf_dir_(std::filesystem::absolute(urdf).parent_path()), geometry_(geometry) {}
+      : urdf_(urdf),
+        urdf_dir_(std::filesystem::absolute(urdf).parent_path()),
+        geometry_(geometry) {}
 
   [[noreturn]] void fail(const std::string& what) const {
     throw std::runtime_error("URDF " + quoted(urdf_) + ": " + what);
@@ -297,7 +299,8 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> KinematicTree::point_jacobian(
                .parent_joint) {
     const KinematicJoint& joint = joints_[static_cast<std::size_t>(j)];
     if (joint.dof < 0) continue;
-    const Eigen::Isometry3d frame = poses[static_cast<std::size_t>(joint.parent_link)] * joint.origin;
+    const Eigen::Isometry3d frame =
+        poses[static_cast<std::size_t>(joint.parent_link)] * joint.origin;
     const Eigen::Vector3d axis = frame.linear() * joint.axis;
     if (joint.type == JointType::kPrismatic) {
       jacobian.col(joint.dof) << axis, Eigen::Vector3d::Zero();

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "src/geometry/mesh_io.hpp"
+#include "src/geometry/primitives.hpp"
 #include "src/grippers/hand_points.hpp"
 #include "src/grippers/number_text.hpp"
-#include "src/geometry/primitives.hpp"
 
 namespace grip::grippers {
 namespace {
@@ -97,13 +97,15 @@ void add_fingertip_contacts(const std::string& link, HandPoints& points) {
     for (const double degrees : {-45.0, -15.0, 15.0, 45.0}) {  // from +z towards -y
       const double a = degrees * std::numbers::pi / 180.0;
       const Eigen::Vector3d normal(0.0, -std::sin(a), std::cos(a));
-      points.contacts.push_back({link, Eigen::Vector3d(x, 0.0, 0.0) + kLinkRadius * normal, normal});
+      points.contacts.push_back(
+          {link, Eigen::Vector3d(x, 0.0, 0.0) + kLinkRadius * normal, normal});
     }
   }
   for (int ring = 1; ring < kCapsuleRings; ++ring) {  // latitudes 22.5, 45, 67.5 degrees
     const double a = 0.5 * std::numbers::pi * ring / kCapsuleRings;
     const Eigen::Vector3d normal(std::sin(a), 0.0, std::cos(a));
-    points.contacts.push_back({link, Eigen::Vector3d(end, 0.0, 0.0) + kLinkRadius * normal, normal});
+    points.contacts.push_back(
+        {link, Eigen::Vector3d(end, 0.0, 0.0) + kLinkRadius * normal, normal});
   }
 }
 
@@ -133,7 +135,8 @@ HandSpec right_hand() {
   for (int x = 0; x < 3; ++x) {
     for (int y = 0; y < 3; ++y) {
       hand.points.keypoints.push_back(
-          {"palm", Eigen::Vector3d(0.02 + 0.03 * x, -0.03 + 0.03 * y, -0.5 * kPalmThickness), 0.015});
+          {"palm", Eigen::Vector3d(0.02 + 0.03 * x, -0.03 + 0.03 * y, -0.5 * kPalmThickness),
+           0.015});
     }
   }
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
@@ -148,28 +151,49 @@ HandSpec right_hand() {
     double proximal_length;
   };
   const std::vector<Finger> fingers = {
-      {"index", {kPalmLength, -kFingerSpacing, kJointDepth}, zero, Eigen::Vector3d::UnitZ(),
-       {"abd", "mcp", "pip", "dip"}, kFingerLimits, kProximalLength},
-      {"middle", {kPalmLength, 0.0, kJointDepth}, zero, Eigen::Vector3d::UnitZ(),
-       {"abd", "mcp", "pip", "dip"}, kFingerLimits, kProximalLength},
-      {"ring", {kPalmLength, kFingerSpacing, kJointDepth}, zero, Eigen::Vector3d::UnitZ(),
-       {"abd", "mcp", "pip", "dip"}, kFingerLimits, kProximalLength},
+      {"index",
+       {kPalmLength, -kFingerSpacing, kJointDepth},
+       zero,
+       Eigen::Vector3d::UnitZ(),
+       {"abd", "mcp", "pip", "dip"},
+       kFingerLimits,
+       kProximalLength},
+      {"middle",
+       {kPalmLength, 0.0, kJointDepth},
+       zero,
+       Eigen::Vector3d::UnitZ(),
+       {"abd", "mcp", "pip", "dip"},
+       kFingerLimits,
+       kProximalLength},
+      {"ring",
+       {kPalmLength, kFingerSpacing, kJointDepth},
+       zero,
+       Eigen::Vector3d::UnitZ(),
+       {"abd", "mcp", "pip", "dip"},
+       kFingerLimits,
+       kProximalLength},
       // The thumb leaves the palm's -y side pointing along -y and first turns about its own
       // axis (turning its pad from the palm normal towards the fingers), then flexes.
-      {"thumb", {kThumbBaseX, -0.5 * kPalmWidth, kJointDepth}, {0.0, 0.0, -0.5 * std::numbers::pi},
-       -Eigen::Vector3d::UnitX(), {"rot", "abd", "mcp", "ip"}, kThumbLimits, kThumbProximalLength}};
+      {"thumb",
+       {kThumbBaseX, -0.5 * kPalmWidth, kJointDepth},
+       {0.0, 0.0, -0.5 * std::numbers::pi},
+       -Eigen::Vector3d::UnitX(),
+       {"rot", "abd", "mcp", "ip"},
+       kThumbLimits,
+       kThumbProximalLength}};
   for (const Finger& f : fingers) {
     const std::array<std::string, 4> links = {f.name + "_knuckle", f.name + "_proximal",
                                               f.name + "_intermediate", f.name + "_distal"};
-    const std::array<double, 4> offsets = {0.0, kKnuckleLength, f.proximal_length, kIntermediateLength};
+    const std::array<double, 4> offsets = {0.0, kKnuckleLength, f.proximal_length,
+                                           kIntermediateLength};
     for (int k = 0; k < 4; ++k) {
       const std::string parent = k == 0 ? "palm" : links[static_cast<std::size_t>(k - 1)];
-      hand.joints.push_back({f.name + "_" + f.joints[static_cast<std::size_t>(k)], parent,
-                             links[static_cast<std::size_t>(k)],
-                             k == 0 ? f.base : Eigen::Vector3d(offsets[static_cast<std::size_t>(k)], 0.0, 0.0),
-                             k == 0 ? f.base_rpy : zero, k == 0 ? f.first_axis : flex,
-                             f.limits[static_cast<std::size_t>(k)][0],
-                             f.limits[static_cast<std::size_t>(k)][1]});
+      hand.joints.push_back(
+          {f.name + "_" + f.joints[static_cast<std::size_t>(k)], parent,
+           links[static_cast<std::size_t>(k)],
+           k == 0 ? f.base : Eigen::Vector3d(offsets[static_cast<std::size_t>(k)], 0.0, 0.0),
+           k == 0 ? f.base_rpy : zero, k == 0 ? f.first_axis : flex,
+           f.limits[static_cast<std::size_t>(k)][0], f.limits[static_cast<std::size_t>(k)][1]});
     }
     hand.links.push_back({links[0], "knuckle"});
     hand.links.push_back({links[1], f.name == "thumb" ? "thumb_proximal" : "proximal"});
@@ -224,10 +248,10 @@ std::string urdf_text(const HandSpec& hand) {
     const std::string geometry =
         "      <geometry><mesh filename=\"meshes/" + link.mesh + ".obj\"/></geometry>\n";
     out << "  <link name=\"" << link.name << "\">\n"
-        << "    <visual>\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n" << geometry
-        << "    </visual>\n"
-        << "    <collision>\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n" << geometry
-        << "    </collision>\n  </link>\n";
+        << "    <visual>\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n"
+        << geometry << "    </visual>\n"
+        << "    <collision>\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n"
+        << geometry << "    </collision>\n  </link>\n";
   }
   for (const JointSpec& joint : hand.joints) {
     out << "  <joint name=\"" << joint.name << "\" type=\"revolute\">\n"
@@ -236,8 +260,8 @@ std::string urdf_text(const HandSpec& hand) {
         << "    <origin xyz=\"" << triple(joint.xyz) << "\" rpy=\"" << triple(joint.rpy) << "\"/>\n"
         << "    <axis xyz=\"" << triple(joint.axis) << "\"/>\n"
         << "    <limit lower=\"" << number_text(joint.lower) << "\" upper=\""
-        << number_text(joint.upper) << "\" effort=\"" << number_text(kEffort)
-        << "\" velocity=\"" << number_text(kVelocity) << "\"/>\n"
+        << number_text(joint.upper) << "\" effort=\"" << number_text(kEffort) << "\" velocity=\""
+        << number_text(kVelocity) << "\"/>\n"
         << "  </joint>\n";
   }
   out << "</robot>\n";
@@ -265,9 +289,10 @@ LeapHandFiles write_leap_hand(const std::filesystem::path& folder, HandSide side
   const LeapHandFiles files{folder / (hand.name + ".urdf"), folder / "hand_points.toml"};
   write_text(files.urdf, urdf_text(hand));
   write_hand_points(files.points, hand.points,
-                    hand.name + ": contact candidates (15 per fingertip; position and outward\n"
-                                "normal in the link frame, m) and self-penetration keypoints\n"
-                                "(spheres in link frames, m). Written by grip; see docs/assets.md.");
+                    hand.name +
+                        ": contact candidates (15 per fingertip; position and outward\n"
+                        "normal in the link frame, m) and self-penetration keypoints\n"
+                        "(spheres in link frames, m). Written by grip; see docs/assets.md.");
   return files;
 }
 

@@ -12,15 +12,16 @@ namespace grip::grippers {
 
 Eigen::Isometry3d ParallelGripper::finger_pose(Jaw jaw, double opening) const {
   if (!(opening >= min_opening && opening <= max_opening)) {
-    throw std::out_of_range(name + ": jaw opening " + std::to_string(opening) +
-                            " m is outside [" + std::to_string(min_opening) + ", " +
-                            std::to_string(max_opening) + "] m");
+    throw std::out_of_range(name + ": jaw opening " + std::to_string(opening) + " m is outside [" +
+                            std::to_string(min_opening) + ", " + std::to_string(max_opening) +
+                            "] m");
   }
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   if (jaw == Jaw::kPositive) {
     pose.translation() = Eigen::Vector3d(0.0, 0.5 * opening, 0.0);
   } else {
-    pose.linear() = Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    pose.linear() =
+        Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     pose.translation() = Eigen::Vector3d(0.0, -0.5 * opening, 0.0);
   }
   return pose;

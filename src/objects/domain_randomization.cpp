@@ -13,8 +13,7 @@ void check_range(const char* name, double min, double max, double lowest, bool o
   const bool low_ok = open_low ? min > lowest : min >= lowest;
   if (!(low_ok && min <= max && std::isfinite(max))) {
     throw std::invalid_argument(std::string("domain randomization: the ") + name + " range [" +
-                                std::to_string(min) + ", " + std::to_string(max) +
-                                "] is invalid");
+                                std::to_string(min) + ", " + std::to_string(max) + "] is invalid");
   }
 }
 

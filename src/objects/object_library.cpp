@@ -26,24 +26,44 @@ struct CategoryInfo {
 
 const std::vector<CategoryInfo>& categories() {
   static const std::vector<CategoryInfo> kCategories = {
-      {ObjectCategory::kBox, "box", {{"size_x", 0.03, 0.20}, {"size_y", 0.03, 0.20}, {"size_z", 0.03, 0.20}}},
+      {ObjectCategory::kBox,
+       "box",
+       {{"size_x", 0.03, 0.20}, {"size_y", 0.03, 0.20}, {"size_z", 0.03, 0.20}}},
       {ObjectCategory::kCylinder, "cylinder", {{"radius", 0.015, 0.06}, {"height", 0.04, 0.25}}},
       {ObjectCategory::kSphere, "sphere", {{"radius", 0.02, 0.08}}},
-      {ObjectCategory::kEllipsoid, "ellipsoid",
+      {ObjectCategory::kEllipsoid,
+       "ellipsoid",
        {{"semi_axis_x", 0.02, 0.08}, {"semi_axis_y", 0.02, 0.08}, {"semi_axis_z", 0.02, 0.08}}},
-      {ObjectCategory::kCapsule, "capsule", {{"radius", 0.015, 0.05}, {"cylinder_length", 0.02, 0.15}}},
+      {ObjectCategory::kCapsule,
+       "capsule",
+       {{"radius", 0.015, 0.05}, {"cylinder_length", 0.02, 0.15}}},
       {ObjectCategory::kCone, "cone", {{"base_radius", 0.02, 0.08}, {"height", 0.04, 0.20}}},
-      {ObjectCategory::kTorus, "torus", {{"major_radius", 0.03, 0.08}, {"minor_radius", 0.008, 0.025}}},
-      {ObjectCategory::kBottle, "bottle",
-       {{"radius", 0.025, 0.05}, {"body_height", 0.08, 0.20}, {"neck_radius", 0.01, 0.02},
+      {ObjectCategory::kTorus,
+       "torus",
+       {{"major_radius", 0.03, 0.08}, {"minor_radius", 0.008, 0.025}}},
+      {ObjectCategory::kBottle,
+       "bottle",
+       {{"radius", 0.025, 0.05},
+        {"body_height", 0.08, 0.20},
+        {"neck_radius", 0.01, 0.02},
         {"neck_height", 0.02, 0.06}}},
-      {ObjectCategory::kCup, "cup",
-       {{"radius", 0.03, 0.05}, {"height", 0.06, 0.12}, {"wall", 0.004, 0.008}, {"bottom", 0.005, 0.01}}},
-      {ObjectCategory::kMug, "mug",
-       {{"radius", 0.035, 0.05}, {"height", 0.08, 0.12}, {"wall", 0.004, 0.008}, {"bottom", 0.005, 0.01},
-        {"handle_radius", 0.018, 0.028}, {"handle_thickness", 0.004, 0.007}}},
+      {ObjectCategory::kCup,
+       "cup",
+       {{"radius", 0.03, 0.05},
+        {"height", 0.06, 0.12},
+        {"wall", 0.004, 0.008},
+        {"bottom", 0.005, 0.01}}},
+      {ObjectCategory::kMug,
+       "mug",
+       {{"radius", 0.035, 0.05},
+        {"height", 0.08, 0.12},
+        {"wall", 0.004, 0.008},
+        {"bottom", 0.005, 0.01},
+        {"handle_radius", 0.018, 0.028},
+        {"handle_thickness", 0.004, 0.007}}},
       {ObjectCategory::kBowl, "bowl", {{"radius", 0.05, 0.10}, {"wall", 0.004, 0.008}}},
-      {ObjectCategory::kPlate, "plate",
+      {ObjectCategory::kPlate,
+       "plate",
        {{"size_x", 0.08, 0.20}, {"size_y", 0.06, 0.15}, {"thickness", 0.004, 0.012}}},
   };
   return kCategories;
@@ -167,8 +187,8 @@ void check_shape(const ObjectShape& shape) {
     const ParameterRange& range = entry.ranges[i];
     const double value = shape.parameters[i];
     if (!(value >= range.min * (1.0 - 1e-12) && value <= range.max * (1.0 + 1e-12))) {
-      throw std::invalid_argument("object '" + std::string(entry.name) + "': " +
-                                  std::string(range.name) + " = " + std::to_string(value) +
+      throw std::invalid_argument("object '" + std::string(entry.name) +
+                                  "': " + std::string(range.name) + " = " + std::to_string(value) +
                                   " m is outside [" + std::to_string(range.min) + ", " +
                                   std::to_string(range.max) + "] m");
     }

@@ -53,8 +53,8 @@ void fan(std::vector<Eigen::Vector3i>& triangles, int pole, int ring, int n, boo
 
 }  // namespace
 
-void append_arc(std::vector<Eigen::Vector2d>& profile, const Eigen::Vector2d& centre,
-                double radius, double from, double to, int steps, bool include_start) {
+void append_arc(std::vector<Eigen::Vector2d>& profile, const Eigen::Vector2d& centre, double radius,
+                double from, double to, int steps, bool include_start) {
   for (int i = include_start ? 0 : 1; i <= steps; ++i) {
     const double angle = from + (to - from) * i / steps;
     profile.push_back(centre + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
@@ -80,13 +80,15 @@ geometry::SurfaceMesh revolve_profile(const std::vector<Eigen::Vector2d>& profil
   if (closed_loop) {
     std::vector<int> rings;
     for (const auto& rz : profile) {
-      if (!(rz.x() > 0.0)) throw std::invalid_argument("revolve_profile: a loop must avoid the axis");
+      if (!(rz.x() > 0.0))
+        throw std::invalid_argument("revolve_profile: a loop must avoid the axis");
       rings.push_back(add_ring(rz));
     }
     for (int i = 0; i < m; ++i) connect_rings(triangles, rings[i], rings[(i + 1) % m], segments);
   } else {
     if (profile.front().x() != 0.0 || profile.back().x() != 0.0) {
-      throw std::invalid_argument("revolve_profile: an open profile must start and end on the axis");
+      throw std::invalid_argument(
+          "revolve_profile: an open profile must start and end on the axis");
     }
     const int bottom = 0;
     points.emplace_back(0.0, 0.0, profile.front().y());
@@ -132,7 +134,8 @@ geometry::SurfaceMesh sweep_tube(const std::vector<Eigen::Vector3d>& path, doubl
       points.push_back(path[i] + radius * (std::cos(angle) * normal + std::sin(angle) * binormal));
     }
   }
-  for (std::size_t i = 0; i + 1 < n; ++i) connect_rings(triangles, rings[i], rings[i + 1], segments);
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    connect_rings(triangles, rings[i], rings[i + 1], segments);
   const int first_cap = static_cast<int>(points.size());
   points.push_back(path.front());
   const int last_cap = static_cast<int>(points.size());

@@ -25,7 +25,7 @@ geometry::SurfaceMesh sweep_tube(const std::vector<Eigen::Vector3d>& path, doubl
 // Appends points of the arc of `centre` and `radius` from angle `from` to `to` (radians,
 // measured from the +r axis towards +z), `steps` pieces, the start point included only if
 // `include_start`.
-void append_arc(std::vector<Eigen::Vector2d>& profile, const Eigen::Vector2d& centre,
-                double radius, double from, double to, int steps, bool include_start = true);
+void append_arc(std::vector<Eigen::Vector2d>& profile, const Eigen::Vector2d& centre, double radius,
+                double from, double to, int steps, bool include_start = true);
 
 }  // namespace grip::objects

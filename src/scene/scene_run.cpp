@@ -37,30 +37,32 @@ BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<st
     }
     batch.step();
     // The exact intersection check costs more than a step of a small scene: in parallel too.
-    checks.execute([&] { tbb::parallel_for(std::size_t{0}, stepped.size(), [&](std::size_t k) {
-      const int i = stepped[k];
-      const solver::Environment& env = batch.environment(i);
-      SceneReport& r = report.scenes[i];
-      if (env.failed()) {
-        r.ok = false;
-        r.failure = env.failure();
-        return;
-      }
-      ++r.steps;
-      const solver::StepDiagnostics& d = env.last_step();
-      r.min_distance = std::min(r.min_distance, d.min_distance);
-      r.min_volume_ratio = std::min(r.min_volume_ratio, d.min_volume_ratio);
-      r.newton_total += d.newton_iterations;
-      r.newton_max_per_step = std::max(r.newton_max_per_step, d.newton_iterations);
-      if (count_intersections(env) != 0) r.intersection_free = false;
-      if (trace) {
-        TraceRow row{env.time(), {}};
-        for (int b = 0; b < static_cast<int>(env.model().bodies().size()); ++b) {
-          row.com.push_back(env.center_of_mass(b));
+    checks.execute([&] {
+      tbb::parallel_for(std::size_t{0}, stepped.size(), [&](std::size_t k) {
+        const int i = stepped[k];
+        const solver::Environment& env = batch.environment(i);
+        SceneReport& r = report.scenes[i];
+        if (env.failed()) {
+          r.ok = false;
+          r.failure = env.failure();
+          return;
         }
-        r.trace.push_back(std::move(row));
-      }
-    }); });
+        ++r.steps;
+        const solver::StepDiagnostics& d = env.last_step();
+        r.min_distance = std::min(r.min_distance, d.min_distance);
+        r.min_volume_ratio = std::min(r.min_volume_ratio, d.min_volume_ratio);
+        r.newton_total += d.newton_iterations;
+        r.newton_max_per_step = std::max(r.newton_max_per_step, d.newton_iterations);
+        if (count_intersections(env) != 0) r.intersection_free = false;
+        if (trace) {
+          TraceRow row{env.time(), {}};
+          for (int b = 0; b < static_cast<int>(env.model().bodies().size()); ++b) {
+            row.com.push_back(env.center_of_mass(b));
+          }
+          r.trace.push_back(std::move(row));
+        }
+      });
+    });
     for (int i : stepped) {
       if (report.scenes[i].steps == steps[i]) batch.retire(i);
     }

@@ -23,7 +23,7 @@ struct TraceRow {
 };
 
 struct SceneReport {
-  std::string scene;    // the scene file
+  std::string scene;  // the scene file
   bool ok = true;
   std::string failure;  // empty when ok
   int steps = 0;

@@ -31,7 +31,8 @@ struct GripperBoxes {
 
   GripperBoxes(const Box& finger, double opening, double body_depth) {
     const double half = 0.5 * opening;
-    positive = {finger.lower + Eigen::Vector3d(0, half, 0), finger.upper + Eigen::Vector3d(0, half, 0)};
+    positive = {finger.lower + Eigen::Vector3d(0, half, 0),
+                finger.upper + Eigen::Vector3d(0, half, 0)};
     // The negative finger is the positive one turned half a turn about z.
     negative = {Eigen::Vector3d(-finger.upper.x(), -half - finger.upper.y(), finger.lower.z()),
                 Eigen::Vector3d(-finger.lower.x(), -half - finger.lower.y(), finger.upper.z())};
@@ -66,8 +67,7 @@ SynthesisResult sample_antipodal_grasps(const PreparedObject& object,
                                 " hand is not a parallel gripper");
   }
   const geometry::SurfaceSamples cloud = geometry::sample_surface(
-      object.surface(), params.cloud_points,
-      CandidateRandom(seed, kCloudStream, 0).below(1 << 30));
+      object.surface(), params.cloud_points, CandidateRandom(seed, kCloudStream, 0).below(1 << 30));
   const SurfaceFrames frames(cloud, params.frame_radius);
 
   const Box finger{gripper.finger_surface.vertices.colwise().minCoeff().transpose(),
@@ -79,7 +79,8 @@ SynthesisResult sample_antipodal_grasps(const PreparedObject& object,
 
   const auto attempt = [&](std::int64_t index) -> AttemptOutcome {
     // Consecutive attempts share a surface point and turn about its curvature axis.
-    CandidateRandom random(seed, kAttemptStream, static_cast<std::uint64_t>(index / params.rotations));
+    CandidateRandom random(seed, kAttemptStream,
+                           static_cast<std::uint64_t>(index / params.rotations));
     const SurfaceFrame frame = frames.at(random.below(static_cast<int>(cloud.points.rows())));
     const double angle =
         std::numbers::pi * (-0.5 + double(index % params.rotations) / params.rotations);
@@ -94,7 +95,8 @@ SynthesisResult sample_antipodal_grasps(const PreparedObject& object,
     // Cloud in the gripper frame with the surface point on the finger tips' plane (depth 0).
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> local(cloud.points.rows(), 3);
     for (int i = 0; i < cloud.points.rows(); ++i) {
-      local.row(i) = (rotation.transpose() * (cloud.points.row(i).transpose() - frame.point)).transpose();
+      local.row(i) =
+          (rotation.transpose() * (cloud.points.row(i).transpose() - frame.point)).transpose();
       local(i, 2) += length;
     }
     // Deepen along the approach while the open gripper stays collision-free.
@@ -141,8 +143,8 @@ SynthesisResult sample_antipodal_grasps(const PreparedObject& object,
 
     HandGrasp hand;
     hand.pose.linear() = rotation;
-    hand.pose.translation() = frame.point - approach * (length - depth) +
-                              closing * (0.5 * (y_min + y_max));
+    hand.pose.translation() =
+        frame.point - approach * (length - depth) + closing * (0.5 * (y_min + y_max));
     hand.joints = Eigen::VectorXd::Constant(1, opening);
     hand.contacts.resize(2, 3);
     hand.contact_normals.resize(2, 3);

@@ -26,7 +26,7 @@ struct AntipodalParams {
   double d_hat = 1e-3;          // m, the IPC barrier's activation distance
   double margin = 5e-4;         // m, clearance beyond d_hat every candidate keeps
   std::int64_t max_attempts_per_candidate = 200;
-  int block = 256;              // attempts per parallel block
+  int block = 256;  // attempts per parallel block
 };
 
 // Energy terms of a parallel-gripper candidate (Candidate::energies, in this order):

@@ -18,11 +18,11 @@ struct AttemptOutcome {
 };
 
 struct SynthesisResult {
-  std::vector<Candidate> candidates;           // at most `count`, in attempt order
-  std::int64_t attempts = 0;                   // attempts evaluated
-  std::int64_t accepted = 0;                   // of which succeeded (may exceed count)
+  std::vector<Candidate> candidates;               // at most `count`, in attempt order
+  std::int64_t attempts = 0;                       // attempts evaluated
+  std::int64_t accepted = 0;                       // of which succeeded (may exceed count)
   std::map<std::string, std::int64_t> rejections;  // attempts rejected, by reason
-  double seconds = 0.0;                        // wall time
+  double seconds = 0.0;                            // wall time
 
   double accepted_fraction() const { return attempts ? double(accepted) / double(attempts) : 0.0; }
 };

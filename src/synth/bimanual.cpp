@@ -40,16 +40,22 @@ std::vector<Candidate> compose_bimanual(
   for (const auto* set : {&right, &left}) {
     for (const Candidate& c : *set) {
       if (c.hands.size() != 1 || c.hands[0].contacts.rows() == 0) {
-        throw std::invalid_argument("compose_bimanual: every input candidate needs one hand with contacts");
+        throw std::invalid_argument(
+            "compose_bimanual: every input candidate needs one hand with contacts");
       }
     }
   }
   const Clustering right_clusters = kmeans(contact_centres(right), params.clusters, seed);
   const Clustering left_clusters = kmeans(contact_centres(left), params.clusters, seed + 1);
-  std::vector<std::vector<int>> right_members(static_cast<std::size_t>(right_clusters.centres.rows()));
-  std::vector<std::vector<int>> left_members(static_cast<std::size_t>(left_clusters.centres.rows()));
-  for (std::size_t i = 0; i < right.size(); ++i) right_members[static_cast<std::size_t>(right_clusters.labels[i])].push_back(static_cast<int>(i));
-  for (std::size_t i = 0; i < left.size(); ++i) left_members[static_cast<std::size_t>(left_clusters.labels[i])].push_back(static_cast<int>(i));
+  std::vector<std::vector<int>> right_members(
+      static_cast<std::size_t>(right_clusters.centres.rows()));
+  std::vector<std::vector<int>> left_members(
+      static_cast<std::size_t>(left_clusters.centres.rows()));
+  for (std::size_t i = 0; i < right.size(); ++i)
+    right_members[static_cast<std::size_t>(right_clusters.labels[i])].push_back(
+        static_cast<int>(i));
+  for (std::size_t i = 0; i < left.size(); ++i)
+    left_members[static_cast<std::size_t>(left_clusters.labels[i])].push_back(static_cast<int>(i));
 
   // Cluster pairs, farthest centres first; the top r1 of all k^2 pairs.
   struct ClusterPair {
@@ -59,11 +65,13 @@ std::vector<Candidate> compose_bimanual(
   std::vector<ClusterPair> pairs;
   for (int a = 0; a < right_clusters.centres.rows(); ++a) {
     for (int b = 0; b < left_clusters.centres.rows(); ++b) {
-      pairs.push_back({a, b, (right_clusters.centres.row(a) - left_clusters.centres.row(b)).norm()});
+      pairs.push_back(
+          {a, b, (right_clusters.centres.row(a) - left_clusters.centres.row(b)).norm()});
     }
   }
-  std::stable_sort(pairs.begin(), pairs.end(),
-                   [](const ClusterPair& x, const ClusterPair& y) { return x.distance > y.distance; });
+  std::stable_sort(pairs.begin(), pairs.end(), [](const ClusterPair& x, const ClusterPair& y) {
+    return x.distance > y.distance;
+  });
   const auto kept_pairs = static_cast<std::size_t>(
       std::max(1.0, std::ceil(params.pair_fraction * static_cast<double>(pairs.size()))));
   pairs.resize(std::min(pairs.size(), kept_pairs));
@@ -75,7 +83,8 @@ std::vector<Candidate> compose_bimanual(
   }
   BimanualStatistics stats;
   stats.filtered = filtered;
-  const double keep_fraction = std::min(1.0, static_cast<double>(target) / static_cast<double>(std::max<std::int64_t>(filtered, 1)));
+  const double keep_fraction = std::min(
+      1.0, static_cast<double>(target) / static_cast<double>(std::max<std::int64_t>(filtered, 1)));
 
   std::vector<std::unique_ptr<TriangleTree>> right_trees(right.size());
   for (const ClusterPair& p : pairs) {
@@ -94,7 +103,8 @@ std::vector<Candidate> compose_bimanual(
     std::stable_sort(combinations.begin(), combinations.end(),
                      [](const Combination& x, const Combination& y) { return x.fc < y.fc; });
     // Rounding up keeps at least one from every selected pair; the total stops at the target.
-    const auto quota = static_cast<std::size_t>(std::ceil(keep_fraction * static_cast<double>(combinations.size())));
+    const auto quota = static_cast<std::size_t>(
+        std::ceil(keep_fraction * static_cast<double>(combinations.size())));
     std::size_t taken = 0;
     for (const Combination& c : combinations) {
       if (taken >= quota || static_cast<int>(result.size()) >= target) break;
@@ -103,7 +113,8 @@ std::vector<Candidate> compose_bimanual(
       auto& tree = right_trees[static_cast<std::size_t>(c.right)];
       if (!tree) tree = std::make_unique<TriangleTree>(posed(cr, false));
       ++stats.examined;
-      if (tree->proximity(posed(cl, true), params.hand_clearance).distance < params.hand_clearance) {
+      if (tree->proximity(posed(cl, true), params.hand_clearance).distance <
+          params.hand_clearance) {
         ++stats.colliding;
         continue;
       }

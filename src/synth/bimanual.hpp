@@ -14,8 +14,8 @@
 namespace grip::synth {
 
 struct BimanualParams {
-  int clusters = 26;             // k
-  double pair_fraction = 0.25;   // r1
+  int clusters = 26;               // k
+  double pair_fraction = 0.25;     // r1
   double hand_clearance = 1.5e-3;  // m, exact distance the two hands keep (d_hat + margin)
 };
 

@@ -14,7 +14,7 @@ namespace grip::synth {
 struct HandGrasp {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // world from hand (gripper frame)
   Eigen::VectorXd joints;  // GripperType::joints: the opening (m), or the hand's joints (rad)
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contacts;        // world, m
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contacts;         // world, m
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contact_normals;  // object's, outward
 };
 

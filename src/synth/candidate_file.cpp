@@ -112,8 +112,9 @@ void write_candidates(const std::filesystem::path& file, const std::vector<Candi
       same_names = c.energies[i].name == first_terms[i].name;
     }
     if (c.gripper != gripper.kind || c.hands.size() != hands || !same_names) {
-      throw std::invalid_argument("write_candidates: all candidates of one file must share the "
-                                  "gripper, the hand count and the energy terms");
+      throw std::invalid_argument(
+          "write_candidates: all candidates of one file must share the "
+          "gripper, the hand count and the energy terms");
     }
   }
   std::ofstream out(file);
@@ -139,7 +140,8 @@ void write_candidates(const std::filesystem::path& file, const std::vector<Candi
                                     " has the wrong number of joints or contact normals");
       }
       const Eigen::Quaterniond q(hand.pose.linear());
-      const Eigen::Quaterniond unit = (q.w() < 0 ? Eigen::Quaterniond(-q.coeffs()) : q).normalized();
+      const Eigen::Quaterniond unit =
+          (q.w() < 0 ? Eigen::Quaterniond(-q.coeffs()) : q).normalized();
       out << "hand position";
       for (int k = 0; k < 3; ++k) out << ' ' << number(hand.pose.translation()(k));
       out << " quaternion " << number(unit.w()) << ' ' << number(unit.x()) << ' '
@@ -164,7 +166,8 @@ std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
   LineReader reader(in, file);
   reader.next(kMagic);
   if (reader.count("format version") != kVersion) {
-    reader.fail("unsupported format version (this grip reads version " + std::to_string(kVersion) + ")");
+    reader.fail("unsupported format version (this grip reads version " + std::to_string(kVersion) +
+                ")");
   }
   reader.end();
   reader.next("gripper");
@@ -198,11 +201,13 @@ std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
     Candidate& c = candidates[static_cast<std::size_t>(i)];
     c.gripper = gripper->kind;
     reader.next("candidate");
-    if (reader.count("candidate index") != i) reader.fail("candidate index must be " + std::to_string(i));
+    if (reader.count("candidate index") != i)
+      reader.fail("candidate index must be " + std::to_string(i));
     reader.expect("min_distance");
     c.min_distance = reader.real("min_distance");
     reader.expect("energy");
-    for (const std::string& name : names) c.energies.push_back({name, reader.real("energy " + name)});
+    for (const std::string& name : names)
+      c.energies.push_back({name, reader.real("energy " + name)});
     reader.end();
     for (int h = 0; h < hands; ++h) {
       HandGrasp hand;
@@ -213,7 +218,8 @@ std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
       reader.expect("quaternion");
       Eigen::Vector4d wxyz;
       for (int k = 0; k < 4; ++k) wxyz(k) = reader.real("quaternion");
-      if (std::abs(wxyz.norm() - 1.0) > 1e-9) reader.fail("the quaternion is not a unit quaternion");
+      if (std::abs(wxyz.norm() - 1.0) > 1e-9)
+        reader.fail("the quaternion is not a unit quaternion");
       reader.expect("matrix");
       for (int r = 0; r < 3; ++r) {
         for (int k = 0; k < 3; ++k) hand.pose.linear()(r, k) = reader.real("matrix entry");

@@ -23,7 +23,8 @@ ConvexHull::ConvexHull(const geometry::Vertices& points) {
   std::map<std::array<double, 3>, int> index_of;
   std::vector<Point> input;
   for (int i = 0; i < points.rows(); ++i) {
-    if (index_of.emplace(std::array<double, 3>{points(i, 0), points(i, 1), points(i, 2)}, i).second) {
+    if (index_of.emplace(std::array<double, 3>{points(i, 0), points(i, 1), points(i, 2)}, i)
+            .second) {
       input.emplace_back(points(i, 0), points(i, 1), points(i, 2));
     }
   }
@@ -55,7 +56,8 @@ ConvexHull::ConvexHull(const geometry::Vertices& points) {
     const Eigen::Vector3d n = (corners[1] - corners[0]).cross(corners[2] - corners[0]).normalized();
     std::vector<int> on_plane;
     for (const int i : hull_points) {
-      if (std::abs(n.dot(points.row(i).transpose() - corners[0])) <= tolerance) on_plane.push_back(i);
+      if (std::abs(n.dot(points.row(i).transpose() - corners[0])) <= tolerance)
+        on_plane.push_back(i);
     }
     facets.insert(on_plane);
   }

@@ -43,8 +43,8 @@ std::optional<FixedHand> fix_hand_clearance(const PreparedHand& hand, const Prep
     if (jacobian.norm() > 0.0) {
       const Eigen::Matrix3d system = jacobian * jacobian.transpose() +
                                      params.damping * params.damping * Eigen::Matrix3d::Identity();
-      const Eigen::VectorXd q = tree.clamp_to_limits(
-          state.joints + jacobian.transpose() * system.ldlt().solve(move));
+      const Eigen::VectorXd q =
+          tree.clamp_to_limits(state.joints + jacobian.transpose() * system.ldlt().solve(move));
       reached = jacobian * (q - state.joints);
       state.joints = q;
     }

@@ -29,7 +29,8 @@ class GradientAccumulator {
     if (!gradient_) return;
     gradient_->segment<3>(3) += tau;
     gradient_->tail(tree_.dof_count()) +=
-        tree_.point_jacobian(poses_, link, Eigen::Vector3d::Zero()).bottomRows<3>().transpose() * tau;
+        tree_.point_jacobian(poses_, link, Eigen::Vector3d::Zero()).bottomRows<3>().transpose() *
+        tau;
   }
 
  private:
@@ -50,7 +51,8 @@ HandState HandEnergy::moved(const HandState& state, const Eigen::VectorXd& step)
   next.base.translation() += step.segment<3>(0);
   const Eigen::Vector3d w = step.segment<3>(3);
   if (w.norm() > 0.0) {
-    next.base.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix() * state.base.linear();
+    next.base.linear() =
+        Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix() * state.base.linear();
   }
   next.joints += step.tail(state.joints.size());
   return next;
@@ -78,7 +80,8 @@ HandEnergyTerms HandEnergy::evaluate(const HandState& state, Eigen::VectorXd* gr
   std::vector<int> links(static_cast<std::size_t>(n_c));
   std::vector<Eigen::Vector3d> world(static_cast<std::size_t>(n_c));
   for (int i = 0; i < n_c; ++i) {
-    const PreparedHand::LinkPoint& c = hand_.contacts()[static_cast<std::size_t>(state.contacts[static_cast<std::size_t>(i)])];
+    const PreparedHand::LinkPoint& c =
+        hand_.contacts()[static_cast<std::size_t>(state.contacts[static_cast<std::size_t>(i)])];
     const Eigen::Isometry3d& pose = poses[static_cast<std::size_t>(c.link)];
     const Eigen::Vector3d x = pose * c.position;
     const Eigen::Vector3d n_h = pose.linear() * c.normal;
@@ -139,7 +142,8 @@ HandEnergyTerms HandEnergy::evaluate(const HandState& state, Eigen::VectorXd* gr
   for (const auto& [a, b] : hand_.keypoint_pairs()) {
     const PreparedHand::LinkPoint& ka = hand_.keypoints()[static_cast<std::size_t>(a)];
     const PreparedHand::LinkPoint& kb = hand_.keypoints()[static_cast<std::size_t>(b)];
-    const Eigen::Vector3d d = centres[static_cast<std::size_t>(a)] - centres[static_cast<std::size_t>(b)];
+    const Eigen::Vector3d d =
+        centres[static_cast<std::size_t>(a)] - centres[static_cast<std::size_t>(b)];
     const double overlap = ka.radius + kb.radius - d.norm();
     if (overlap <= 0.0) continue;
     terms.spen += overlap;
@@ -177,8 +181,9 @@ double joint_limit_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& lower
   return energy;
 }
 
-double force_closure_error(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points,
-                           const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& normals) {
+double force_closure_error(
+    const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points,
+    const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& normals) {
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
   for (int i = 0; i < points.rows(); ++i) {
     force += normals.row(i).transpose();

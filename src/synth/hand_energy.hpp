@@ -73,7 +73,8 @@ double joint_limit_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& lower
 // The approximate force-closure metric of a set of contacts with unit object normals:
 // || [sum n_i ; sum x_i x n_i] ||, 0 for a balanced set; x_i relative to the torque reference
 // point (the object's centroid in HandEnergy).
-double force_closure_error(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points,
-                           const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& normals);
+double force_closure_error(
+    const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points,
+    const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& normals);
 
 }  // namespace grip::synth

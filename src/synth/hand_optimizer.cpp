@@ -16,7 +16,8 @@ constexpr std::uint32_t kAttemptStream = 23;
 
 // A rotation whose z axis is `z` (unit), turned by `spin` about it.
 Eigen::Matrix3d frame_with_z(const Eigen::Vector3d& z, double spin) {
-  const Eigen::Vector3d helper = std::abs(z.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d helper =
+      std::abs(z.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d x0 = z.cross(helper).normalized();
   const Eigen::Vector3d x = Eigen::AngleAxisd(spin, z) * x0;
   Eigen::Matrix3d r;
@@ -35,7 +36,8 @@ HandState initial_state(const PreparedHand& hand, const ConvexHull& hull,
   const Eigen::Vector3d& p = on_hull.point;
   const Eigen::Vector3d& n = on_hull.normal;
   // The palm faces the hull (+z of the palm along -n), tilted within the jitter cone.
-  const Eigen::Vector3d tilt_axis = frame_with_z(n, random.uniform(0.0, 2.0 * std::numbers::pi)).col(0);
+  const Eigen::Vector3d tilt_axis =
+      frame_with_z(n, random.uniform(0.0, 2.0 * std::numbers::pi)).col(0);
   const Eigen::Vector3d z =
       Eigen::AngleAxisd(random.uniform(0.0, params.approach_jitter), tilt_axis) * (-n);
   HandState state;
@@ -67,9 +69,9 @@ SynthesisResult optimize_hand_grasps(const PreparedObject& object, const Prepare
                                      int count) {
   const grippers::KinematicTree& tree = hand.kinematics();
   const ConvexHull hull(object.surface().vertices);
-  const geometry::SurfaceSamples penetration = geometry::sample_surface(
-      object.surface(), params.penetration_points,
-      CandidateRandom(seed, kPenetrationStream, 0).below(1 << 30));
+  const geometry::SurfaceSamples penetration =
+      geometry::sample_surface(object.surface(), params.penetration_points,
+                               CandidateRandom(seed, kPenetrationStream, 0).below(1 << 30));
   const HandEnergy energy(hand, object, penetration.points, params.weights);
   const int dofs = tree.dof_count();
 
@@ -84,7 +86,8 @@ SynthesisResult optimize_hand_grasps(const PreparedObject& object, const Prepare
       mean_square = params.rms_decay * mean_square +
                     (1.0 - params.rms_decay) * gradient.cwiseProduct(gradient);
       const Eigen::VectorXd move =
-          -params.step_size * decay * gradient.cwiseQuotient((mean_square.cwiseSqrt().array() + 1e-6).matrix());
+          -params.step_size * decay *
+          gradient.cwiseQuotient((mean_square.cwiseSqrt().array() + 1e-6).matrix());
       HandState proposal = HandEnergy::moved(state, move);
       proposal.joints = tree.clamp_to_limits(proposal.joints);
       for (int& c : proposal.contacts) {
@@ -104,9 +107,11 @@ SynthesisResult optimize_hand_grasps(const PreparedObject& object, const Prepare
       }
     }
 
-    const std::optional<FixedHand> fixed = fix_hand_clearance(hand, object, state, params.clearance);
+    const std::optional<FixedHand> fixed =
+        fix_hand_clearance(hand, object, state, params.clearance);
     if (!fixed) return {std::nullopt, "penetration left after the clearance fix"};
-    const std::vector<Eigen::Isometry3d> poses = tree.link_poses(fixed->state.base, fixed->state.joints);
+    const std::vector<Eigen::Isometry3d> poses =
+        tree.link_poses(fixed->state.base, fixed->state.joints);
     if (hand.self_intersections(poses) > 0) return {std::nullopt, "hand intersects itself"};
 
     HandGrasp grasp;
@@ -116,17 +121,18 @@ SynthesisResult optimize_hand_grasps(const PreparedObject& object, const Prepare
     grasp.contacts.resize(n_c, 3);
     grasp.contact_normals.resize(n_c, 3);
     for (int i = 0; i < n_c; ++i) {
-      const PreparedHand::LinkPoint& c = hand.contacts()[static_cast<std::size_t>(fixed->state.contacts[static_cast<std::size_t>(i)])];
+      const PreparedHand::LinkPoint& c = hand.contacts()[static_cast<std::size_t>(
+          fixed->state.contacts[static_cast<std::size_t>(i)])];
       const Eigen::Vector3d x = poses[static_cast<std::size_t>(c.link)] * c.position;
       grasp.contacts.row(i) = x.transpose();
-      grasp.contact_normals.row(i) = object.tree().face_normal(object.tree().closest(x).face).transpose();
+      grasp.contact_normals.row(i) =
+          object.tree().face_normal(object.tree().closest(x).face).transpose();
     }
     Candidate candidate;
     candidate.gripper = grippers::GripperKind::kLeap;
     candidate.hands.push_back(std::move(grasp));
-    candidate.energies = {{"fc", terms.fc},         {"dis", terms.dis},
-                          {"pen", terms.pen},       {"spen", terms.spen},
-                          {"joints", terms.joints}, {"normal", terms.normal},
+    candidate.energies = {{"fc", terms.fc},      {"dis", terms.dis},       {"pen", terms.pen},
+                          {"spen", terms.spen},  {"joints", terms.joints}, {"normal", terms.normal},
                           {"total", terms.total}};
     candidate.min_distance = fixed->min_distance;
     return {std::move(candidate), ""};

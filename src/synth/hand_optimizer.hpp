@@ -1,8 +1,9 @@
 #pragma once
 // The dexterous grasp optimizer for the 16-DoF hand in the spirit of DexGraspNet: each attempt
-// starts the hand on the object's inflated convex hull (in a random direction from its centre), anneals the energy of hand_energy.hpp
-// with RMSProp-scaled gradient steps, contact resampling and Metropolis acceptance, then runs
-// the clearance fix and the exact checks. Attempts run in parallel, one seed each.
+// starts the hand on the object's inflated convex hull (in a random direction from its centre),
+// anneals the energy of hand_energy.hpp with RMSProp-scaled gradient steps, contact resampling and
+// Metropolis acceptance, then runs the clearance fix and the exact checks. Attempts run in
+// parallel, one seed each.
 #include <cstdint>
 
 #include "src/synth/attempt_driver.hpp"
@@ -12,23 +13,23 @@
 namespace grip::synth {
 
 struct HandOptimizerParams {
-  int steps = 1500;                // annealing steps per attempt
-  int contacts = 4;                // contact candidates taking part in the energy
-  double step_size = 0.005;        // RMSProp step (m or rad per unit of scaled gradient)
-  double rms_decay = 0.98;         // decay of RMSProp's squared-gradient average
+  int steps = 1500;          // annealing steps per attempt
+  int contacts = 4;          // contact candidates taking part in the energy
+  double step_size = 0.005;  // RMSProp step (m or rad per unit of scaled gradient)
+  double rms_decay = 0.98;   // decay of RMSProp's squared-gradient average
   double starting_temperature = 18.0;
   double temperature_decay = 0.95;  // temperature and step size decay once per period
   int annealing_period = 30;
   double switch_probability = 0.5;  // per step, per contact: draw another candidate
   double hull_distance_min = 0.01;  // m, the hull inflation the palm starts at
   double hull_distance_max = 0.03;
-  double approach_jitter = 0.26;    // rad, palm normal's deviation from the hull normal
-  double joint_jitter = 0.1;        // rad, standard deviation of the initial joints
-  int penetration_points = 1000;    // object samples for E_pen
+  double approach_jitter = 0.26;  // rad, palm normal's deviation from the hull normal
+  double joint_jitter = 0.1;      // rad, standard deviation of the initial joints
+  int penetration_points = 1000;  // object samples for E_pen
   HandEnergyWeights weights;
   ClearanceFixParams clearance;
   std::int64_t max_attempts_per_candidate = 20;
-  int block = 16;                   // attempts per parallel block
+  int block = 16;  // attempts per parallel block
 };
 
 // Energy terms of a hand candidate (Candidate::energies, in this order): fc, dis, pen, spen,

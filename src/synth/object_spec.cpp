@@ -24,7 +24,8 @@ std::optional<objects::ObjectCategory> category_of(const std::string& spec) {
 
 geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, double scale) {
   if (!(scale > 0.0) || !std::isfinite(scale)) {
-    throw std::invalid_argument("--scale must be a positive factor (got " + std::to_string(scale) + ")");
+    throw std::invalid_argument("--scale must be a positive factor (got " + std::to_string(scale) +
+                                ")");
   }
   if (const auto category = category_of(spec)) {
     return objects::generate_surface(objects::sample_shape(*category, seed));
@@ -34,8 +35,7 @@ geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, d
     for (const objects::ObjectCategory category : objects::all_object_categories()) {
       names += (names.empty() ? "" : ", ") + std::string(objects::category_name(category));
     }
-    throw std::invalid_argument("--object '" + spec +
-                                "' is neither an object category (" + names +
+    throw std::invalid_argument("--object '" + spec + "' is neither an object category (" + names +
                                 ") nor an existing mesh file (.obj, .stl, .ply, .off)");
   }
   geometry::SurfaceMesh mesh = geometry::read_surface_mesh(spec);

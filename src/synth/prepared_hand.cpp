@@ -48,7 +48,8 @@ PreparedHand::PreparedHand(grippers::HandModel model) : model_(std::move(model))
     offset += static_cast<int>(surface.vertices.rows());
   }
   merged_faces_.resize(static_cast<int>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) merged_faces_.row(static_cast<int>(f)) = faces[f].transpose();
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    merged_faces_.row(static_cast<int>(f)) = faces[f].transpose();
   merged_edges_.resize(static_cast<int>(edges.size()), 2);
   int e = 0;
   for (const auto& [a, b] : edges) merged_edges_.row(e++) << a, b;
@@ -78,10 +79,13 @@ int PreparedHand::self_intersections(const std::vector<Eigen::Isometry3d>& poses
   geometry::Vertices positions(static_cast<int>(vertex_link_.size()), 3);
   int row = 0;
   for (int l = 0; l < link_count(); ++l) {
-    const geometry::SurfaceMesh& surface = model_.kinematics.links()[static_cast<std::size_t>(l)].surface;
+    const geometry::SurfaceMesh& surface =
+        model_.kinematics.links()[static_cast<std::size_t>(l)].surface;
     if (surface.triangles.rows() == 0) continue;
     for (int v = 0; v < surface.vertices.rows(); ++v) {
-      positions.row(row++) = (poses[static_cast<std::size_t>(l)] * Eigen::Vector3d(surface.vertices.row(v))).transpose();
+      positions.row(row++) =
+          (poses[static_cast<std::size_t>(l)] * Eigen::Vector3d(surface.vertices.row(v)))
+              .transpose();
     }
   }
   return geometry::count_intersections(positions, merged_faces_, merged_edges_, vertex_link_,

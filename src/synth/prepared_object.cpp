@@ -10,7 +10,8 @@ namespace {
 
 int find_root(std::vector<int>& parent, int v) {
   while (parent[static_cast<std::size_t>(v)] != v) {
-    parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+    parent[static_cast<std::size_t>(v)] =
+        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
     v = parent[static_cast<std::size_t>(v)];
   }
   return v;
@@ -53,7 +54,8 @@ double PreparedObject::clearance(const geometry::SurfaceMesh& gripper, double cu
     }
   }
   std::vector<Eigen::Vector3d> lower(static_cast<std::size_t>(n), Eigen::Vector3d::Constant(1e300));
-  std::vector<Eigen::Vector3d> upper(static_cast<std::size_t>(n), Eigen::Vector3d::Constant(-1e300));
+  std::vector<Eigen::Vector3d> upper(static_cast<std::size_t>(n),
+                                     Eigen::Vector3d::Constant(-1e300));
   std::vector<bool> used(static_cast<std::size_t>(n), false);
   for (int f = 0; f < gripper.triangles.rows(); ++f) {
     for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(gripper.triangles(f, k))] = true;

@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <iterator>
 #include <numeric>
-#include <utility>
 #include <stdexcept>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -42,8 +42,9 @@ SurfaceFrames::SurfaceFrames(const geometry::SurfaceSamples& cloud, double radiu
   }
   std::vector<std::size_t> indices(impl_->points.size());
   std::iota(indices.begin(), indices.end(), std::size_t{0});
-  impl_->tree = std::make_unique<Tree>(indices.begin(), indices.end(), Tree::Splitter(),
-                                       Traits(CGAL::make_property_map(std::as_const(impl_->points))));
+  impl_->tree =
+      std::make_unique<Tree>(indices.begin(), indices.end(), Tree::Splitter(),
+                             Traits(CGAL::make_property_map(std::as_const(impl_->points))));
   impl_->tree->build();  // searches are const and thread-safe once built
 }
 
@@ -51,8 +52,8 @@ SurfaceFrames::~SurfaceFrames() = default;
 
 std::vector<int> SurfaceFrames::neighbours(const Eigen::Vector3d& point) const {
   std::vector<std::size_t> found;
-  impl_->tree->search(std::back_inserter(found),
-                      Sphere(Point(point.x(), point.y(), point.z()), radius_, 0.0, impl_->tree->traits()));
+  impl_->tree->search(std::back_inserter(found), Sphere(Point(point.x(), point.y(), point.z()),
+                                                        radius_, 0.0, impl_->tree->traits()));
   std::sort(found.begin(), found.end());
   return {found.begin(), found.end()};
 }

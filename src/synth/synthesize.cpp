@@ -43,8 +43,8 @@ SynthesisResult synthesize(const PreparedObject& object, grippers::GripperKind g
       right.emplace(prepared_hand(grippers::HandSide::kRight));
       left.emplace(prepared_hand(grippers::HandSide::kLeft));
     }
-    const int pool = static_cast<int>(std::ceil(
-        params.pool_factor * std::sqrt(count / params.bimanual.pair_fraction)));
+    const int pool = static_cast<int>(
+        std::ceil(params.pool_factor * std::sqrt(count / params.bimanual.pair_fraction)));
     const SynthesisResult right_pool = unimanual(right ? &*right : nullptr, 2 * seed, pool);
     const SynthesisResult left_pool = unimanual(left ? &*left : nullptr, 2 * seed + 1, pool);
     add(result, right_pool);

@@ -40,7 +40,8 @@ struct TriangleTree::Impl {
 };
 
 TriangleTree::TriangleTree(const geometry::SurfaceMesh& mesh) : impl_(std::make_unique<Impl>()) {
-  if (mesh.triangles.rows() == 0) throw std::invalid_argument("TriangleTree: the mesh has no triangles");
+  if (mesh.triangles.rows() == 0)
+    throw std::invalid_argument("TriangleTree: the mesh has no triangles");
   impl_->mesh = mesh;
   impl_->triangles.reserve(static_cast<std::size_t>(mesh.triangles.rows()));
   for (int f = 0; f < mesh.triangles.rows(); ++f) impl_->triangles.push_back(triangle(mesh, f));

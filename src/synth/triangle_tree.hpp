@@ -19,9 +19,9 @@ class TriangleTree {
 
   // Triangle-triangle proximity of another mesh to this one.
   struct Proximity {
-    double distance = 0.0;     // m; exact when below the cutoff, else the cutoff
+    double distance = 0.0;      // m; exact when below the cutoff, else the cutoff
     bool intersecting = false;  // some pair of triangles intersects (distance is then 0)
-    int face_here = -1;        // the triangles realising `distance` (-1 when at the cutoff)
+    int face_here = -1;         // the triangles realising `distance` (-1 when at the cutoff)
     int face_other = -1;
   };
 

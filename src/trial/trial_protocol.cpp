@@ -357,8 +357,7 @@ class ProtocolRunner {
     }
     const bool displaced_before =
         state.phase == Phase::kGravity &&
-        std::any_of(record.displacement.begin(),
-                    record.displacement.begin() + state.gravity_phase,
+        std::any_of(record.displacement.begin(), record.displacement.begin() + state.gravity_phase,
                     [&](double d) { return d >= p_.displacement_threshold(); });
     finish(i, displaced_before ? io::FailureKind::kDisplaced : solver_failure_kind(env.failure()));
   }

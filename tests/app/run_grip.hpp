@@ -28,8 +28,8 @@ inline GripRun run_grip(const std::string& arguments) {
   const auto dir = std::filesystem::temp_directory_path();
   const auto out = dir / ("grip_test_out_" + std::to_string(::getpid()));
   const auto err = dir / ("grip_test_err_" + std::to_string(::getpid()));
-  const std::string command = std::string(GRIP_EXECUTABLE) + " " + arguments + " >" +
-                              out.string() + " 2>" + err.string();
+  const std::string command =
+      std::string(GRIP_EXECUTABLE) + " " + arguments + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(command.c_str());
   GripRun run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -13,8 +13,8 @@ namespace {
 TEST(GripCli, VersionNamesEveryLibraryAndTheRevision) {
   const GripRun run = run_grip("--version");
   EXPECT_EQ(run.exit_code, 0) << run.err;
-  for (const char* word : {"grip 0.", "revision", "MPI", "HDF5", "(parallel)", "PETSc", "CGAL",
-                           "Eigen"}) {
+  for (const char* word :
+       {"grip 0.", "revision", "MPI", "HDF5", "(parallel)", "PETSc", "CGAL", "Eigen"}) {
     EXPECT_NE(run.out.find(word), std::string::npos) << "missing '" << word << "' in\n" << run.out;
   }
   EXPECT_EQ(run.out.find("revision unknown"), std::string::npos) << run.out;
@@ -62,7 +62,8 @@ TEST(GripCli, SimulateWritesAReportAndFailsClearlyOnBadScenes) {
   EXPECT_NE(ok.out.find("\"status\": \"ok\""), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("\"steps\": 5"), std::string::npos) << ok.out;
   // Several scenes: one report entry each, in order.
-  const GripRun two = run_grip("simulate " + scene.string() + " " + scene.string() + " --threads 2");
+  const GripRun two =
+      run_grip("simulate " + scene.string() + " " + scene.string() + " --threads 2");
   EXPECT_EQ(two.exit_code, 0) << two.err;
   EXPECT_NE(two.out.find("\"threads\": 2"), std::string::npos) << two.out;
   const std::size_t first = two.out.find("\"steps\": 5");
@@ -71,8 +72,8 @@ TEST(GripCli, SimulateWritesAReportAndFailsClearlyOnBadScenes) {
 
   // The batch benchmark on two jittered copies: the batch ends bit-identical to the copies run
   // one after another.
-  const GripRun bench = run_grip("bench batch --scene " + scene.string() +
-                                 " --envs 1,2 --threads 2 --jitter 7");
+  const GripRun bench =
+      run_grip("bench batch --scene " + scene.string() + " --envs 1,2 --threads 2 --jitter 7");
   EXPECT_EQ(bench.exit_code, 0) << bench.err;
   EXPECT_NE(bench.out.find("{\"benchmark\": \"batch\""), std::string::npos) << bench.out;
   EXPECT_NE(bench.out.find("\"identical\": true"), std::string::npos) << bench.out;
@@ -83,8 +84,7 @@ TEST(GripCli, SimulateWritesAReportAndFailsClearlyOnBadScenes) {
   const GripRun bad = run_grip("simulate " + scene.string());
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_EQ(count_lines(bad.err), 1) << bad.err;
-  EXPECT_NE(bad.err.find(".toml:3: unknown key 'sim.foo'"), std::string::npos)
-      << bad.err;
+  EXPECT_NE(bad.err.find(".toml:3: unknown key 'sim.foo'"), std::string::npos) << bad.err;
   std::filesystem::remove(scene);
 }
 

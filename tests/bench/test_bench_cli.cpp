@@ -21,8 +21,8 @@ fs::path scratch(const std::string& name) {
 
 TEST(BenchCli, HardWritesItsTablesAndPasses) {
   const fs::path out = scratch("hard");
-  const auto run = run_grip("bench hard --cases mu_3.5_incline,parallel_edge_edge --threads 1 --out " +
-                            out.string());
+  const auto run = run_grip(
+      "bench hard --cases mu_3.5_incline,parallel_edge_edge --threads 1 --out " + out.string());
   EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
   EXPECT_NE(run.out.find("all cases pass"), std::string::npos) << run.out;
   const std::string csv = slurp(out / "hard.csv");

@@ -94,7 +94,8 @@ BatchRun run_batch(const SqueezeOptions& options, const SqueezeScene& scene, boo
   std::vector<SqueezeProgress> progress(batch.size());
   for (;;) {
     for (int e = 0; e < batch.size(); ++e) {
-      if (batch.active(e) && !next_squeeze_step(options, scene, batch.environment(e), progress[e])) {
+      if (batch.active(e) &&
+          !next_squeeze_step(options, scene, batch.environment(e), progress[e])) {
         batch.retire(e);
       }
     }
@@ -105,7 +106,8 @@ BatchRun run_batch(const SqueezeOptions& options, const SqueezeScene& scene, boo
     run.all_iterate_every_round =
         run.all_iterate_every_round && report.iterations == long{report.stepped} * report.rounds;
   }
-  for (int e = 0; e < batch.size(); ++e) run.results.push_back(squeeze_result(scene, batch.environment(e)));
+  for (int e = 0; e < batch.size(); ++e)
+    run.results.push_back(squeeze_result(scene, batch.environment(e)));
   return run;
 }
 

@@ -1,10 +1,10 @@
 // The strict TOML reader: every kind of bad input is one line naming file, line and key.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "src/config/config.hpp"
 
@@ -50,24 +50,21 @@ TEST(ConfigReader, FarFromEveryAllowedKeyGetsNoSuggestion) {
 }
 
 TEST(ConfigReader, WrongTypeNamesKeyAndBothTypes) {
-  const auto message = error_of("[sim]\n\ndt = \"fast\"\n", [](const Table& root) {
-    root.table("sim").number("dt");
-  });
+  const auto message = error_of("[sim]\n\ndt = \"fast\"\n",
+                                [](const Table& root) { root.table("sim").number("dt"); });
   EXPECT_EQ(message, "scene.toml:3: key 'sim.dt' must be a number, not a string");
 }
 
 TEST(ConfigReader, MissingRequiredKeyPointsAtItsTable) {
-  const auto message = error_of("title = \"x\"\n[sim]\nduration = 1\n", [](const Table& root) {
-    root.table("sim").number("dt");
-  });
+  const auto message = error_of("title = \"x\"\n[sim]\nduration = 1\n",
+                                [](const Table& root) { root.table("sim").number("dt"); });
   EXPECT_EQ(message, "scene.toml:2: missing required key 'sim.dt' in [sim]");
 }
 
 TEST(ConfigReader, NonFiniteNumbersAreRejected) {
   for (const std::string value : {"nan", "inf", "-inf", "+nan"}) {
-    const auto message = error_of("dt = " + value + "\n", [](const Table& root) {
-      root.number("dt");
-    });
+    const auto message =
+        error_of("dt = " + value + "\n", [](const Table& root) { root.number("dt"); });
     EXPECT_NE(message.find("scene.toml:1: key 'dt' must be a finite number"), std::string::npos)
         << message;
   }

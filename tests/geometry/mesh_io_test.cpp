@@ -19,7 +19,8 @@ class GeometryMeshIoTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("grip_mesh_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("grip_mesh_io_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -47,7 +48,8 @@ TEST_F(GeometryMeshIoTest, ObjRoundTripIsExact) {
 }
 
 TEST_F(GeometryMeshIoTest, ReadsOffPlyAndStlAndMergesStlCorners) {
-  const std::string off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const std::string off =
+      "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
   const SurfaceMesh from_off = read_surface_mesh(write("tet.off", off));
   EXPECT_EQ(from_off.vertices.rows(), 4);
   EXPECT_EQ(from_off.triangles.rows(), 4);

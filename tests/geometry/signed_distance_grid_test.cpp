@@ -28,7 +28,8 @@ TEST(GeometrySignedDistanceGridTest, WithinTheLipschitzBoundOfTheExactDistance) 
 TEST(GeometrySignedDistanceGridTest, ExactAtNodesAndOutside) {
   auto exact = std::make_shared<const SignedDistance>(testing::box(0.05, 0.03, 0.02));
   const SignedDistanceGrid grid(exact, 0.01, 0.005);
-  const Eigen::Vector3d origin = exact->bounds().row(0).transpose() - Eigen::Vector3d::Constant(0.005);
+  const Eigen::Vector3d origin =
+      exact->bounds().row(0).transpose() - Eigen::Vector3d::Constant(0.005);
   for (int i = 0; i < grid.node_counts().x(); i += 3) {
     for (int j = 0; j < grid.node_counts().y(); j += 2) {
       const Eigen::Vector3d node = origin + 0.01 * Eigen::Vector3d(i, j, 2);

@@ -24,7 +24,8 @@ Vertices random_points(int count, double extent, unsigned seed) {
   std::mt19937_64 generator(seed);
   std::uniform_real_distribution<double> uniform(-extent, extent);
   Vertices points(count, 3);
-  for (int i = 0; i < count; ++i) points.row(i) << uniform(generator), uniform(generator), uniform(generator);
+  for (int i = 0; i < count; ++i)
+    points.row(i) << uniform(generator), uniform(generator), uniform(generator);
   return points;
 }
 

@@ -15,8 +15,8 @@ inline SurfaceMesh box(double hx, double hy, double hz) {
     mesh.vertices.row(i) << ((i & 1) ? hx : -hx), ((i & 2) ? hy : -hy), ((i & 4) ? hz : -hz);
   }
   mesh.triangles.resize(12, 3);
-  mesh.triangles << 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4,
-      6, 0, 6, 2, 1, 3, 7, 1, 7, 5;
+  mesh.triangles << 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4, 6,
+      0, 6, 2, 1, 3, 7, 1, 7, 5;
   return mesh;
 }
 

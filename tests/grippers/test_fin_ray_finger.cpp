@@ -57,8 +57,8 @@ TEST_F(GrippersDefaultFinRay, BoundaryIsClosedWithOneHandlePerCavity) {
   // Each cavity runs through the whole depth: genus = rib_count + 1, chi = 2 - 2 genus.
   const FinRayOptions o;
   EXPECT_EQ(testing::euler_characteristic(surface), 2 - 2 * (o.rib_count + 1));
-  EXPECT_NEAR(geometry::surface_volume(surface),
-              geometry::tet_quality(finger_->mesh).total_volume, 1e-12);
+  EXPECT_NEAR(geometry::surface_volume(surface), geometry::tet_quality(finger_->mesh).total_volume,
+              1e-12);
 }
 
 TEST_F(GrippersDefaultFinRay, ContactFaceIsThePlaneYZeroAndTheFingerFitsItsFrame) {

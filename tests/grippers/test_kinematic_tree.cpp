@@ -12,8 +12,8 @@
 
 #include "src/geometry/mesh_io.hpp"
 #include "src/geometry/mesh_measures.hpp"
-#include "src/grippers/leap_hand.hpp"
 #include "src/geometry/primitives.hpp"
+#include "src/grippers/leap_hand.hpp"
 #include "tests/grippers/mesh_checks.hpp"
 
 namespace grip::grippers {
@@ -106,7 +106,8 @@ TEST_F(GrippersShippedRightHand, ForwardKinematicsMatchesComposingTheUrdfJointsB
     const std::vector<Eigen::Isometry3d> poses = hand_->link_poses(base, q);
     for (const KinematicLink& link : hand_->links()) {
       Eigen::Matrix4d expected = Eigen::Matrix4d::Identity();
-      for (auto l = model->getLink(link.name); l->parent_joint; l = model->getLink(l->parent_joint->parent_link_name)) {
+      for (auto l = model->getLink(link.name); l->parent_joint;
+           l = model->getLink(l->parent_joint->parent_link_name)) {
         const urdf::Joint& joint = *l->parent_joint;
         const urdf::Pose& origin = joint.parent_to_joint_origin_transform;
         double roll, pitch, yaw;
@@ -197,8 +198,9 @@ TEST_F(GrippersShippedRightHand, LeftHandIsTheMirrorImage) {
     const geometry::SurfaceMesh right_surface = hand_->posed_surface(right_poses);
     const geometry::SurfaceMesh left_surface = left.posed_surface(left_poses);
     ASSERT_EQ(left_surface.vertices.rows(), right_surface.vertices.rows());
-    EXPECT_LT((left_surface.vertices - right_surface.vertices * m.asDiagonal()).cwiseAbs().maxCoeff(),
-              1e-14);
+    EXPECT_LT(
+        (left_surface.vertices - right_surface.vertices * m.asDiagonal()).cwiseAbs().maxCoeff(),
+        1e-14);
   }
 }
 
@@ -244,7 +246,8 @@ TEST(GrippersUrdf, MissingMeshIsAnErrorNamingTheUrdfTheLinkAndTheMesh) {
 TEST(GrippersUrdf, ResolvesPackageMeshesScalesPrimitivesAndJointTypes) {
   const std::filesystem::path root = scratch_dir("package");
   std::filesystem::create_directories(root / "my_hand" / "meshes");
-  geometry::write_obj(root / "my_hand" / "meshes" / "cube.obj", geometry::make_box(Eigen::Vector3d::Ones()));
+  geometry::write_obj(root / "my_hand" / "meshes" / "cube.obj",
+                      geometry::make_box(Eigen::Vector3d::Ones()));
   // An ASCII STL corner tetrahedron (volume 1/6), faces outward, as hand vendors ship them.
   write_file(root / "my_hand" / "meshes" / "corner.STL", R"(solid corner
 facet normal 0 0 -1
@@ -305,9 +308,9 @@ endsolid corner
   const auto poses = tree.link_poses(Eigen::Isometry3d::Identity(), q);
   EXPECT_LT((poses[1].translation() - Eigen::Vector3d(0.0, 0.0, 0.65)).norm(), 1e-15);
   const auto jacobian = tree.point_jacobian(poses, 2, Eigen::Vector3d::Zero());
-  EXPECT_LT((jacobian.col(0) - (Eigen::Matrix<double, 6, 1>() << 0, 0, 1, 0, 0, 0).finished())
-                .norm(),
-            1e-15);
+  EXPECT_LT(
+      (jacobian.col(0) - (Eigen::Matrix<double, 6, 1>() << 0, 0, 1, 0, 0, 0).finished()).norm(),
+      1e-15);
   EXPECT_THROW(tree.dof_index("nonexistent"), std::out_of_range);
 }
 

@@ -68,10 +68,10 @@ HandModel* GrippersShippedHand::hand_ = nullptr;
 TEST_F(GrippersShippedHand, FifteenContactCandidatesPerFingertipOnThePad) {
   std::map<std::string, int> per_link;
   for (const ContactCandidate& c : hand_->points.contacts) ++per_link[c.link];
-  EXPECT_EQ(per_link, (std::map<std::string, int>{{"index_distal", 15},
-                                                  {"middle_distal", 15},
-                                                  {"ring_distal", 15},
-                                                  {"thumb_distal", 15}}));
+  EXPECT_EQ(
+      per_link,
+      (std::map<std::string, int>{
+          {"index_distal", 15}, {"middle_distal", 15}, {"ring_distal", 15}, {"thumb_distal", 15}}));
   for (const ContactCandidate& c : hand_->points.contacts) {
     EXPECT_NEAR(c.normal.norm(), 1.0, 1e-12);
     EXPECT_GT(c.normal.z(), 0.0) << "pads face +z of the link";
@@ -125,8 +125,8 @@ TEST_F(GrippersShippedHand, EveryLinkHasKeypointSpheresInsideIt) {
 
 TEST(GrippersHandPoints, RoundTripIsExact) {
   HandPoints points;
-  points.contacts.push_back({"tip", Eigen::Vector3d(0.1, -2.5e-5, 1.0 / 3.0),
-                             Eigen::Vector3d(0.6, 0.0, 0.8)});
+  points.contacts.push_back(
+      {"tip", Eigen::Vector3d(0.1, -2.5e-5, 1.0 / 3.0), Eigen::Vector3d(0.6, 0.0, 0.8)});
   points.keypoints.push_back({"palm", Eigen::Vector3d(-0.0, 1e-9, 7.0), 0.015});
   const std::filesystem::path file = scratch_dir("roundtrip") / "points.toml";
   write_hand_points(file, points, "two lines\nof comment");
@@ -160,7 +160,8 @@ TEST(GrippersHandPoints, BadEntryIsAnErrorNamingFileLineEntryAndKey) {
 TEST(GrippersHandModel, PointsOnAnUnknownLinkAreAnError) {
   const LeapHandFiles files = shipped_leap_hand(HandSide::kRight);
   const std::filesystem::path points = scratch_dir("unknown_link") / "points.toml";
-  std::ofstream(points) << "[[keypoint]]\nlink = \"pinky_distal\"\ncenter = [0, 0, 0]\nradius = 0.01\n";
+  std::ofstream(points)
+      << "[[keypoint]]\nlink = \"pinky_distal\"\ncenter = [0, 0, 0]\nradius = 0.01\n";
   try {
     load_hand_model(files.urdf, points);
     FAIL() << "a point on a link the URDF lacks was accepted";

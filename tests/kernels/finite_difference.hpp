@@ -2,11 +2,11 @@
 // Central finite differences over fixed-size Eigen vectors and a relative-error comparison,
 // for checking analytic gradients, Jacobians and Hessians of the per-primitive kernels.
 
+#include <gtest/gtest.h>
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <gtest/gtest.h>
 #include <sstream>
 
 namespace grip::test {
@@ -44,8 +44,7 @@ Eigen::Matrix<double, M, N> fd_jacobian(const Eigen::Matrix<double, N, 1>& x, F&
 // ||a - b|| / max(||a||, ||b||, floor) in the Frobenius norm. The floor is the magnitude below
 // which differences count as absolute (round-off of a quantity that should be ~0).
 template <typename A, typename B>
-double relative_error(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b,
-                      double floor) {
+double relative_error(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b, double floor) {
   const double scale = std::max({a.norm(), b.norm(), floor});
   return (a - b).norm() / scale;
 }
@@ -54,8 +53,8 @@ double relative_error(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>&
 // On failure it prints both matrices and the error, so a failing random case can be replayed.
 template <typename A, typename B>
 ::testing::AssertionResult relatively_close(const Eigen::MatrixBase<A>& actual,
-                                            const Eigen::MatrixBase<B>& expected,
-                                            double tolerance, double floor) {
+                                            const Eigen::MatrixBase<B>& expected, double tolerance,
+                                            double floor) {
   const double err = relative_error(actual, expected, floor);
   if (err <= tolerance) return ::testing::AssertionSuccess();
   std::ostringstream out;
@@ -76,8 +75,8 @@ double min_fd_gradient_error(const Eigen::Matrix<double, N, 1>& x, F&& f,
                              const Eigen::MatrixBase<A>& analytic, double scale, double floor) {
   double best = std::numeric_limits<double>::infinity();
   for (int k = 1; k <= 12; ++k)
-    best = std::min(best, relative_error(analytic, fd_gradient<N>(x, f, scale * std::pow(10.0, -k)),
-                                         floor));
+    best = std::min(
+        best, relative_error(analytic, fd_gradient<N>(x, f, scale * std::pow(10.0, -k)), floor));
   return best;
 }
 
@@ -87,9 +86,8 @@ double min_fd_jacobian_error(const Eigen::Matrix<double, N, 1>& x, F&& f,
                              const Eigen::MatrixBase<A>& analytic, double scale, double floor) {
   double best = std::numeric_limits<double>::infinity();
   for (int k = 1; k <= 12; ++k)
-    best = std::min(best, relative_error(analytic,
-                                         fd_jacobian<M, N>(x, f, scale * std::pow(10.0, -k)),
-                                         floor));
+    best = std::min(
+        best, relative_error(analytic, fd_jacobian<M, N>(x, f, scale * std::pow(10.0, -k)), floor));
   return best;
 }
 

@@ -2,9 +2,9 @@
 // finite differences, the C2 contact at d_hat against the barrier's asymptotic expansion, and the
 // mollifier's C1 joint at eps_x.
 
+#include <gtest/gtest.h>
 #include <Eigen/Dense>
 #include <cmath>
-#include <gtest/gtest.h>
 #include <random>
 
 #include "solver/kernels/barrier.hpp"
@@ -58,8 +58,9 @@ TEST(Barrier, IsExactlyZeroFromDHatOn) {
   }
 }
 
-// At d = d_hat (1 - delta): b = d_hat^2 delta^3 (1 + O(delta)), b' = -3 d_hat delta^2 (1 + O(delta)),
-// b'' = 6 delta (1 + O(delta)). All three vanish at delta = 0, so the barrier is C2 at d_hat.
+// At d = d_hat (1 - delta): b = d_hat^2 delta^3 (1 + O(delta)), b' = -3 d_hat delta^2 (1 +
+// O(delta)), b'' = 6 delta (1 + O(delta)). All three vanish at delta = 0, so the barrier is C2 at
+// d_hat.
 TEST(Barrier, IsC2AtDHat) {
   for (const double delta : {1e-3, 1e-4, 1e-5}) {
     const double d = kDHatSq * (1.0 - delta);
@@ -94,13 +95,13 @@ TEST(EdgeEdgeMollifier, ScalarIsC1AtThreshold) {
     const auto dm = [&](const Scalar1& s) {
       return scalar(k::edge_edge_mollifier_derivative(s[0], eps));
     };
-    EXPECT_LT(min_fd_gradient_error(scalar(x), m,
-                                    scalar(k::edge_edge_mollifier_derivative(x, eps)), x, 1e-300),
+    EXPECT_LT(min_fd_gradient_error(scalar(x), m, scalar(k::edge_edge_mollifier_derivative(x, eps)),
+                                    x, 1e-300),
               1e-8);
-    EXPECT_LT(min_fd_jacobian_error<1>(
-                  scalar(x), dm, scalar(k::edge_edge_mollifier_second_derivative(x, eps)), x,
-                  1e-300),
-              1e-8);
+    EXPECT_LT(
+        min_fd_jacobian_error<1>(
+            scalar(x), dm, scalar(k::edge_edge_mollifier_second_derivative(x, eps)), x, 1e-300),
+        1e-8);
   }
 }
 
@@ -118,10 +119,12 @@ TEST(EdgeEdgeMollifier, DerivativesMatchFiniteDifferences) {
   int below = 0, above = 0;
   for (int i = 0; i < 1000; ++i) {
     const Vector3d ea0(u(rng), u(rng), u(rng));
-    const Vector3d a = Vector3d(u(rng), u(rng), u(rng)).normalized() * (0.5 + 0.5 * std::abs(u(rng)));
+    const Vector3d a =
+        Vector3d(u(rng), u(rng), u(rng)).normalized() * (0.5 + 0.5 * std::abs(u(rng)));
     Vector3d axis = a.cross(Vector3d(u(rng), u(rng), u(rng))).normalized();
     const double angle = std::pow(10.0, angle_exponent(rng));
-    const Vector3d b = (std::cos(angle) * a + std::sin(angle) * axis.cross(a)) * (1.0 + u(rng) * 0.5);
+    const Vector3d b =
+        (std::cos(angle) * a + std::sin(angle) * axis.cross(a)) * (1.0 + u(rng) * 0.5);
     const Vector3d eb0 = ea0 + Vector3d(u(rng), u(rng), u(rng)) * 0.1;
     Vec12 x;
     x << ea0, ea0 + a, eb0, eb0 + b;

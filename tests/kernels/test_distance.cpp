@@ -3,11 +3,11 @@
 // against central finite differences on random and near-degenerate configurations with distances
 // from 1e-9 to 1.
 
+#include <gtest/gtest.h>
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <gtest/gtest.h>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -77,33 +77,52 @@ HullDistance hull_distance_sq(const std::vector<Vector3d>& A, const std::vector<
 
 unsigned support_of(PE t) {
   switch (t) {
-    case PE::P_E0: return 0b01;
-    case PE::P_E1: return 0b10;
-    default: return 0b11;
+    case PE::P_E0:
+      return 0b01;
+    case PE::P_E1:
+      return 0b10;
+    default:
+      return 0b11;
   }
 }
 unsigned support_of(PT t) {
   switch (t) {
-    case PT::P_T0: return 0b001;
-    case PT::P_T1: return 0b010;
-    case PT::P_T2: return 0b100;
-    case PT::P_E0: return 0b011;
-    case PT::P_E1: return 0b110;
-    case PT::P_E2: return 0b101;
-    default: return 0b111;
+    case PT::P_T0:
+      return 0b001;
+    case PT::P_T1:
+      return 0b010;
+    case PT::P_T2:
+      return 0b100;
+    case PT::P_E0:
+      return 0b011;
+    case PT::P_E1:
+      return 0b110;
+    case PT::P_E2:
+      return 0b101;
+    default:
+      return 0b111;
   }
 }
 std::pair<unsigned, unsigned> support_of(EE t) {
   switch (t) {
-    case EE::EA0_EB0: return {0b01, 0b01};
-    case EE::EA0_EB1: return {0b01, 0b10};
-    case EE::EA1_EB0: return {0b10, 0b01};
-    case EE::EA1_EB1: return {0b10, 0b10};
-    case EE::EA_EB0: return {0b11, 0b01};
-    case EE::EA_EB1: return {0b11, 0b10};
-    case EE::EA0_EB: return {0b01, 0b11};
-    case EE::EA1_EB: return {0b10, 0b11};
-    default: return {0b11, 0b11};
+    case EE::EA0_EB0:
+      return {0b01, 0b01};
+    case EE::EA0_EB1:
+      return {0b01, 0b10};
+    case EE::EA1_EB0:
+      return {0b10, 0b01};
+    case EE::EA1_EB1:
+      return {0b10, 0b10};
+    case EE::EA_EB0:
+      return {0b11, 0b01};
+    case EE::EA_EB1:
+      return {0b11, 0b10};
+    case EE::EA0_EB:
+      return {0b01, 0b11};
+    case EE::EA1_EB:
+      return {0b10, 0b11};
+    default:
+      return {0b11, 0b11};
   }
 }
 
@@ -113,7 +132,9 @@ std::pair<unsigned, unsigned> support_of(EE t) {
 class Random {
  public:
   explicit Random(std::uint64_t seed) : rng_(seed) {}
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng_);
+  }
   double log_uniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
   double distance() { return log_uniform(1e-9, 1.0); }
   Vector3d point() { return Vector3d(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)); }
@@ -149,11 +170,17 @@ class Random {
 };
 
 // Point p, edge e0 e1.
-struct PointEdge { Vector3d p, e0, e1; };
+struct PointEdge {
+  Vector3d p, e0, e1;
+};
 // Point p, triangle t0 t1 t2.
-struct PointTriangle { Vector3d p, t0, t1, t2; };
+struct PointTriangle {
+  Vector3d p, t0, t1, t2;
+};
 // Edges ea0 ea1 and eb0 eb1.
-struct EdgeEdge { Vector3d ea0, ea1, eb0, eb1; };
+struct EdgeEdge {
+  Vector3d ea0, ea1, eb0, eb1;
+};
 
 std::vector<PointEdge> point_edge_configurations(Random& r, int per_family) {
   std::vector<PointEdge> out;
@@ -161,7 +188,8 @@ std::vector<PointEdge> point_edge_configurations(Random& r, int per_family) {
     const Vector3d e0 = r.point(), e1 = r.point();
     const Vector3d e = e1 - e0;
     // Interior at distance d.
-    out.push_back({e0 + r.uniform(0.05, 0.95) * e + r.distance() * r.unit_perpendicular(e), e0, e1});
+    out.push_back(
+        {e0 + r.uniform(0.05, 0.95) * e + r.distance() * r.unit_perpendicular(e), e0, e1});
     // Near an endpoint.
     out.push_back({(i % 2 ? e0 : e1) + r.distance() * r.unit(), e0, e1});
     // Generic.
@@ -304,7 +332,8 @@ TEST(EdgeEdgeDistance, ClassifiesConstructedCases) {
     return k::edge_edge_distance_type(a0, a1, b0, b1);
   };
   EXPECT_EQ(type(Vector3d(0.5, -1, 1), Vector3d(0.5, 1, 1)), EE::EA_EB);
-  EXPECT_DOUBLE_EQ(k::edge_edge_distance_sq(a0, a1, Vector3d(0.5, -1, 1), Vector3d(0.5, 1, 1)), 1.0);
+  EXPECT_DOUBLE_EQ(k::edge_edge_distance_sq(a0, a1, Vector3d(0.5, -1, 1), Vector3d(0.5, 1, 1)),
+                   1.0);
   EXPECT_EQ(type(Vector3d(2, -1, 1), Vector3d(2, 1, 1)), EE::EA1_EB);
   EXPECT_EQ(type(Vector3d(-2, -1, 1), Vector3d(-2, 1, 1)), EE::EA0_EB);
   EXPECT_EQ(type(Vector3d(0.5, 1, 1), Vector3d(0.5, 2, 1)), EE::EA_EB0);

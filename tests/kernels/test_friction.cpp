@@ -3,9 +3,9 @@
 // (positive semi-definite) Hessian, checked against their defining properties and finite
 // differences.
 
+#include <gtest/gtest.h>
 #include <Eigen/Dense>
 #include <cmath>
-#include <gtest/gtest.h>
 #include <random>
 
 #include "solver/kernels/closest_point.hpp"
@@ -29,7 +29,9 @@ constexpr double kEps = 1e-5;  // eps_v dt = 1e-3 m/s * 0.01 s, the paper's defa
 class Random {
  public:
   explicit Random(std::uint64_t seed) : rng_(seed) {}
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng_);
+  }
   Vector3d point() { return Vector3d(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)); }
 
  private:
@@ -47,7 +49,8 @@ TEST(FrictionMollifier, F1IsTheDerivativeOfF0AndJoinsC1) {
   // (f1 / y)' is continuous at eps: -1 / eps^2 from both sides.
   EXPECT_DOUBLE_EQ(k::friction_f1_over_y_derivative(kEps * (1 - 1e-12), kEps),
                    k::friction_f1_over_y_derivative(kEps, kEps));
-  for (const double y : {1e-3 * kEps, 0.3 * kEps, 0.7 * kEps, 0.999 * kEps, 1.5 * kEps, 10 * kEps}) {
+  for (const double y :
+       {1e-3 * kEps, 0.3 * kEps, 0.7 * kEps, 0.999 * kEps, 1.5 * kEps, 10 * kEps}) {
     const auto f0 = [](const Scalar1& s) { return k::friction_f0(s[0], kEps); };
     const auto f1_over_y = [](const Scalar1& s) { return k::friction_f1_over_y(s[0], kEps); };
     const Scalar1 at = Scalar1::Constant(y);
@@ -113,9 +116,10 @@ TEST(RelativeVelocity, ClosestPointsAndOperatorsAreConsistent) {
     const Eigen::Matrix<double, 3, 9> g_pe = k::point_edge_relative_velocity_jacobian(alpha);
     EXPECT_LT((g_pe * x9 - pe_residual).norm(), 1e-14);
     EXPECT_LT((g_pe * t9).norm(), 1e-14);
-    EXPECT_LT((k::tangent_operator<3>(g_pe, k::point_edge_tangent_basis(p, v0, v1)).transpose() * x9)
-                  .norm(),
-              1e-12);
+    EXPECT_LT(
+        (k::tangent_operator<3>(g_pe, k::point_edge_tangent_basis(p, v0, v1)).transpose() * x9)
+            .norm(),
+        1e-12);
 
     const Eigen::Vector2d beta = k::point_triangle_closest_point(p, v0, v1, v2);
     const Vector3d pt_residual = p - (v0 + beta[0] * (v1 - v0) + beta[1] * (v2 - v0));
@@ -141,10 +145,10 @@ TEST(RelativeVelocity, ClosestPointsAndOperatorsAreConsistent) {
     const Eigen::Matrix<double, 3, 12> g_ee = k::edge_edge_relative_velocity_jacobian(ab);
     EXPECT_LT((g_ee * x12 - ee_residual).norm(), 1e-13);
     EXPECT_LT((g_ee * t12).norm(), 1e-13);
-    EXPECT_LT((k::tangent_operator<4>(g_ee, k::edge_edge_tangent_basis(v0, v1, v2, v3)).transpose() *
-               x12)
-                  .norm(),
-              1e-11);
+    EXPECT_LT(
+        (k::tangent_operator<4>(g_ee, k::edge_edge_tangent_basis(v0, v1, v2, v3)).transpose() * x12)
+            .norm(),
+        1e-11);
 
     Eigen::Matrix<double, 6, 1> x6;
     x6 << p, v0;
@@ -160,9 +164,10 @@ TEST(FrictionPotential, DerivativesMatchFiniteDifferencesAndHessianIsPsd) {
   const double mu_lambda = 3.5 * 20.0;
   for (int i = 0; i < 1000; ++i) {
     const Vector3d p = r.point(), t0 = r.point(), t1 = r.point(), t2 = r.point();
-    const Eigen::Matrix<double, 12, 2> op = k::tangent_operator<4>(
-        k::point_triangle_relative_velocity_jacobian(k::point_triangle_closest_point(p, t0, t1, t2)),
-        k::point_triangle_tangent_basis(p, t0, t1, t2));
+    const Eigen::Matrix<double, 12, 2> op =
+        k::tangent_operator<4>(k::point_triangle_relative_velocity_jacobian(
+                                   k::point_triangle_closest_point(p, t0, t1, t2)),
+                               k::point_triangle_tangent_basis(p, t0, t1, t2));
     Vec12 dx;
     for (int j = 0; j < 12; ++j) dx[j] = r.uniform(-1, 1);
     const double target = kEps * std::pow(10.0, r.uniform(-4, 3));
@@ -203,7 +208,8 @@ TEST(FrictionPotential, ForceIsCoulombWhenSliding) {
     Eigen::Matrix<double, 6, 1> dx = Eigen::Matrix<double, 6, 1>::Zero();
     dx[0] = 0.6 * y;
     dx[1] = -0.8 * y;
-    const Eigen::Matrix<double, 6, 1> g = k::friction_potential_gradient<2>(dx, op, mu_lambda, kEps);
+    const Eigen::Matrix<double, 6, 1> g =
+        k::friction_potential_gradient<2>(dx, op, mu_lambda, kEps);
     EXPECT_NEAR(g.norm(), mu_lambda * k::friction_f1(y, kEps), 1e-12);
     if (y >= kEps) {
       EXPECT_NEAR(g.norm(), mu_lambda, 1e-12);

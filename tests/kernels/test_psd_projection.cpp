@@ -1,8 +1,8 @@
 // Per-element PSD projection: the result has no negative eigenvalue, PSD input comes back
 // unchanged, and the projection satisfies the optimality conditions of the nearest PSD matrix.
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 #include <random>
 
 #include "solver/kernels/psd_projection.hpp"

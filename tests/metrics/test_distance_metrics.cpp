@@ -17,8 +17,8 @@ geometry::SignedDistance cube() {
 TEST(DistanceMetrics, GripperApartFromTheObject) {
   // Paper Fig. 5 left: no contact, D1 = 0 and D2 = the gripper-object distance.
   geometry::Vertices points(3, 3);
-  points << 0.021, 0.0, 0.0,   //
-      -0.025, 0.0, 0.0,        //
+  points << 0.021, 0.0, 0.0,  //
+      -0.025, 0.0, 0.0,       //
       0.0, 0.03, 0.0;
   const DistanceMetrics d = distance_metrics(cube(), points);
   EXPECT_EQ(d.d1, 0.0);

@@ -25,8 +25,10 @@ geometry::Vertices deform(const geometry::Vertices& rest, const Eigen::Matrix3d&
 TEST(VonMises, ZeroAtRestAndUnderRigidMotion) {
   const geometry::TetMesh mesh = block();
   EXPECT_LT(von_mises_stress(mesh, mesh.vertices, kYoungs, kPoisson).maxCoeff(), 1e-9);
-  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  const geometry::Vertices moved = (deform(mesh.vertices, r).rowwise() + Eigen::RowVector3d(1, 2, 3));
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const geometry::Vertices moved =
+      (deform(mesh.vertices, r).rowwise() + Eigen::RowVector3d(1, 2, 3));
   EXPECT_LT(von_mises_stress(mesh, moved, kYoungs, kPoisson).maxCoeff(), 1e-6);
 }
 
@@ -36,7 +38,8 @@ TEST(VonMises, UniaxialStretchMatchesTheAnalyticValue) {
   const geometry::TetMesh mesh = block();
   for (double l : {0.8, 1.05, 1.3}) {
     const Eigen::Vector3d stretch(l, 1.0, 1.0);
-    const Eigen::VectorXd s = von_mises_stress(mesh, deform(mesh.vertices, stretch.asDiagonal()), kYoungs, kPoisson);
+    const Eigen::VectorXd s =
+        von_mises_stress(mesh, deform(mesh.vertices, stretch.asDiagonal()), kYoungs, kPoisson);
     const double expected = kMu * std::abs(l * l - 1.0) / l;
     EXPECT_NEAR(s.minCoeff(), expected, 1e-9 * expected);
     EXPECT_NEAR(s.maxCoeff(), expected, 1e-9 * expected);
@@ -54,7 +57,8 @@ TEST(VonMises, SimpleShearMatchesTheAnalyticValueAndIgnoresRotation) {
   EXPECT_NEAR(s.maxCoeff(), expected, 1e-9 * expected);
   EXPECT_NEAR(s.minCoeff(), expected, 1e-9 * expected);
   const Eigen::Matrix3d r = Eigen::AngleAxisd(1.1, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::VectorXd turned = von_mises_stress(mesh, deform(mesh.vertices, r * f), kYoungs, kPoisson);
+  const Eigen::VectorXd turned =
+      von_mises_stress(mesh, deform(mesh.vertices, r * f), kYoungs, kPoisson);
   EXPECT_LT((turned - s).cwiseAbs().maxCoeff(), 1e-9 * expected);
 }
 
@@ -63,8 +67,9 @@ TEST(VonMises, RejectsMismatchedAndInvertedMeshes) {
   EXPECT_THROW(von_mises_stress(mesh, mesh.vertices.topRows(3), kYoungs, kPoisson),
                std::invalid_argument);
   const Eigen::Vector3d mirror(-1.0, 1.0, 1.0);
-  EXPECT_THROW(von_mises_stress(mesh, deform(mesh.vertices, mirror.asDiagonal()), kYoungs, kPoisson),
-               std::invalid_argument);
+  EXPECT_THROW(
+      von_mises_stress(mesh, deform(mesh.vertices, mirror.asDiagonal()), kYoungs, kPoisson),
+      std::invalid_argument);
 }
 
 }  // namespace

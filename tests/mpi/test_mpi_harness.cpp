@@ -50,8 +50,8 @@ TEST(MpiHarness, RanksWriteOneParallelHdf5FileCollectively) {
   ASSERT_GE(file, 0);
   const hsize_t dims[2] = {static_cast<hsize_t>(size), kColumns};
   hid_t space = H5Screate_simple(2, dims, nullptr);
-  hid_t dataset = H5Dcreate2(file, "rows", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT,
-                             H5P_DEFAULT);
+  hid_t dataset =
+      H5Dcreate2(file, "rows", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   ASSERT_GE(dataset, 0);
 
   std::array<double, kColumns> row{};

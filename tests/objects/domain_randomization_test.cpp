@@ -28,7 +28,8 @@ TEST(ObjectsDomainRandomizationTest, DeterministicAndWithinRanges) {
     ASSERT_LE(m.density, ranges.density_max);
     ASSERT_GE(m.friction, ranges.friction_min);
     ASSERT_LE(m.friction, ranges.friction_max);
-    below_geometric_mean += m.youngs_modulus < std::sqrt(ranges.youngs_modulus_min * ranges.youngs_modulus_max);
+    below_geometric_mean +=
+        m.youngs_modulus < std::sqrt(ranges.youngs_modulus_min * ranges.youngs_modulus_max);
   }
   // Log-uniform: half the draws fall below the geometric mean (binomial sd ~ 22 of 2000;
   // the bound is 5 sd).

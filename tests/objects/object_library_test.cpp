@@ -60,8 +60,8 @@ TEST(ObjectsObjectLibraryTest, ClosedFormVolumes) {
   const int n = 64;
   const geometry::SurfaceMesh cylinder =
       generate_surface({ObjectCategory::kCylinder, {0.03, 0.1}}, n);
-  EXPECT_NEAR(geometry::surface_volume(cylinder), 0.5 * n * 0.03 * 0.03 * std::sin(2 * kPi / n) * 0.1,
-              1e-15);
+  EXPECT_NEAR(geometry::surface_volume(cylinder),
+              0.5 * n * 0.03 * 0.03 * std::sin(2 * kPi / n) * 0.1, 1e-15);
   // A tessellated sphere is inscribed: slightly smaller than 4/3 pi r^3, by O(1/n^2).
   const geometry::SurfaceMesh sphere = generate_surface({ObjectCategory::kSphere, {0.05}}, n);
   const double ball = 4.0 / 3.0 * kPi * std::pow(0.05, 3);

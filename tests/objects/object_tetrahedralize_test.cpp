@@ -115,8 +115,7 @@ TEST(ObjectsObjectTetrahedralizeTest, ThinWallsAreMeshedFinerThanTheJobsEdge) {
     geometry::TetOptions options;
     options.edge_length = tet_edge_for(shape, 1.0, job_edge);
     EXPECT_NEAR(options.edge_length, thinnest_feature(shape) / 2.0, 1e-15) << name;
-    const geometry::TetMesh mesh =
-        geometry::tetrahedralize(generate_surface(shape), options, name);
+    const geometry::TetMesh mesh = geometry::tetrahedralize(generate_surface(shape), options, name);
     const geometry::TetQuality quality = geometry::tet_quality(mesh, kMinDihedralDeg);
     std::printf("%-12s edge %.4f m %7ld tets  min dihedral %5.2f deg\n", name.c_str(),
                 options.edge_length, static_cast<long>(mesh.tets.rows()), quality.min_dihedral_deg);

@@ -43,9 +43,9 @@ TEST(ObjectsSurfaceOfRevolutionTest, TorusLoopAndTube) {
               (polygon_area(0.04, n) - polygon_area(0.02, n)) * 0.01, 1e-15);
 
   // A straight tube is a prism over a regular polygon of the tube radius.
-  const geometry::SurfaceMesh tube =
-      sweep_tube({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.05, 0.05, 0), Eigen::Vector3d(0.1, 0.1, 0)},
-                 0.01, n);
+  const geometry::SurfaceMesh tube = sweep_tube(
+      {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.05, 0.05, 0), Eigen::Vector3d(0.1, 0.1, 0)},
+      0.01, n);
   EXPECT_NEAR(geometry::surface_volume(tube), polygon_area(0.01, n) * 0.1 * std::sqrt(2.0), 1e-15);
 }
 

@@ -1,10 +1,10 @@
 // Scene files: what they build, and one clear error for each kind of mistake.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "src/config/config.hpp"
 #include "src/scene/scene_file.hpp"
@@ -128,7 +128,8 @@ TEST(SceneFile, MistakesAreOneLineErrorsNamingFileLineAndKey) {
                 .find("grip_scene_bad.toml:6: unknown key 'body[0].densty'; did you mean "
                       "'body[0].density'?"),
             std::string::npos);
-  EXPECT_NE(error_of(body + "size = [0.1, 0.1, -0.1]\n").find("key 'body[0].size' must hold three positive"),
+  EXPECT_NE(error_of(body + "size = [0.1, 0.1, -0.1]\n")
+                .find("key 'body[0].size' must hold three positive"),
             std::string::npos);
   EXPECT_NE(error_of(body + "size = [0.1, 0.1, 0.1]\nyoungs = 1e6\n")
                 .find("key 'body[0].youngs' applies to FEM bodies only"),
@@ -136,12 +137,14 @@ TEST(SceneFile, MistakesAreOneLineErrorsNamingFileLineAndKey) {
   EXPECT_NE(error_of("[sim]\ndt = 0\n" + body + "size = [0.1, 0.1, 0.1]\n")
                 .find("grip_scene_bad.toml:2: key 'sim.dt' must be positive"),
             std::string::npos);
-  EXPECT_NE(error_of(body + "size = [0.1, 0.1, 0.1]\n[[contact]]\nbodies = [\"b\", \"c\"]\nfriction = 1\n")
+  EXPECT_NE(error_of(body +
+                     "size = [0.1, 0.1, 0.1]\n[[contact]]\nbodies = [\"b\", \"c\"]\nfriction = 1\n")
                 .find("names no body: \"c\""),
             std::string::npos);
-  EXPECT_NE(error_of("[[body]]\nname = \"m\"\ntype = \"affine\"\nshape = \"mesh\"\nfile = \"nope.obj\"\n")
-                .find("key 'body[0].file' cannot be used"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("[[body]]\nname = \"m\"\ntype = \"affine\"\nshape = \"mesh\"\nfile = \"nope.obj\"\n")
+          .find("key 'body[0].file' cannot be used"),
+      std::string::npos);
   EXPECT_NE(error_of("[sim]\ndt = 0.01\n").find("a scene needs at least one [[body]]"),
             std::string::npos);
 }

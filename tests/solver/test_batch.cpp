@@ -31,7 +31,8 @@ SceneDescription soft_squeeze() {
   scene.sim.gravity = Eigen::Vector3d::Zero();
   scene.sim.dt = 0.01;
   BodyDescription left = rigid_box("left", BodyType::kKinematic, {0.01, 0.1, 0.1}, {-0.0205, 0, 0});
-  BodyDescription right = rigid_box("right", BodyType::kKinematic, {0.01, 0.1, 0.1}, {0.0205, 0, 0});
+  BodyDescription right =
+      rigid_box("right", BodyType::kKinematic, {0.01, 0.1, 0.1}, {0.0205, 0, 0});
   left.script.velocity = Eigen::Vector3d(0.05, 0, 0);
   right.script.velocity = Eigen::Vector3d(-0.05, 0, 0);
   scene.bodies = {soft_box("cube", {0.03, 0.03, 0.03}, 0.01, Eigen::Vector3d::Zero(), 1e5), left,
@@ -212,9 +213,8 @@ TEST(Environment, PlaceMovesABodyRigidly) {
   SceneDescription scene = soft_drop();
   scene.bodies.push_back(rigid_box("box", BodyType::kAffine, {0.02, 0.03, 0.04}, {0.1, 0, 0.1}));
   Environment env(Model::build(scene));
-  const Eigen::Isometry3d motion =
-      Eigen::Translation3d(0.01, -0.02, 0.03) *
-      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
+  const Eigen::Isometry3d motion = Eigen::Translation3d(0.01, -0.02, 0.03) *
+                                   Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
   for (int body : {0, 1, 2}) {
     const Vertices before = env.body_vertices(body);
     env.place(body, motion);

@@ -57,7 +57,8 @@ TEST(Contact, SoftBodySqueezedHardNeitherInvertsNorIntersects) {
 TEST(Contact, StackWithMassRatioOfAThousandStaysIntersectionFree) {
   SceneDescription scene;
   scene.sim.gravity = Eigen::Vector3d(0, 0, -9.81);
-  scene.bodies.push_back(rigid_box("ground", BodyType::kKinematic, {1.0, 1.0, 0.02}, {0, 0, -0.01}));
+  scene.bodies.push_back(
+      rigid_box("ground", BodyType::kKinematic, {1.0, 1.0, 0.02}, {0, 0, -0.01}));
   BodyDescription light = rigid_box("light", BodyType::kAffine, {0.05, 0.05, 0.02}, {0, 0, 0.0105});
   light.material.density = 10.0;
   BodyDescription heavy = rigid_box("heavy", BodyType::kAffine, {0.05, 0.05, 0.02}, {0, 0, 0.031});

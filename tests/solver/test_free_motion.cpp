@@ -35,8 +35,8 @@ TEST(FreeMotion, SoftFreeFallMatchesTheClosedFormWithoutDeforming) {
   Environment env(Model::build(scene));
   const Eigen::Vector3d x0 = env.center_of_mass(0);
   run_checked(env, 30, [&](int s) {
-    const Eigen::Vector3d expected =
-        implicit_euler_position(x0, Eigen::Vector3d::Zero(), scene.sim.gravity, scene.sim.dt, s + 1);
+    const Eigen::Vector3d expected = implicit_euler_position(
+        x0, Eigen::Vector3d::Zero(), scene.sim.gravity, scene.sim.dt, s + 1);
     EXPECT_LT((env.center_of_mass(0) - expected).norm(), 1e-9) << "step " << s;
     EXPECT_NEAR(env.min_volume_ratio(), 1.0, 1e-9);
   });

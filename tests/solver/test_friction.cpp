@@ -52,7 +52,7 @@ double measured_acceleration(double theta, double mu) {
 
 TEST(Friction, BoxSlidesWithCoulombAcceleration) {
   const double theta = 30.0 * std::numbers::pi / 180.0;  // tan = 0.577
-  for (const double mu : {0.1, 0.3, 0.5, 0.55}) {  // 0.55: near the threshold
+  for (const double mu : {0.1, 0.3, 0.5, 0.55}) {        // 0.55: near the threshold
     const double expected = kGravity * (std::sin(theta) - mu * std::cos(theta));
     const double a = measured_acceleration(theta, mu);
     EXPECT_NEAR(a, expected, 0.05 * expected) << "mu = " << mu;

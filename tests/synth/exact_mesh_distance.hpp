@@ -22,7 +22,8 @@ namespace grip::synth::testing {
 struct Box {
   Eigen::Vector3d lower, upper;
   bool near(const Box& o, double gap) const {
-    return (lower.array() <= o.upper.array() + gap).all() && (o.lower.array() <= upper.array() + gap).all();
+    return (lower.array() <= o.upper.array() + gap).all() &&
+           (o.lower.array() <= upper.array() + gap).all();
   }
 };
 
@@ -82,7 +83,8 @@ inline int mesh_intersections(const geometry::SurfaceMesh& a, const geometry::Su
   std::vector<std::pair<int, int>> edges = mesh_edges(a);
   for (const auto& [x, y] : mesh_edges(b)) edges.emplace_back(x + na, y + na);
   geometry::Edges edge_matrix(static_cast<int>(edges.size()), 2);
-  for (std::size_t e = 0; e < edges.size(); ++e) edge_matrix.row(static_cast<int>(e)) << edges[e].first, edges[e].second;
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    edge_matrix.row(static_cast<int>(e)) << edges[e].first, edges[e].second;
   std::vector<int> body(static_cast<std::size_t>(positions.rows()), 0);
   std::fill(body.begin() + na, body.end(), 1);
   return geometry::count_intersections(positions, faces, edge_matrix, body,

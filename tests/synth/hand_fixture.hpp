@@ -42,7 +42,8 @@ inline const PreparedObject& slab_object() {
 inline Eigen::Isometry3d palm_over_sphere(double height) {
   Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
   base.linear() = Eigen::AngleAxisd(3.141592653589793, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  base.translation() = Eigen::Vector3d(0.0, 0.0, 0.04 + height) - base.linear() * Eigen::Vector3d(0.07, 0.0, 0.0);
+  base.translation() =
+      Eigen::Vector3d(0.0, 0.0, 0.04 + height) - base.linear() * Eigen::Vector3d(0.07, 0.0, 0.0);
   return base;
 }
 

@@ -50,7 +50,8 @@ void expect_valid(const PreparedObject& object, const grippers::ParallelGripper&
 }
 
 TEST(SynthAntipodalSamplerTest, RigidJawCandidatesOnACylinderAreClearAndAntipodal) {
-  const PreparedObject object(objects::generate_surface(objects::sample_shape(objects::ObjectCategory::kCylinder, 3)));
+  const PreparedObject object(
+      objects::generate_surface(objects::sample_shape(objects::ObjectCategory::kCylinder, 3)));
   const grippers::ParallelGripper gripper = grippers::make_rigid_jaw_gripper();
   const AntipodalParams params = small_params();
   const SynthesisResult result =
@@ -61,7 +62,8 @@ TEST(SynthAntipodalSamplerTest, RigidJawCandidatesOnACylinderAreClearAndAntipoda
 }
 
 TEST(SynthAntipodalSamplerTest, FinRayCandidatesOnAMugAreClearAndAntipodal) {
-  const PreparedObject object(objects::generate_surface(objects::sample_shape(objects::ObjectCategory::kMug, 1)));
+  const PreparedObject object(
+      objects::generate_surface(objects::sample_shape(objects::ObjectCategory::kMug, 1)));
   const grippers::ParallelGripper gripper = grippers::make_umi_soft_gripper();
   const AntipodalParams params = small_params();
   const SynthesisResult result =
@@ -71,7 +73,8 @@ TEST(SynthAntipodalSamplerTest, FinRayCandidatesOnAMugAreClearAndAntipodal) {
 }
 
 TEST(SynthAntipodalSamplerTest, SameSeedSameCandidatesWhateverTheThreads) {
-  const PreparedObject object(objects::generate_surface(objects::sample_shape(objects::ObjectCategory::kCylinder, 3)));
+  const PreparedObject object(
+      objects::generate_surface(objects::sample_shape(objects::ObjectCategory::kCylinder, 3)));
   const grippers::ParallelGripper gripper = grippers::make_rigid_jaw_gripper();
   const AntipodalParams params = small_params();
   const auto run = [&](int threads, std::uint64_t seed) {

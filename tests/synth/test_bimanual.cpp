@@ -24,7 +24,8 @@ std::vector<Candidate> group(const Eigen::Vector3d& centre, int n, std::uint64_t
     HandGrasp h;
     h.pose.translation() = centre;
     h.joints = Eigen::VectorXd::Constant(1, 0.05);
-    const Eigen::Vector3d jitter(random.uniform(-0.01, 0.01), random.uniform(-0.01, 0.01), random.uniform(-0.01, 0.01));
+    const Eigen::Vector3d jitter(random.uniform(-0.01, 0.01), random.uniform(-0.01, 0.01),
+                                 random.uniform(-0.01, 0.01));
     h.contacts.resize(2, 3);
     h.contact_normals.resize(2, 3);
     h.contacts.row(0) = (centre + jitter).transpose();
@@ -54,8 +55,9 @@ TEST(SynthBimanualTest, KeepsTheFarthestClusterPairAndItsBestCombinations) {
   BimanualParams params;
   params.clusters = 2;  // k^2 = 4 pairs, r1 = 0.25 keeps the farthest one: (+x, -x)
   BimanualStatistics stats;
-  const std::vector<Candidate> out = compose_bimanual(object, right, left, 20, params, 3, 
-      [](const Candidate& c, bool) { return box_at(c); }, &stats);
+  const std::vector<Candidate> out = compose_bimanual(
+      object, right, left, 20, params, 3, [](const Candidate& c, bool) { return box_at(c); },
+      &stats);
   EXPECT_EQ(stats.filtered, 100);
   EXPECT_EQ(out.size(), 20u);
   double worst_kept = 0.0;
@@ -79,8 +81,10 @@ TEST(SynthBimanualTest, KeepsTheFarthestClusterPairAndItsBestCombinations) {
     for (int l = 0; l < 10; ++l) {
       if (kept.count({double(r), double(l)})) continue;
       Points3 points(4, 3), normals(4, 3);
-      points << right[static_cast<std::size_t>(r)].hands[0].contacts, left[static_cast<std::size_t>(l)].hands[0].contacts;
-      normals << right[static_cast<std::size_t>(r)].hands[0].contact_normals, left[static_cast<std::size_t>(l)].hands[0].contact_normals;
+      points << right[static_cast<std::size_t>(r)].hands[0].contacts,
+          left[static_cast<std::size_t>(l)].hands[0].contacts;
+      normals << right[static_cast<std::size_t>(r)].hands[0].contact_normals,
+          left[static_cast<std::size_t>(l)].hands[0].contact_normals;
       points.rowwise() -= object.centroid().transpose();
       EXPECT_GE(force_closure_error(points, normals), worst_kept);
     }
@@ -95,8 +99,9 @@ TEST(SynthBimanualTest, DiscardsHandsThatCollide) {
   params.clusters = 1;
   params.pair_fraction = 1.0;
   BimanualStatistics stats;
-  const std::vector<Candidate> out = compose_bimanual(object, right, left, 10, params, 3,
-      [](const Candidate& c, bool) { return box_at(c); }, &stats);
+  const std::vector<Candidate> out = compose_bimanual(
+      object, right, left, 10, params, 3, [](const Candidate& c, bool) { return box_at(c); },
+      &stats);
   EXPECT_TRUE(out.empty());
   EXPECT_EQ(stats.colliding, stats.examined);
   // Colliding combinations do not count against the pair's quota: all 25 get examined.

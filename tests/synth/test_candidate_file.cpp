@@ -1,10 +1,10 @@
 // Tests of the candidate file: exact round trips and errors that name the file and line.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include "src/synth/candidate_file.hpp"
 
@@ -21,7 +21,8 @@ Candidate hand_candidate(double shift) {
   c.gripper = grippers::GripperKind::kLeap;
   for (int h = 0; h < 2; ++h) {
     HandGrasp hand;
-    hand.pose.linear() = Eigen::AngleAxisd(0.3 + h + shift, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    hand.pose.linear() = Eigen::AngleAxisd(0.3 + h + shift, Eigen::Vector3d(1, 2, 3).normalized())
+                             .toRotationMatrix();
     hand.pose.translation() = Eigen::Vector3d(0.1 / 3.0, -0.2 + shift, 1e-17);
     hand.joints = Eigen::VectorXd::LinSpaced(16, -0.3, 1.7 + shift);
     hand.contacts = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>::Random(4, 3);
@@ -92,7 +93,8 @@ TEST(SynthCandidateFileTest, ErrorsNameFileAndLine) {
   EXPECT_NE(error.find("joint value"), std::string::npos) << error;
 
   std::ofstream(file) << "grip-candidates 1\ngripper claw\n";
-  EXPECT_NE(read_error(file).find(":2: unknown gripper 'claw'"), std::string::npos) << read_error(file);
+  EXPECT_NE(read_error(file).find(":2: unknown gripper 'claw'"), std::string::npos)
+      << read_error(file);
   EXPECT_NE(read_error(scratch("missing.txt")).find("cannot open"), std::string::npos);
   std::filesystem::remove(file);
 }

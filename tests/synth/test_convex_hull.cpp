@@ -28,8 +28,8 @@ TEST(SynthConvexHullTest, BoxHasSixPlanesAndExactExits) {
 TEST(SynthConvexHullTest, NonConvexShapeExitsOnItsHullAndIsReproducible) {
   // An L-shaped point set: the hull's diagonal facet bridges the notch.
   geometry::Vertices points(12, 3);
-  points << 0, 0, 0, 2, 0, 0, 2, 1, 0, 1, 1, 0, 1, 2, 0, 0, 2, 0,
-            0, 0, 1, 2, 0, 1, 2, 1, 1, 1, 1, 1, 1, 2, 1, 0, 2, 1;
+  points << 0, 0, 0, 2, 0, 0, 2, 1, 0, 1, 1, 0, 1, 2, 0, 0, 2, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 1, 1,
+      1, 1, 2, 1, 0, 2, 1;
   const ConvexHull a(points), b(points);
   ASSERT_EQ(a.planes().size(), b.planes().size());
   for (std::size_t i = 0; i < a.planes().size(); ++i) {

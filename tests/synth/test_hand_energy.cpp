@@ -16,11 +16,21 @@ enum class Term { kFc, kDis, kPen, kSpen, kNormal };
 HandEnergyWeights only(Term term) {
   HandEnergyWeights w{0, 0, 0, 0, 0, 0};
   switch (term) {
-    case Term::kFc: w.fc = 1; break;
-    case Term::kDis: w.dis = 1; break;
-    case Term::kPen: w.pen = 1; break;
-    case Term::kSpen: w.spen = 1; break;
-    case Term::kNormal: w.normal = 1; break;
+    case Term::kFc:
+      w.fc = 1;
+      break;
+    case Term::kDis:
+      w.dis = 1;
+      break;
+    case Term::kPen:
+      w.pen = 1;
+      break;
+    case Term::kSpen:
+      w.spen = 1;
+      break;
+    case Term::kNormal:
+      w.normal = 1;
+      break;
   }
   return w;
 }
@@ -56,15 +66,26 @@ void check_gradient(Term term, const char* name, const PreparedObject& object) {
     const double plus = energy.evaluate(HandEnergy::moved(state, step), nullptr).total;
     const double minus = energy.evaluate(HandEnergy::moved(state, -step), nullptr).total;
     const double fd = (plus - minus) / (2 * h);
-    EXPECT_NEAR(gradient(i), fd, 1e-5 * std::max(1.0, std::abs(fd))) << name << ", coordinate " << i;
+    EXPECT_NEAR(gradient(i), fd, 1e-5 * std::max(1.0, std::abs(fd)))
+        << name << ", coordinate " << i;
   }
 }
 
-TEST(SynthHandEnergyTest, ForceClosureGradientMatchesFiniteDifferences) { check_gradient(Term::kFc, "E_fc", testing::slab_object()); }
-TEST(SynthHandEnergyTest, DistanceGradientMatchesFiniteDifferences) { check_gradient(Term::kDis, "E_dis", testing::sphere_object()); }
-TEST(SynthHandEnergyTest, PenetrationGradientMatchesFiniteDifferences) { check_gradient(Term::kPen, "E_pen", testing::sphere_object()); }
-TEST(SynthHandEnergyTest, SelfPenetrationGradientMatchesFiniteDifferences) { check_gradient(Term::kSpen, "E_spen", testing::sphere_object()); }
-TEST(SynthHandEnergyTest, NormalAlignmentGradientMatchesFiniteDifferences) { check_gradient(Term::kNormal, "E_normal", testing::slab_object()); }
+TEST(SynthHandEnergyTest, ForceClosureGradientMatchesFiniteDifferences) {
+  check_gradient(Term::kFc, "E_fc", testing::slab_object());
+}
+TEST(SynthHandEnergyTest, DistanceGradientMatchesFiniteDifferences) {
+  check_gradient(Term::kDis, "E_dis", testing::sphere_object());
+}
+TEST(SynthHandEnergyTest, PenetrationGradientMatchesFiniteDifferences) {
+  check_gradient(Term::kPen, "E_pen", testing::sphere_object());
+}
+TEST(SynthHandEnergyTest, SelfPenetrationGradientMatchesFiniteDifferences) {
+  check_gradient(Term::kSpen, "E_spen", testing::sphere_object());
+}
+TEST(SynthHandEnergyTest, NormalAlignmentGradientMatchesFiniteDifferences) {
+  check_gradient(Term::kNormal, "E_normal", testing::slab_object());
+}
 
 TEST(SynthHandEnergyTest, JointLimitEnergyAndGradient) {
   const Eigen::Vector3d lower(-1, 0, 0), upper(1, 2, 0.5);
@@ -77,7 +98,8 @@ TEST(SynthHandEnergyTest, JointLimitEnergyAndGradient) {
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector3d step = h * Eigen::Vector3d::Unit(i);
     const double fd = (joint_limit_energy(q + step, lower, upper, nullptr) -
-                       joint_limit_energy(q - step, lower, upper, nullptr)) / (2 * h);
+                       joint_limit_energy(q - step, lower, upper, nullptr)) /
+                      (2 * h);
     EXPECT_NEAR(gradient(i), fd, 1e-8);
   }
 }
@@ -87,12 +109,13 @@ TEST(SynthHandEnergyTest, ForceClosureErrorOfBalancedAndUnbalancedContacts) {
   points << 0.05, 0, 0, -0.05, 0, 0;
   normals << 1, 0, 0, -1, 0, 0;  // opposite contacts on a line through the reference point
   EXPECT_NEAR(force_closure_error(points, normals), 0.0, 1e-15);
-  normals.row(1) << 0, 1, 0;     // net force (1, 1, 0), torque -0.05 z
+  normals.row(1) << 0, 1, 0;  // net force (1, 1, 0), torque -0.05 z
   EXPECT_NEAR(force_closure_error(points, normals), std::sqrt(2.0 + 0.0025), 1e-15);
 }
 
 TEST(SynthHandEnergyTest, TotalIsTheWeightedSumOfTerms) {
-  const geometry::SurfaceSamples points = geometry::sample_surface(testing::sphere_object().surface(), 400, 3);
+  const geometry::SurfaceSamples points =
+      geometry::sample_surface(testing::sphere_object().surface(), 400, 3);
   const HandEnergy energy(testing::right_hand(), testing::sphere_object(), points.points);
   const HandEnergyTerms t = energy.evaluate(active_state(), nullptr);
   EXPECT_GT(t.pen, 0.0);

@@ -37,7 +37,8 @@ void expect_clear_and_self_free(const HandGrasp& grasp, double target) {
   for (int a = 0; a < hand.link_count(); ++a) {
     for (int b = a + 1; b < hand.link_count(); ++b) {
       if (hand.adjacent(a, b)) continue;
-      EXPECT_EQ(testing::mesh_intersections(hand.posed_link(poses, a), hand.posed_link(poses, b)), 0)
+      EXPECT_EQ(testing::mesh_intersections(hand.posed_link(poses, a), hand.posed_link(poses, b)),
+                0)
           << "links " << a << " and " << b;
     }
   }
@@ -71,7 +72,8 @@ TEST(SynthHandClearanceFixTest, PushesAPenetratingPalmAndFingersOut) {
   state.base = testing::palm_over_sphere(0.037);  // palm 3 mm deep
   state.joints = Eigen::VectorXd::Constant(16, 0.6);
   const double before = object.clearance(
-      hand.kinematics().posed_surface(hand.kinematics().link_poses(state.base, state.joints)), 0.01);
+      hand.kinematics().posed_surface(hand.kinematics().link_poses(state.base, state.joints)),
+      0.01);
   ASSERT_EQ(before, 0.0);
   const ClearanceFixParams params;
   const std::optional<FixedHand> fixed = fix_hand_clearance(hand, object, state, params);

@@ -14,7 +14,9 @@ TEST(SynthKmeansTest, RecoversSeparatedBlobsAndTheirMeans) {
   Points3 points(90, 3);
   CandidateRandom random(5, 0, 0);
   for (int i = 0; i < 90; ++i) {
-    points.row(i) = (centres[i % 3] + 0.01 * Eigen::Vector3d(random.normal(), random.normal(), random.normal())).transpose();
+    points.row(i) =
+        (centres[i % 3] + 0.01 * Eigen::Vector3d(random.normal(), random.normal(), random.normal()))
+            .transpose();
   }
   const Clustering c = kmeans(points, 3, 11);
   ASSERT_EQ(c.centres.rows(), 3);

@@ -3,12 +3,12 @@
 // object and from each other.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
-#include "src/geometry/primitives.hpp"
 #include "src/geometry/mesh_io.hpp"
+#include "src/geometry/primitives.hpp"
 #include "src/synth/object_spec.hpp"
 #include "src/synth/synthesize.hpp"
 #include "tests/synth/exact_mesh_distance.hpp"
@@ -31,7 +31,8 @@ TEST(SynthObjectSpecTest, CategoryNamesAndScaledMeshFiles) {
     FAIL() << "no error for an unknown spec";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("'teacup' is neither an object category (box,"),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -53,7 +54,8 @@ TEST(SynthSynthesizeTest, BimanualParallelJawsKeepClearOfObjectAndEachOther) {
     const geometry::SurfaceMesh left = posed_parallel_surface(gripper, c.hands[1]);
     EXPECT_GE(testing::brute_force_distance(right, object.surface(), 0.01), target - 1e-12);
     EXPECT_GE(testing::brute_force_distance(left, object.surface(), 0.01), target - 1e-12);
-    EXPECT_GE(testing::brute_force_distance(right, left, 0.01), params.bimanual.hand_clearance - 1e-12);
+    EXPECT_GE(testing::brute_force_distance(right, left, 0.01),
+              params.bimanual.hand_clearance - 1e-12);
     EXPECT_EQ(testing::mesh_intersections(right, left), 0);
   }
 }

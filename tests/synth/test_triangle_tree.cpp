@@ -48,7 +48,8 @@ TEST(SynthTriangleTreeTest, FaceToFaceAndEdgeToFaceDistancesAreAnalytic) {
 TEST(SynthTriangleTreeTest, OverlappingBoxesIntersect) {
   const geometry::SurfaceMesh cube = geometry::make_box(Eigen::Vector3d::Constant(0.02));
   const TriangleTree tree(cube);
-  const TriangleTree::Proximity p = tree.proximity(placed(cube, at({0.015, 0.003, 0.0}, 0.3)), 0.01);
+  const TriangleTree::Proximity p =
+      tree.proximity(placed(cube, at({0.015, 0.003, 0.0}, 0.3)), 0.01);
   EXPECT_TRUE(p.intersecting);
   EXPECT_EQ(p.distance, 0.0);
 }

@@ -105,8 +105,8 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   EXPECT_NEAR(h.closing_forces[0], h.closing_forces[1], 0.01 * h.closing_forces[0]);
   EXPECT_EQ(h.d1, 0.0);  // IPC never penetrates
   EXPECT_GT(h.d2, 0.0);
-  EXPECT_LT(h.d2, p.sim.d_hat);                // held within the barrier's reach
-  EXPECT_GT(h.newton.steps, 30u);              // closing, settling and 6 x 5 gravity steps
+  EXPECT_LT(h.d2, p.sim.d_hat);                  // held within the barrier's reach
+  EXPECT_GT(h.newton.steps, 30u);                // closing, settling and 6 x 5 gravity steps
   EXPECT_FALSE(with.result.stress.has_value());  // a rigid object has no stress
 
   // mu = 0: the same squeeze, and the box slides away under the first gravity phase.

@@ -2,10 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 #include "src/geometry/primitives.hpp"
 #include "src/scene/primitives.hpp"
@@ -49,8 +49,8 @@ TEST(VtkSeries, WritesOneGridPerFrameAndASeriesFile) {
     frames[f].vertices = {soft.vertices, plate.vertices};
     frames[f].stress = {Eigen::VectorXd::Constant(soft.tets.rows(), 100.0 * f), Eigen::VectorXd()};
   }
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("grip_vtk_series_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("grip_vtk_series_" + std::to_string(::getpid()));
   write_vtk_series(dir, "trial", *model, frames);
 
   const std::string pvd = read(dir / "trial.pvd");

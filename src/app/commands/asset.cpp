@@ -70,9 +70,10 @@ int asset_prepare(const AssetPrepareArgs& args) {
   const double estimated_tets =
       surface_volume / (std::pow(args.edge_length, 3) / (6.0 * std::sqrt(2.0)));
   if (estimated_tets > kMaxEstimatedTets) {
-    throw std::invalid_argument("--edge " + std::to_string(args.edge_length) + " m would make about " +
-                                std::to_string(static_cast<long>(estimated_tets)) +
-                                " tets for " + source + "; use a larger --edge");
+    throw std::invalid_argument("--edge " + std::to_string(args.edge_length) +
+                                " m would make about " +
+                                std::to_string(static_cast<long>(estimated_tets)) + " tets for " +
+                                source + "; use a larger --edge");
   }
 
   const auto tet_start = Clock::now();
@@ -82,11 +83,12 @@ int asset_prepare(const AssetPrepareArgs& args) {
   const geo::TetMesh tets = geo::tetrahedralize(repaired.mesh, tet_options, source);
   const double tet_seconds = seconds_since(tet_start);
   const geo::TetQuality quality = geo::tet_quality(tets);
-  std::printf("tet mesh: %ld vertices, %ld tets, dihedral angles %.2f to %.2f deg, "
-              "%d inverted, %d below 5 deg\n",
-              static_cast<long>(tets.vertices.rows()), static_cast<long>(tets.tets.rows()),
-              quality.min_dihedral_deg, quality.max_dihedral_deg, quality.inverted_count,
-              quality.sliver_count);
+  std::printf(
+      "tet mesh: %ld vertices, %ld tets, dihedral angles %.2f to %.2f deg, "
+      "%d inverted, %d below 5 deg\n",
+      static_cast<long>(tets.vertices.rows()), static_cast<long>(tets.tets.rows()),
+      quality.min_dihedral_deg, quality.max_dihedral_deg, quality.inverted_count,
+      quality.sliver_count);
   std::printf("volume: tets %.6g m^3 vs repaired surface %.6g m^3 (relative difference %+.3f%%)\n",
               quality.total_volume, surface_volume,
               100.0 * (quality.total_volume / surface_volume - 1.0));
@@ -95,7 +97,8 @@ int asset_prepare(const AssetPrepareArgs& args) {
   std::error_code error;
   fs::create_directories(out, error);
   if (error) {
-    throw std::runtime_error("cannot create output folder '" + out.string() + "': " + error.message());
+    throw std::runtime_error("cannot create output folder '" + out.string() +
+                             "': " + error.message());
   }
   const std::string stem = input.stem().string();
   geo::write_msh(out / (stem + ".msh"), tets);

@@ -35,7 +35,8 @@ void write_hand(const std::filesystem::path& folder, const std::string& name,
   const Eigen::VectorXd open = hand.clamp_to_limits(Eigen::VectorXd::Zero(hand.dof_count()));
   const Eigen::VectorXd closed = 0.5 * (hand.lower_limits() + hand.upper_limits());
   const Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
-  geometry::write_obj(folder / (name + "_open.obj"), hand.posed_surface(hand.link_poses(base, open)));
+  geometry::write_obj(folder / (name + "_open.obj"),
+                      hand.posed_surface(hand.link_poses(base, open)));
   geometry::write_obj(folder / (name + "_closed.obj"),
                       hand.posed_surface(hand.link_poses(base, closed)));
 }
@@ -88,9 +89,10 @@ int asset_gallery(const AssetGalleryArgs& args) {
     const grippers::LeapHandFiles files = grippers::write_leap_hand(hands_dir / name, side);
     write_hand(grippers_dir, name, grippers::KinematicTree::from_urdf(files.urdf));
   }
-  spdlog::info("wrote {} object meshes to {}, gripper meshes (open and closed) to {}, and the "
-               "LEAP-style hand packages to {}",
-               object_count, objects_dir.string(), grippers_dir.string(), hands_dir.string());
+  spdlog::info(
+      "wrote {} object meshes to {}, gripper meshes (open and closed) to {}, and the "
+      "LEAP-style hand packages to {}",
+      object_count, objects_dir.string(), grippers_dir.string(), hands_dir.string());
   return 0;
 }
 

@@ -42,12 +42,13 @@ int synth(const SynthArgs& args) {
   for (const auto& [reason, n] : result.rejections) {
     spdlog::info("rejected {}: {}", n, reason);
   }
-  std::printf("%s %s%s: %zu candidates in %.3f s (%.2f candidates/s); %lld attempts, accepted "
-              "fraction %.3f; wrote %s\n",
-              args.object.c_str(), args.gripper.c_str(), args.bimanual ? " bimanual" : "",
-              result.candidates.size(), result.seconds,
-              static_cast<double>(result.candidates.size()) / result.seconds,
-              static_cast<long long>(result.attempts), result.accepted_fraction(), args.out.c_str());
+  std::printf(
+      "%s %s%s: %zu candidates in %.3f s (%.2f candidates/s); %lld attempts, accepted "
+      "fraction %.3f; wrote %s\n",
+      args.object.c_str(), args.gripper.c_str(), args.bimanual ? " bimanual" : "",
+      result.candidates.size(), result.seconds,
+      static_cast<double>(result.candidates.size()) / result.seconds,
+      static_cast<long long>(result.attempts), result.accepted_fraction(), args.out.c_str());
   if (static_cast<int>(result.candidates.size()) < args.count) {
     spdlog::warn("only {} of {} candidates after {} attempts: the object may not fit the gripper",
                  result.candidates.size(), args.count, result.attempts);
