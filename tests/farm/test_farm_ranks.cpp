@@ -65,7 +65,9 @@ TEST(FarmRanks, SameDatasetForAnyRankThreadAndWorkUnitSize) {
     for (const io::CandidateRecord& r : reader.candidates()) {
       EXPECT_NE(r.status, io::Status::kPending);
       successes += r.status == io::Status::kSuccess;
-      if (r.status == io::Status::kSuccess) EXPECT_EQ(r.d1, 0.0);
+      if (r.status == io::Status::kSuccess) {
+        EXPECT_EQ(r.d1, 0.0);
+      }
       if (reader.stress(r.id)) ++soft_stress;
     }
     EXPECT_GT(successes, 0);
@@ -85,7 +87,9 @@ TEST(FarmRanks, SameDatasetForAnyRankThreadAndWorkUnitSize) {
     EXPECT_NE(std::string(e.what()).find("--resume"), std::string::npos) << e.what();
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank == 0) EXPECT_EQ(io::testing::file_bytes(datasets.front()), before);
+  if (rank == 0) {
+    EXPECT_EQ(io::testing::file_bytes(datasets.front()), before);
+  }
 
   // Resuming a finished dataset finds nothing to do.
   options.resume = true;

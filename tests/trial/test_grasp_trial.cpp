@@ -121,7 +121,9 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   EXPECT_GT(r.displacement[0], 10.0 * p.displacement_threshold());
   // The box leaves fast enough that a later step may exceed Newton's iteration limit; the
   // verdict stays the displacement already measured.
-  if (!without.failure_reason.empty()) EXPECT_EQ(r.failure, io::FailureKind::kDisplaced);
+  if (!without.failure_reason.empty()) {
+    EXPECT_EQ(r.failure, io::FailureKind::kDisplaced);
+  }
   EXPECT_EQ(r.d1, 0.0);
   // Both grasps squeezed alike before gravity: friction plays no part while closing.
   ASSERT_EQ(r.closing_forces.size(), 2u);
