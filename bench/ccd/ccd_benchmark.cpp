@@ -48,8 +48,12 @@ CcdBenchmarkResult run_ccd_benchmark(const std::vector<CcdQuery>& queries, CcdQu
   }
   for (std::size_t i = 0; i < queries.size(); ++i) {
     const solver::kernels::AccdResult& r = results[i];
-    out.false_negatives += queries[i].collides && !r.impact;
-    out.false_positives += !queries[i].collides && r.impact;
+    const bool collides = collides_in_truth(queries[i]);
+    out.collisions += collides;
+    out.touching_starts += queries[i].touches_at_start;
+    out.false_negatives += collides && !r.impact;
+    out.touching_start_false_negatives += queries[i].touches_at_start && !r.impact;
+    out.false_positives += !collides && r.impact;
     out.max_iterations = std::max(out.max_iterations, static_cast<std::size_t>(r.iterations));
     // A pair already in contact at t = 0 has no safe time to return (ACCD answers 0).
     if (exactly_separated_at(queries[i], type, 0.0, options.min_separation) &&

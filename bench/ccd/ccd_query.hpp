@@ -1,6 +1,7 @@
 #pragma once
 // One continuous-collision query of the CCD benchmark: the 4 vertices of a vertex-face or
-// edge-edge pair at t = 0 and at t = 1 (linear motion between), and whether they collide.
+// edge-edge pair at t = 0 and at t = 1 (linear motion between), and whether they collide
+// (touching at t = 0 included).
 #include <gmpxx.h>
 #include <Eigen/Core>
 #include <array>
@@ -17,8 +18,16 @@ inline constexpr std::size_t kCcdQueryRows = 8;
 // A query in double precision, as a simulator would pose it (coordinates rounded to nearest).
 struct CcdQuery {
   std::array<Eigen::Vector3d, kCcdQueryRows> vertices;
-  bool collides = false;  // ground truth of the exact (rational) query
+  bool collides = false;  // ground truth of the exact (rational) query, as labelled
+  // The exact (rational) primitives touch at t = 0 (distance 0); set by the file reader.
+  bool touches_at_start = false;
 };
+
+// The ground truth the benchmark scores against: a touching start is a collision, whatever the
+// label says (a conservative CCD must answer t = 0 there).
+inline bool collides_in_truth(const CcdQuery& query) {
+  return query.collides || query.touches_at_start;
+}
 
 // A query with exact rational coordinates, as the benchmark files store it.
 struct RationalCcdQuery {

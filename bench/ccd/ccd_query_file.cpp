@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "bench/ccd/exact_separation.hpp"
+
 namespace grip::bench {
 
 namespace {
@@ -40,7 +42,7 @@ mpz_class parse_integer(std::string_view field) {
 
 }  // namespace
 
-std::vector<CcdQuery> read_ccd_query_file(const std::filesystem::path& path) {
+std::vector<CcdQuery> read_ccd_query_file(const std::filesystem::path& path, CcdQueryType type) {
   std::ifstream in(path);
   if (!in) {
     throw std::runtime_error(path.string() + ": cannot open the CCD query file; check the path");
@@ -103,6 +105,7 @@ std::vector<CcdQuery> read_ccd_query_file(const std::filesystem::path& path) {
     }
     if (++rows_in_query == kCcdQueryRows) {
       queries.push_back(to_double_query(current));
+      queries.back().touches_at_start = exactly_touching_at_start(current, type);
       rows_in_query = 0;
     }
   }

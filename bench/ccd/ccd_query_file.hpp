@@ -9,9 +9,10 @@
 
 namespace grip::bench {
 
-// Parses the integers exactly (GMP) and rounds each coordinate to the nearest double.
+// Parses the integers exactly (GMP) and rounds each coordinate to the nearest double; marks
+// the queries of `type` whose exact primitives touch at t = 0 (CcdQuery::touches_at_start).
 // Throws std::runtime_error "FILE:LINE: what is wrong; what to do" on a malformed file.
-std::vector<CcdQuery> read_ccd_query_file(const std::filesystem::path& path);
+std::vector<CcdQuery> read_ccd_query_file(const std::filesystem::path& path, CcdQueryType type);
 
 // Writes queries in the same format (numerators and denominators in lowest terms).
 // Throws std::runtime_error naming the file if it cannot be written.

@@ -22,6 +22,12 @@ Point position_at(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1, const CG
   return Point(c[0], c[1], c[2]);
 }
 
+CGAL::Gmpq squared_distance(const Point (&v)[4], CcdQueryType type) {
+  return type == CcdQueryType::kVertexFace
+             ? CGAL::squared_distance(v[0], Kernel::Triangle_3(v[1], v[2], v[3]))
+             : CGAL::squared_distance(Kernel::Segment_3(v[0], v[1]), Kernel::Segment_3(v[2], v[3]));
+}
+
 }  // namespace
 
 bool exactly_separated_at(const CcdQuery& query, CcdQueryType type, double t,
@@ -29,12 +35,18 @@ bool exactly_separated_at(const CcdQuery& query, CcdQueryType type, double t,
   const CGAL::Gmpq time(t);
   Point v[4];
   for (int i = 0; i < 4; ++i) v[i] = position_at(query.vertices[i], query.vertices[i + 4], time);
-  const CGAL::Gmpq d_sq =
-      type == CcdQueryType::kVertexFace
-          ? CGAL::squared_distance(v[0], Kernel::Triangle_3(v[1], v[2], v[3]))
-          : CGAL::squared_distance(Kernel::Segment_3(v[0], v[1]), Kernel::Segment_3(v[2], v[3]));
   const CGAL::Gmpq xi(min_separation);
-  return d_sq > xi * xi;
+  return squared_distance(v, type) > xi * xi;
+}
+
+bool exactly_touching_at_start(const RationalCcdQuery& query, CcdQueryType type) {
+  Point v[4];
+  for (int i = 0; i < 4; ++i) {
+    const auto& x = query.vertices[i];
+    v[i] = Point(CGAL::Gmpq(x[0].get_mpq_t()), CGAL::Gmpq(x[1].get_mpq_t()),
+                 CGAL::Gmpq(x[2].get_mpq_t()));
+  }
+  return CGAL::is_zero(squared_distance(v, type));
 }
 
 }  // namespace grip::bench

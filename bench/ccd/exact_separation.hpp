@@ -1,6 +1,6 @@
 #pragma once
-// Exact check that a CCD query's pair is still apart at a given time: positions and squared
-// distance evaluated in rational arithmetic (CGAL), so the answer carries no round-off.
+// Exact checks of a CCD query's pair: still apart at a given time, or touching at t = 0 as
+// stored (rational); squared distances in rational arithmetic (CGAL), with no round-off.
 #include "bench/ccd/ccd_query.hpp"
 
 namespace grip::bench {
@@ -9,5 +9,8 @@ namespace grip::bench {
 // taken as the exact rationals of their doubles) are farther apart than min_separation.
 bool exactly_separated_at(const CcdQuery& query, CcdQueryType type, double t,
                           double min_separation);
+
+// True when the closed primitives of the rational query touch (distance exactly 0) at t = 0.
+bool exactly_touching_at_start(const RationalCcdQuery& query, CcdQueryType type);
 
 }  // namespace grip::bench

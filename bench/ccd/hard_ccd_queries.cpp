@@ -16,6 +16,7 @@ struct Case {
   bool collides;
   // The answer hinges on exact coordinates (contact exactly at an endpoint of the interval, on
   // an edge, a 2^-40 margin, coplanar motion): only transformed by exact dyadic operations.
+  // Contact at t = 0 does not: rounding moves it by round-off, and t = 0 stays the answer.
   bool exact;
 };
 
@@ -54,9 +55,33 @@ std::vector<Case> vertex_face_cases() {
       // Through the interior, and beside the triangle.
       point_vs_unit_triangle(vec(kQuarter, kQuarter, 1), vec(kQuarter, kQuarter, -1), true, false),
       point_vs_unit_triangle(vec(1, 1, 1), vec(1, 1, -1), false, false),
-      // Contact exactly at t = 1 and at t = 0 (moving away).
+      // Contact exactly at t = 1.
       point_vs_unit_triangle(vec(kQuarter, kQuarter, 1), vec(kQuarter, kQuarter, 0), true, true),
-      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kQuarter, kQuarter, 1), true, true),
+      // Touching at t = 0 on the face: moving away, sliding within it, moving through it.
+      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kQuarter, kQuarter, 1), true, false),
+      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kHalf, kQuarter, 0), true, false),
+      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kQuarter, kQuarter, -1), true, false),
+      // Touching at t = 0 on an edge (moving away along the normal, and outward in the plane),
+      // on the hypotenuse, on a vertex; the triangle leaving a point that rests on it.
+      point_vs_unit_triangle(vec(kHalf, 0, 0), vec(kHalf, 0, 1), true, false),
+      point_vs_unit_triangle(vec(kHalf, 0, 0), vec(kHalf, -1, 0), true, false),
+      point_vs_unit_triangle(vec(kHalf, kHalf, 0), vec(1, 1, 1), true, false),
+      point_vs_unit_triangle(vec(1, 0, 0), vec(2, -1, 1), true, false),
+      moving({vec(kQuarter, kQuarter, 0), a, b, c},
+             {vec(kQuarter, kQuarter, 0), add(a, vec(0, 0, -1)), add(b, vec(0, 0, -1)),
+              add(c, vec(0, 0, -1))},
+             true, false),
+      // Touching at t = 0 a tilted triangle (plane z = y / 3, normal (0, -1, 3)), on the face
+      // and on an edge, moving away and through: rounding moves these contacts off the plane.
+      moving({vec(Q(1, 5), Q(3, 5), Q(1, 5)), a, b, vec(0, 3, 1)},
+             {vec(Q(1, 5), Q(-2, 5), Q(16, 5)), a, b, vec(0, 3, 1)}, true, false),
+      moving({vec(Q(1, 5), Q(3, 5), Q(1, 5)), a, b, vec(0, 3, 1)},
+             {vec(Q(1, 5), Q(8, 5), Q(-14, 5)), a, b, vec(0, 3, 1)}, true, false),
+      moving({vec(Q(4, 5), Q(3, 5), Q(1, 5)), a, b, vec(0, 3, 1)},
+             {vec(Q(4, 5), Q(-2, 5), Q(16, 5)), a, b, vec(0, 3, 1)}, true, false),
+      // Starting 2^-40 above the face and moving away: a gap, not a touching start.
+      point_vs_unit_triangle(vec(kQuarter, kQuarter, kTiny), vec(kQuarter, kQuarter, 1), false,
+                             true),
       // Through an edge's midpoint, through a vertex, through the hypotenuse.
       point_vs_unit_triangle(vec(kHalf, 0, 1), vec(kHalf, 0, -1), true, true),
       point_vs_unit_triangle(vec(1, 0, 1), vec(1, 0, -1), true, true),
@@ -118,9 +143,34 @@ std::vector<Case> edge_edge_cases() {
       // Crossing interiors, and passing beyond b's end.
       edge_along_x(-1, 1, 0, 1, -1, true, false),
       edge_along_x(-1, 1, 3, 1, -1, false, false),
-      // Contact exactly at t = 1 and at t = 0 (moving away).
+      // Contact exactly at t = 1.
       edge_along_x(-1, 1, 0, 1, 0, true, true),
-      edge_along_x(-1, 1, 0, 0, 1, true, true),
+      // Crossing at t = 0: moving away, moving through, sliding along b.
+      edge_along_x(-1, 1, 0, 0, 1, true, false),
+      edge_along_x(-1, 1, 0, 0, -1, true, false),
+      edge_vs_unit_edge(vec(-1, 0, 0), vec(1, 0, 0), vec(-1, kHalf, 0), vec(1, kHalf, 0), true,
+                        false),
+      // Touching at t = 0 and moving away: an endpoint of a on b's interior, endpoint on
+      // endpoint, collinear and overlapping (moving sideways), collinear end to end (moving
+      // along the line).
+      edge_along_x(0, 1, kHalf, 0, 1, true, false),
+      edge_along_x(0, 1, 1, 0, 1, true, false),
+      edge_vs_unit_edge(vec(0, kHalf, 0), vec(0, 2, 0), vec(1, kHalf, 1), vec(1, 2, 1), true,
+                        false),
+      edge_vs_unit_edge(vec(0, 1, 0), vec(0, 2, 0), vec(0, 2, 0), vec(0, 3, 0), true, false),
+      // Touching at t = 0 a tilted edge from (0,0,0) to (3,5,7) at (3/5, 1, 7/5), crossing it
+      // and with an endpoint on it, moving away along the common normal (-7, -7, 8).
+      moving({vec(Q(1, 5), Q(7, 5), Q(7, 5)), vec(Q(6, 5), Q(2, 5), Q(7, 5)), vec(0, 0, 0),
+              vec(3, 5, 7)},
+             {vec(Q(-34, 5), Q(-28, 5), Q(47, 5)), vec(Q(-29, 5), Q(-33, 5), Q(47, 5)),
+              vec(0, 0, 0), vec(3, 5, 7)},
+             true, false),
+      moving(
+          {vec(Q(3, 5), 1, Q(7, 5)), vec(Q(8, 5), 0, Q(7, 5)), vec(0, 0, 0), vec(3, 5, 7)},
+          {vec(Q(-32, 5), -6, Q(47, 5)), vec(Q(-27, 5), -7, Q(47, 5)), vec(0, 0, 0), vec(3, 5, 7)},
+          true, false),
+      // Starting 2^-40 above b and moving away: a gap, not a touching start.
+      edge_along_x(-1, 1, 0, kTiny, 1, false, true),
       // An endpoint of a through b's interior; endpoint through endpoint.
       edge_along_x(0, 1, kHalf, 1, -1, true, true),
       edge_along_x(0, 1, 1, 1, -1, true, true),

@@ -1,5 +1,6 @@
 // The CCD benchmark's rational CSV format: exact parsing and rounding to nearest, a round trip
-// through the writer, and one clear error (file and line) per kind of malformed file.
+// through the writer, touching starts found exactly, and one clear error (file and line) per
+// kind of malformed file.
 #include "bench/ccd/ccd_query_file.hpp"
 
 #include <gtest/gtest.h>
@@ -9,9 +10,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "bench/ccd/exact_separation.hpp"
+
 namespace {
 
 using grip::bench::CcdQuery;
+using grip::bench::CcdQueryType;
+using grip::bench::collides_in_truth;
+using grip::bench::exactly_separated_at;
 using grip::bench::RationalCcdQuery;
 using grip::bench::read_ccd_query_file;
 using grip::bench::write_ccd_query_file;
@@ -37,7 +43,7 @@ std::string rows(int count, const std::string& row) {
 // The message of the error read_ccd_query_file throws, or "" if it throws none.
 std::string read_error(const std::filesystem::path& path) {
   try {
-    read_ccd_query_file(path);
+    read_ccd_query_file(path, CcdQueryType::kVertexFace);
   } catch (const std::runtime_error& e) {
     return e.what();
   }
@@ -53,7 +59,7 @@ TEST(CcdQueryFile, ParsesExactRationalsAndRoundsToNearest) {
   text += "-1,10,-7,1,123456789012345678901234567890,1,0\n";
   text += rows(6, "0,1,0,1,0,1,0");
   const auto path = write_text("exact.csv", text);
-  const std::vector<CcdQuery> queries = read_ccd_query_file(path);
+  const std::vector<CcdQuery> queries = read_ccd_query_file(path, CcdQueryType::kVertexFace);
   ASSERT_EQ(queries.size(), 1u);
   EXPECT_EQ(queries[0].vertices[0].x(), 1.0);
   EXPECT_EQ(queries[0].vertices[0].y(), 0.1);
@@ -77,7 +83,7 @@ TEST(CcdQueryFile, RoundTripsThroughTheWriter) {
   }
   const auto path = temp_file("round_trip.csv");
   write_ccd_query_file(path, written);
-  const std::vector<CcdQuery> read = read_ccd_query_file(path);
+  const std::vector<CcdQuery> read = read_ccd_query_file(path, CcdQueryType::kVertexFace);
   ASSERT_EQ(read.size(), written.size());
   for (std::size_t q = 0; q < written.size(); ++q) {
     const CcdQuery expected = grip::bench::to_double_query(written[q]);
@@ -86,6 +92,38 @@ TEST(CcdQueryFile, RoundTripsThroughTheWriter) {
       EXPECT_EQ(read[q].vertices[row], expected.vertices[row]);
     }
   }
+}
+
+// A query whose rational primitives touch at t = 0 is marked touching even where its doubles
+// are apart and its label says 0; it then counts as a collision. The point (1/5, 3/5, 1/5) lies
+// on the triangle (0,0,0), (1,0,0), (0,3,1) (the plane z = y / 3); rounded to doubles it is off.
+TEST(CcdQueryFile, MarksTouchingStartsExactly) {
+  auto query = [](const std::string& p0, const std::string& p1) {
+    const std::string triangle = "\n0,1,0,1,0,1,0\n1,1,0,1,0,1,0\n0,1,3,1,1,1,0\n";
+    return p0 + triangle + p1 + triangle;
+  };
+  // On the face and moving away; 1/20 above it (in z) and moving away.
+  const auto vf = write_text("touching_vf.csv", query("1,5,3,5,1,5,0", "1,5,3,5,1,1,0") +
+                                                    query("1,5,3,5,1,4,0", "1,5,3,5,1,1,0"));
+  const std::vector<CcdQuery> queries = read_ccd_query_file(vf, CcdQueryType::kVertexFace);
+  ASSERT_EQ(queries.size(), 2u);
+  EXPECT_TRUE(queries[0].touches_at_start);
+  EXPECT_TRUE(exactly_separated_at(queries[0], CcdQueryType::kVertexFace, 0.0, 0.0));
+  EXPECT_FALSE(queries[0].collides);  // the label as read
+  EXPECT_TRUE(collides_in_truth(queries[0]));
+  EXPECT_FALSE(queries[1].touches_at_start);
+  EXPECT_FALSE(collides_in_truth(queries[1]));
+
+  // Edge-edge: (-1/3, 1/3, 0)-(1, 1/3, 0) crosses (1/3, 0, 0)-(1/3, 1, 0) at (1/3, 1/3, 0);
+  // the same rows read as vertex-face do not touch (the point (-1/3, 1/3, 0) is off).
+  std::string ee;
+  for (int half = 0; half < 2; ++half) {
+    ee +=
+        "-1,3,1,3,0,1,1\n1,1,1,3,0,1,1\n1,3,0,1,0,1,1\n1,3,1,1," + std::to_string(half) + ",1,1\n";
+  }
+  const auto path = write_text("touching_ee.csv", ee);
+  EXPECT_TRUE(read_ccd_query_file(path, CcdQueryType::kEdgeEdge)[0].touches_at_start);
+  EXPECT_FALSE(read_ccd_query_file(path, CcdQueryType::kVertexFace)[0].touches_at_start);
 }
 
 TEST(CcdQueryFile, MalformedFilesNameTheFileAndLine) {
@@ -124,7 +162,7 @@ TEST(CcdQueryFile, MalformedFilesNameTheFileAndLine) {
 
 TEST(CcdQueryFile, AcceptsBlankLinesAndWindowsLineEnds) {
   const auto path = write_text("crlf.csv", rows(8, "1,2,-3,4,5,6,1\r") + "\n\n");
-  const std::vector<CcdQuery> queries = read_ccd_query_file(path);
+  const std::vector<CcdQuery> queries = read_ccd_query_file(path, CcdQueryType::kVertexFace);
   ASSERT_EQ(queries.size(), 1u);
   EXPECT_TRUE(queries[0].collides);
   EXPECT_EQ(queries[0].vertices[7], Eigen::Vector3d(0.5, -0.75, 5.0 / 6.0));

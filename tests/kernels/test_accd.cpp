@@ -1,6 +1,7 @@
 // Additive CCD: analytic times of impact for head-on approaches (where ACCD's answer is exactly
-// (1 - s) (d0 - xi) / v), minimum separation, t_max, zero relative motion, contact at t = 0,
-// the iteration cap, and on random motions that the returned time never overshoots.
+// (1 - s) (d0 - xi) / v), minimum separation, t_max, zero relative motion, contact at t = 0
+// (also where round-off leaves a touching pair a hair apart), the iteration cap, and on random
+// motions that the returned time never overshoots.
 // (The exact-arithmetic safety check over the hard query set is in tests/bench.)
 #include "solver/kernels/accd.hpp"
 
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -90,6 +92,129 @@ TEST(Accd, ZeroRelativeMotionAndContactAtStart) {
                      Vector3d(-1, 0, 1), Vector3d(1, 0, 1), Vector3d(0, -1, 0), Vector3d(0, 1, 0));
   EXPECT_TRUE(crossing.impact);
   EXPECT_EQ(crossing.toi, 0.0);
+}
+
+// A triangle with no axis-aligned or dyadic structure, so points placed on it in double
+// precision are off it by round-off (~1e-17), on either side.
+struct SkewTriangle {
+  Vector3d t0{0.1, 0.2, 0.3}, t1{1.3, 0.7, -0.2}, t2{0.4, 1.1, 0.9};
+  Vector3d normal() const { return (t1 - t0).cross(t2 - t0).normalized(); }
+  Vector3d at(double b1, double b2) const { return t0 + b1 * (t1 - t0) + b2 * (t2 - t0); }
+};
+
+// Moving away, sliding along, and moving into the primitive a start touches.
+std::vector<Vector3d> directions(const Vector3d& normal, const Vector3d& tangent) {
+  return {normal, tangent, -normal, 0.5 * normal + tangent};
+}
+
+TEST(Accd, PointTouchingTriangleWithinRoundOffIsImpactAtStart) {
+  // On the face, on each edge, on each vertex; at unit scale, and scaled by 1e-3 and offset by
+  // 1e3 (the round-off is relative to the coordinates).
+  const SkewTriangle tri;
+  const Vector3d n = tri.normal();
+  const Vector3d along = (tri.t1 - tri.t0).normalized();
+  struct Frame {
+    double scale;
+    Vector3d offset;
+  };
+  for (const Frame& f : {Frame{1.0, Vector3d::Zero()}, Frame{1e-3, Vector3d(1e3, -2e3, 5e2)}}) {
+    const Vector3d t0 = f.scale * tri.t0 + f.offset, t1 = f.scale * tri.t1 + f.offset,
+                   t2 = f.scale * tri.t2 + f.offset;
+    std::vector<Vector3d> on;
+    for (const double a : {0.1, 0.2, 1.0 / 3.0, 0.7}) {
+      on.push_back(tri.at(a, 0.5 * (1.0 - a)));  // face
+      on.push_back(tri.at(a, 0.0));              // edge t0 t1
+      on.push_back(tri.at(0.0, a));              // edge t0 t2
+      on.push_back(tri.at(a, 1.0 - a));          // edge t1 t2
+    }
+    on.push_back(tri.t0);
+    on.push_back(tri.t1);
+    on.push_back(tri.t2);
+    for (std::size_t i = 0; i < on.size(); ++i) {
+      const Vector3d p = f.scale * on[i] + f.offset;
+      for (const Vector3d& d : directions(n, along)) {
+        const AccdResult r = point_triangle_accd(p, t0, t1, t2, p + f.scale * d, t0, t1, t2);
+        EXPECT_TRUE(r.impact) << "scale " << f.scale << ", point " << i << ", motion "
+                              << d.transpose();
+        EXPECT_EQ(r.toi, 0.0) << "scale " << f.scale << ", point " << i << ", motion "
+                              << d.transpose();
+      }
+      // The triangle moving instead of the point.
+      const AccdResult r = point_triangle_accd(p, t0, t1, t2, p, t0 - f.scale * n, t1 - f.scale * n,
+                                               t2 - f.scale * n);
+      EXPECT_TRUE(r.impact && r.toi == 0.0) << "scale " << f.scale << ", point " << i;
+    }
+  }
+}
+
+TEST(Accd, EdgesTouchingWithinRoundOffAreImpactAtStart) {
+  const Vector3d a0(0.1, 0.2, 0.3), a1(1.3, 0.7, -0.2), dir_b(0.3, 0.1, 0.7);
+  const Vector3d n = (a1 - a0).cross(dir_b).normalized();
+  const Vector3d along_a = (a1 - a0).normalized();
+  struct Pair {
+    const char* what;
+    Vector3d b0, b1;
+  };
+  std::vector<Pair> pairs;
+  for (const double s : {0.1, 0.3, 1.0 / 3.0, 0.7}) {
+    const Vector3d c = a0 + s * (a1 - a0);
+    pairs.push_back({"crossing", c - 0.7 * dir_b, c + 0.6 * dir_b});
+    pairs.push_back({"endpoint on interior", c, c + dir_b});
+    // Collinear: overlapping, and meeting end to end (b starts where a ends).
+    pairs.push_back({"collinear overlapping", c, a1 + s * (a1 - a0)});
+    pairs.push_back({"collinear end to end", a1, a1 + s * (a1 - a0)});
+  }
+  pairs.push_back({"endpoint on endpoint", a1, a1 + dir_b});
+  for (const Pair& pair : pairs) {
+    for (const Vector3d& d : directions(n, along_a)) {
+      const AccdResult r =
+          edge_edge_accd(a0, a1, pair.b0, pair.b1, a0 + d, a1 + d, pair.b0, pair.b1);
+      EXPECT_TRUE(r.impact) << pair.what << ", motion " << d.transpose();
+      EXPECT_EQ(r.toi, 0.0) << pair.what << ", motion " << d.transpose();
+    }
+  }
+}
+
+TEST(Accd, StartAtTheMinimumSeparationWithinRoundOffIsImpactAtStart) {
+  // A point xi above the face (up to round-off), moving away or sliding: contact at t = 0.
+  const SkewTriangle tri;
+  const Vector3d n = tri.normal();
+  const Vector3d along = (tri.t2 - tri.t1).normalized();
+  AccdOptions options;
+  options.min_separation = 0.01;
+  for (int k = 1; k <= 9; ++k) {
+    const double a = 0.05 * k;
+    const Vector3d p = tri.at(a, a) + options.min_separation * n;
+    for (const Vector3d& d : {n, along}) {
+      const AccdResult r =
+          point_triangle_accd(p, tri.t0, tri.t1, tri.t2, p + d, tri.t0, tri.t1, tri.t2, options);
+      EXPECT_TRUE(r.impact) << "a = " << a << ", motion " << d.transpose();
+      EXPECT_EQ(r.toi, 0.0) << "a = " << a << ", motion " << d.transpose();
+    }
+  }
+}
+
+TEST(Accd, SmallGapsAboveRoundOffAreNotContact) {
+  // Apart by 1e-11 of the coordinates' magnitude (far above round-off): moving away is a miss,
+  // moving in is an impact after t = 0, at unit scale and at 1e4.
+  for (const double scale : {1.0, 1e4}) {
+    const Vector3d t0(0, 0, 0), t1(scale, 0, 0), t2(0, scale, 0);
+    const Vector3d p(0.25 * scale, 0.25 * scale, 1e-11 * scale), up(0, 0, scale);
+    const AccdResult away = point_triangle_accd(p, t0, t1, t2, p + up, t0, t1, t2);
+    EXPECT_FALSE(away.impact) << scale;
+    EXPECT_EQ(away.toi, 1.0) << scale;
+    const AccdResult in = point_triangle_accd(p, t0, t1, t2, p - up, t0, t1, t2);
+    EXPECT_TRUE(in.impact) << scale;
+    EXPECT_GT(in.toi, 0.0) << scale;
+    EXPECT_LT(in.toi, 1e-11) << scale;
+    // The band's edge: m = scale here, so half the band is contact and twice it is a gap.
+    for (const double k : {0.5, 2.0}) {
+      const Vector3d q(0.25 * scale, 0.25 * scale, k * kAccdTouchingRoundoff * scale);
+      const AccdResult r = point_triangle_accd(q, t0, t1, t2, q + up, t0, t1, t2);
+      EXPECT_EQ(r.impact, k < 1.0) << scale << ", " << k;
+      EXPECT_EQ(r.toi, k < 1.0 ? 0.0 : 1.0) << scale << ", " << k;
+    }
+  }
 }
 
 TEST(Accd, HeadOnEdgeEdge) {

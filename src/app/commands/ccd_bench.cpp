@@ -1,6 +1,7 @@
 // `grip ccd-bench --type vf|ee FILE.csv`: additive CCD scored on a file of the CCD benchmark
 // (Wang et al. 2021) rational CSV format; `grip ccd-bench --write-hard DIR` writes the generated
-// hard query set in that format. The last line of a scoring run is one JSON object.
+// hard query set in that format. A query whose exact primitives touch at t = 0 counts as a
+// collision, whatever its label. The last line of a scoring run is one JSON object.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -38,23 +39,30 @@ int ccd_bench(const CcdBenchArgs& args) {
   }
   const bench::CcdQueryType type =
       args.type == "vf" ? bench::CcdQueryType::kVertexFace : bench::CcdQueryType::kEdgeEdge;
-  const std::vector<bench::CcdQuery> queries = bench::read_ccd_query_file(args.file);
-  std::size_t collide = 0;
-  for (const bench::CcdQuery& q : queries) collide += q.collides;
+  const std::vector<bench::CcdQuery> queries = bench::read_ccd_query_file(args.file, type);
+  std::size_t touching_labelled_apart = 0;
+  for (const bench::CcdQuery& q : queries)
+    touching_labelled_apart += q.touches_at_start && !q.collides;
 
   // Minimum separation 0: the benchmark's truth is about touching, not about a gap.
   const solver::kernels::AccdOptions options;
   const bench::CcdBenchmarkResult r = bench::run_ccd_benchmark(queries, type, options);
-  const std::size_t misses = queries.size() - collide;
-  std::printf("%s: %zu %s queries (%zu collide, %zu do not); ACCD s = %g, min separation %g\n",
-              args.file.c_str(), r.queries, args.type.c_str(), collide, misses, options.rescaling,
-              options.min_separation);
+  const std::size_t misses = queries.size() - r.collisions;
   std::printf(
-      "false positives %zu (%.1f%% of the non-colliding), false negatives %zu, "
-      "unsafe times of impact %zu, most iterations %zu\n",
+      "%s: %zu %s queries (%zu collide, %zu of them touching at t = 0, which counts as a "
+      "collision; %zu do not); ACCD s = %g, min separation %g\n",
+      args.file.c_str(), r.queries, args.type.c_str(), r.collisions, r.touching_starts, misses,
+      options.rescaling, options.min_separation);
+  if (touching_labelled_apart > 0) {
+    std::printf("%zu touching starts are labelled 0 in the file and scored as collisions\n",
+                touching_labelled_apart);
+  }
+  std::printf(
+      "false positives %zu (%.1f%% of the non-colliding), false negatives %zu (%zu at touching "
+      "starts), unsafe times of impact %zu, most iterations %zu\n",
       r.false_positives,
       misses ? 100.0 * static_cast<double>(r.false_positives) / static_cast<double>(misses) : 0.0,
-      r.false_negatives, r.unsafe_times, r.max_iterations);
+      r.false_negatives, r.touching_start_false_negatives, r.unsafe_times, r.max_iterations);
   std::printf("%s\n", bench::summary_json(r).c_str());
   std::fflush(stdout);
   return 0;
