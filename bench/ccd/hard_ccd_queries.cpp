@@ -57,31 +57,6 @@ std::vector<Case> vertex_face_cases() {
       point_vs_unit_triangle(vec(1, 1, 1), vec(1, 1, -1), false, false),
       // Contact exactly at t = 1.
       point_vs_unit_triangle(vec(kQuarter, kQuarter, 1), vec(kQuarter, kQuarter, 0), true, true),
-      // Touching at t = 0 on the face: moving away, sliding within it, moving through it.
-      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kQuarter, kQuarter, 1), true, false),
-      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kHalf, kQuarter, 0), true, false),
-      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kQuarter, kQuarter, -1), true, false),
-      // Touching at t = 0 on an edge (moving away along the normal, and outward in the plane),
-      // on the hypotenuse, on a vertex; the triangle leaving a point that rests on it.
-      point_vs_unit_triangle(vec(kHalf, 0, 0), vec(kHalf, 0, 1), true, false),
-      point_vs_unit_triangle(vec(kHalf, 0, 0), vec(kHalf, -1, 0), true, false),
-      point_vs_unit_triangle(vec(kHalf, kHalf, 0), vec(1, 1, 1), true, false),
-      point_vs_unit_triangle(vec(1, 0, 0), vec(2, -1, 1), true, false),
-      moving({vec(kQuarter, kQuarter, 0), a, b, c},
-             {vec(kQuarter, kQuarter, 0), add(a, vec(0, 0, -1)), add(b, vec(0, 0, -1)),
-              add(c, vec(0, 0, -1))},
-             true, false),
-      // Touching at t = 0 a tilted triangle (plane z = y / 3, normal (0, -1, 3)), on the face
-      // and on an edge, moving away and through: rounding moves these contacts off the plane.
-      moving({vec(Q(1, 5), Q(3, 5), Q(1, 5)), a, b, vec(0, 3, 1)},
-             {vec(Q(1, 5), Q(-2, 5), Q(16, 5)), a, b, vec(0, 3, 1)}, true, false),
-      moving({vec(Q(1, 5), Q(3, 5), Q(1, 5)), a, b, vec(0, 3, 1)},
-             {vec(Q(1, 5), Q(8, 5), Q(-14, 5)), a, b, vec(0, 3, 1)}, true, false),
-      moving({vec(Q(4, 5), Q(3, 5), Q(1, 5)), a, b, vec(0, 3, 1)},
-             {vec(Q(4, 5), Q(-2, 5), Q(16, 5)), a, b, vec(0, 3, 1)}, true, false),
-      // Starting 2^-40 above the face and moving away: a gap, not a touching start.
-      point_vs_unit_triangle(vec(kQuarter, kQuarter, kTiny), vec(kQuarter, kQuarter, 1), false,
-                             true),
       // Through an edge's midpoint, through a vertex, through the hypotenuse.
       point_vs_unit_triangle(vec(kHalf, 0, 1), vec(kHalf, 0, -1), true, true),
       point_vs_unit_triangle(vec(1, 0, 1), vec(1, 0, -1), true, true),
@@ -121,6 +96,39 @@ std::vector<Case> vertex_face_cases() {
   };
 }
 
+// Touching at t = 0 (answer: collision at t = 0, however rounding moves the contact), and
+// starting 2^-40 away (a gap).
+std::vector<Case> vertex_face_touching_cases() {
+  const Vec a = vec(0, 0, 0), b = vec(1, 0, 0), c = vec(0, 1, 0);
+  return {
+      // Touching at t = 0 on the face: moving away, sliding within it, moving through it.
+      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kQuarter, kQuarter, 1), true, false),
+      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kHalf, kQuarter, 0), true, false),
+      point_vs_unit_triangle(vec(kQuarter, kQuarter, 0), vec(kQuarter, kQuarter, -1), true, false),
+      // Touching at t = 0 on an edge (moving away along the normal, and outward in the plane),
+      // on the hypotenuse, on a vertex; the triangle leaving a point that rests on it.
+      point_vs_unit_triangle(vec(kHalf, 0, 0), vec(kHalf, 0, 1), true, false),
+      point_vs_unit_triangle(vec(kHalf, 0, 0), vec(kHalf, -1, 0), true, false),
+      point_vs_unit_triangle(vec(kHalf, kHalf, 0), vec(1, 1, 1), true, false),
+      point_vs_unit_triangle(vec(1, 0, 0), vec(2, -1, 1), true, false),
+      moving({vec(kQuarter, kQuarter, 0), a, b, c},
+             {vec(kQuarter, kQuarter, 0), add(a, vec(0, 0, -1)), add(b, vec(0, 0, -1)),
+              add(c, vec(0, 0, -1))},
+             true, false),
+      // Touching at t = 0 a tilted triangle (plane z = y / 3, normal (0, -1, 3)), on the face
+      // and on an edge, moving away and through: rounding moves these contacts off the plane.
+      moving({vec(Q(1, 5), Q(3, 5), Q(1, 5)), a, b, vec(0, 3, 1)},
+             {vec(Q(1, 5), Q(-2, 5), Q(16, 5)), a, b, vec(0, 3, 1)}, true, false),
+      moving({vec(Q(1, 5), Q(3, 5), Q(1, 5)), a, b, vec(0, 3, 1)},
+             {vec(Q(1, 5), Q(8, 5), Q(-14, 5)), a, b, vec(0, 3, 1)}, true, false),
+      moving({vec(Q(4, 5), Q(3, 5), Q(1, 5)), a, b, vec(0, 3, 1)},
+             {vec(Q(4, 5), Q(-2, 5), Q(16, 5)), a, b, vec(0, 3, 1)}, true, false),
+      // Starting 2^-40 above the face and moving away: a gap, not a touching start.
+      point_vs_unit_triangle(vec(kQuarter, kQuarter, kTiny), vec(kQuarter, kQuarter, 1), false,
+                             true),
+  };
+}
+
 // Edge a moving against the static edge b from (0,-1,0) to (0,1,0).
 Case edge_vs_unit_edge(const Vec& a0, const Vec& a1, const Vec& a0_end, const Vec& a1_end,
                        bool collides, bool exact) {
@@ -145,32 +153,6 @@ std::vector<Case> edge_edge_cases() {
       edge_along_x(-1, 1, 3, 1, -1, false, false),
       // Contact exactly at t = 1.
       edge_along_x(-1, 1, 0, 1, 0, true, true),
-      // Crossing at t = 0: moving away, moving through, sliding along b.
-      edge_along_x(-1, 1, 0, 0, 1, true, false),
-      edge_along_x(-1, 1, 0, 0, -1, true, false),
-      edge_vs_unit_edge(vec(-1, 0, 0), vec(1, 0, 0), vec(-1, kHalf, 0), vec(1, kHalf, 0), true,
-                        false),
-      // Touching at t = 0 and moving away: an endpoint of a on b's interior, endpoint on
-      // endpoint, collinear and overlapping (moving sideways), collinear end to end (moving
-      // along the line).
-      edge_along_x(0, 1, kHalf, 0, 1, true, false),
-      edge_along_x(0, 1, 1, 0, 1, true, false),
-      edge_vs_unit_edge(vec(0, kHalf, 0), vec(0, 2, 0), vec(1, kHalf, 1), vec(1, 2, 1), true,
-                        false),
-      edge_vs_unit_edge(vec(0, 1, 0), vec(0, 2, 0), vec(0, 2, 0), vec(0, 3, 0), true, false),
-      // Touching at t = 0 a tilted edge from (0,0,0) to (3,5,7) at (3/5, 1, 7/5), crossing it
-      // and with an endpoint on it, moving away along the common normal (-7, -7, 8).
-      moving({vec(Q(1, 5), Q(7, 5), Q(7, 5)), vec(Q(6, 5), Q(2, 5), Q(7, 5)), vec(0, 0, 0),
-              vec(3, 5, 7)},
-             {vec(Q(-34, 5), Q(-28, 5), Q(47, 5)), vec(Q(-29, 5), Q(-33, 5), Q(47, 5)),
-              vec(0, 0, 0), vec(3, 5, 7)},
-             true, false),
-      moving(
-          {vec(Q(3, 5), 1, Q(7, 5)), vec(Q(8, 5), 0, Q(7, 5)), vec(0, 0, 0), vec(3, 5, 7)},
-          {vec(Q(-32, 5), -6, Q(47, 5)), vec(Q(-27, 5), -7, Q(47, 5)), vec(0, 0, 0), vec(3, 5, 7)},
-          true, false),
-      // Starting 2^-40 above b and moving away: a gap, not a touching start.
-      edge_along_x(-1, 1, 0, kTiny, 1, false, true),
       // An endpoint of a through b's interior; endpoint through endpoint.
       edge_along_x(0, 1, kHalf, 1, -1, true, true),
       edge_along_x(0, 1, 1, 1, -1, true, true),
@@ -210,6 +192,39 @@ std::vector<Case> edge_edge_cases() {
   };
 }
 
+// Touching at t = 0 (answer: collision at t = 0, however rounding moves the contact), and
+// starting 2^-40 away (a gap).
+std::vector<Case> edge_edge_touching_cases() {
+  return {
+      // Crossing at t = 0: moving away, moving through, sliding along b.
+      edge_along_x(-1, 1, 0, 0, 1, true, false),
+      edge_along_x(-1, 1, 0, 0, -1, true, false),
+      edge_vs_unit_edge(vec(-1, 0, 0), vec(1, 0, 0), vec(-1, kHalf, 0), vec(1, kHalf, 0), true,
+                        false),
+      // Touching at t = 0 and moving away: an endpoint of a on b's interior, endpoint on
+      // endpoint, collinear and overlapping (moving sideways), collinear end to end (moving
+      // along the line).
+      edge_along_x(0, 1, kHalf, 0, 1, true, false),
+      edge_along_x(0, 1, 1, 0, 1, true, false),
+      edge_vs_unit_edge(vec(0, kHalf, 0), vec(0, 2, 0), vec(1, kHalf, 1), vec(1, 2, 1), true,
+                        false),
+      edge_vs_unit_edge(vec(0, 1, 0), vec(0, 2, 0), vec(0, 2, 0), vec(0, 3, 0), true, false),
+      // Touching at t = 0 a tilted edge from (0,0,0) to (3,5,7) at (3/5, 1, 7/5), crossing it
+      // and with an endpoint on it, moving away along the common normal (-7, -7, 8).
+      moving({vec(Q(1, 5), Q(7, 5), Q(7, 5)), vec(Q(6, 5), Q(2, 5), Q(7, 5)), vec(0, 0, 0),
+              vec(3, 5, 7)},
+             {vec(Q(-34, 5), Q(-28, 5), Q(47, 5)), vec(Q(-29, 5), Q(-33, 5), Q(47, 5)),
+              vec(0, 0, 0), vec(3, 5, 7)},
+             true, false),
+      moving(
+          {vec(Q(3, 5), 1, Q(7, 5)), vec(Q(8, 5), 0, Q(7, 5)), vec(0, 0, 0), vec(3, 5, 7)},
+          {vec(Q(-32, 5), -6, Q(47, 5)), vec(Q(-27, 5), -7, Q(47, 5)), vec(0, 0, 0), vec(3, 5, 7)},
+          true, false),
+      // Starting 2^-40 above b and moving away: a gap, not a touching start.
+      edge_along_x(-1, 1, 0, kTiny, 1, false, true),
+  };
+}
+
 // Reorientations that keep every coordinate exact: a cyclic axis permutation, optionally the
 // mirror x -> -x, and a reordering of the primitives' vertices.
 Case reoriented(const Case& c, int variant, CcdQueryType type) {
@@ -244,8 +259,11 @@ RationalCcdQuery scaled(const Case& c, const Q& scale, const Vec& offset) {
 }  // namespace
 
 std::vector<RationalCcdQuery> hard_ccd_queries(CcdQueryType type) {
-  const std::vector<Case> cases =
+  std::vector<Case> cases =
       type == CcdQueryType::kVertexFace ? vertex_face_cases() : edge_edge_cases();
+  const std::vector<Case> touching =
+      type == CcdQueryType::kVertexFace ? vertex_face_touching_cases() : edge_edge_touching_cases();
+  cases.insert(cases.end(), touching.begin(), touching.end());
   // Dyadic scales keep exact contacts exact in double: 2^-20 ~ 1e-6, 2^13 ~ 1e4.
   const Q dyadic_scales[] = {Q(1), Q(1) / Q(mpz_class(1) << 20), Q(mpz_class(1) << 13)};
   // Non-dyadic scales and offsets round in double; used only where the answer has a margin.
