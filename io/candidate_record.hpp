@@ -33,6 +33,7 @@ struct NewtonStatistics {
   std::uint32_t steps = 0;           // accepted time steps
   std::uint32_t iterations = 0;      // Newton iterations over all steps
   std::uint32_t max_iterations = 0;  // most Newton iterations in one step
+  std::uint32_t retries = 0;         // failed steps (or parts) retried as two half steps
 
   bool operator==(const NewtonStatistics&) const = default;
 };

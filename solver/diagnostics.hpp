@@ -9,7 +9,8 @@
 namespace grip::solver {
 
 struct StepDiagnostics {
-  int newton_iterations = 0;
+  int newton_iterations = 0;  // over all its parts when the step was retried in halves
+  int retries = 0;            // parts of the step rolled back and retried as two halves
   int line_search_steps = 0;  // Armijo halvings and inversion halvings
   double min_distance = std::numeric_limits<double>::infinity();  // over pairs within d_hat
   double min_volume_ratio = 1.0;  // smallest det F over all tets (1 without FEM)
@@ -24,7 +25,8 @@ struct StepDiagnostics {
 struct EnvironmentStatistics {
   long steps = 0;
   long newton_iterations = 0;
-  int max_step_iterations = 0;  // most Newton iterations in one step
+  int max_step_iterations = 0;  // most Newton iterations in one step (all its parts)
+  long retries = 0;             // failed steps (or parts) retried as two half steps
 };
 
 }  // namespace grip::solver

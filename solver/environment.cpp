@@ -1,6 +1,7 @@
 #include "solver/environment.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <stdexcept>
 
@@ -48,7 +49,8 @@ void Environment::use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, 
   newton_.use_linear_solver(std::move(solver), min_dofs);
 }
 
-Environment::Progress Environment::fail(const std::string& reason) {
+Environment::Progress Environment::fail(Failure code, const std::string& reason) {
+  failure_code_ = code;
   failure_ = "t = " + std::to_string(state_.time) + " s: " + reason;
   step_.reset();
   return Progress::kFailed;
@@ -66,17 +68,28 @@ Environment::Progress Environment::begin_step() {
   if (step_) throw std::logic_error("Environment::begin_step while a step is under way");
   diagnostics_ = StepDiagnostics{};
   diagnostics_.kappa = state_.kappa;
-  step_ = std::make_unique<NewtonStep>();
-  step_->targets = step_targets(*model_, state_);
-  const Vertices start = solver::collision_positions(*model_, state_.q, step_->targets, 0.0);
+  plan_.end_time = state_.time + model_->sim().dt;
+  plan_.halvings = 0;
   if (state_.time == 0.0) {
+    const StepTargets now = targets_at_rest(*model_, state_);
+    const Vertices start = solver::collision_positions(*model_, state_.q, now, 0.0);
     for (const ContactCandidate& c :
          find_contact_candidates(*model_, start, start, model_->sim().d_hat)) {
       if (!(newton_.potential().barrier().contact_force(c, start).distance > 0.0)) {
-        return fail("intersecting start: two surfaces touch or cross before the first step");
+        return fail(Failure::kIntersectingStart,
+                    "intersecting start: two surfaces touch or cross before the first step");
       }
     }
   }
+  return begin_part();
+}
+
+Environment::Progress Environment::begin_part() {
+  plan_.part_start = state_;
+  step_ = std::make_unique<NewtonStep>();
+  step_->h = std::ldexp(model_->sim().dt, -plan_.halvings);
+  step_->targets = step_targets(*model_, state_, step_->h);
+  const Vertices start = solver::collision_positions(*model_, state_.q, step_->targets, 0.0);
   newton_.begin_step(state_, start, *step_, policy_.friction_terms_at_zero_mu);
   return Progress::kIterating;
 }
@@ -87,16 +100,17 @@ Environment::Progress Environment::iterate() {
   NewtonStep& step = *step_;
   const int limit = model_->sim().max_newton_iters;
   if (step.iteration == limit && !step.held) {
-    return fail("Newton did not converge in " + std::to_string(limit) + " iterations");
+    return retry_or_fail({Failure::kNewtonLimit,
+                          "Newton did not converge in " + std::to_string(limit) + " iterations"});
   }
   ++diagnostics_.newton_iterations;
   ++statistics_.newton_iterations;
   statistics_.max_step_iterations =
       std::max(statistics_.max_step_iterations, diagnostics_.newton_iterations);
-  std::string failure;
+  NewtonSolver::FailureReport failure;
   switch (newton_.iterate(state_, step, diagnostics_, failure)) {
     case NewtonSolver::Outcome::kFailed:
-      return fail(failure);
+      return retry_or_fail(failure);
     case NewtonSolver::Outcome::kContinue:
       return step.held ? Progress::kConverged : Progress::kIterating;
     case NewtonSolver::Outcome::kConverged:
@@ -105,11 +119,34 @@ Environment::Progress Environment::iterate() {
   // Each further friction lag re-linearizes friction at the current positions and solves again.
   if (++step.lag < std::max(1, model_->sim().friction_lag_iterations)) {
     newton_.lag_friction(state_, step, policy_.friction_terms_at_zero_mu);
-    step.iteration = 0;
     return Progress::kIterating;
   }
+  return finish_converged_part();
+}
+
+// Rolls the failed part back and retries it as two halves, or fails the environment when the
+// parts are already as short as max_step_halvings allows.
+Environment::Progress Environment::retry_or_fail(const NewtonSolver::FailureReport& failure) {
+  if (plan_.halvings >= model_->sim().max_step_halvings) {
+    const std::string depth =
+        plan_.halvings > 0 ? " (after " + std::to_string(plan_.halvings) + " halvings of dt)" : "";
+    return fail(failure.code, failure.message + depth);
+  }
+  state_ = plan_.part_start;
+  ++plan_.halvings;
+  ++diagnostics_.retries;
+  ++statistics_.retries;
+  return begin_part();
+}
+
+Environment::Progress Environment::finish_converged_part() {
+  const bool last_part = state_.time + 1.5 * step_->h >= plan_.end_time;
+  if (!last_part) {
+    finish_part();
+    return begin_part();
+  }
   if (!policy_.freeze_converged) {
-    step.held = true;
+    step_->held = true;
     return Progress::kConverged;
   }
   finish_step();
@@ -122,10 +159,9 @@ Environment::Progress Environment::finish_held_step() {
   return Progress::kStepDone;
 }
 
-void Environment::finish_step() {
-  const SimParameters& sim = model_->sim();
+void Environment::finish_part() {
   const StepTargets& targets = step_->targets;
-  const double h = sim.dt;
+  const double h = step_->h;
   state_.v = (state_.q - targets.q_start) / h;
   for (std::size_t b = 0; b < model_->bodies().size(); ++b) {
     if (!is_kinematic(model_->bodies()[b])) continue;
@@ -133,6 +169,13 @@ void Environment::finish_step() {
     state_.poses[b] = targets.pose_target[b];
   }
   state_.time += h;
+}
+
+void Environment::finish_step() {
+  const SimParameters& sim = model_->sim();
+  finish_part();
+  // Parts of a retried step add up to dt; the clock says so without their round-off.
+  if (plan_.halvings > 0) state_.time = plan_.end_time;
   record_diagnostics();
   if (sim.adaptive_kappa && diagnostics_.min_distance < 0.1 * sim.d_hat) state_.kappa *= 2.0;
   ++statistics_.steps;

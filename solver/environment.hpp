@@ -11,6 +11,7 @@
 
 #include "solver/contact/contact_forces.hpp"
 #include "solver/diagnostics.hpp"
+#include "solver/failure.hpp"
 #include "solver/linear/linear_system_solver.hpp"
 #include "solver/model.hpp"
 #include "solver/newton/newton_solver.hpp"
@@ -61,7 +62,9 @@ class Environment {
 
   const Model& model() const { return *model_; }
   double time() const { return state_.time; }
-  bool failed() const { return !failure_.empty(); }
+  bool failed() const { return failure_code_ != Failure::kNone; }
+  // Why the environment failed: the code to decide on, and a message for people.
+  Failure failure_code() const { return failure_code_; }
   const std::string& failure() const { return failure_; }
   const StepDiagnostics& last_step() const { return diagnostics_; }
   const EnvironmentStatistics& statistics() const { return statistics_; }
@@ -85,15 +88,28 @@ class Environment {
   VertexContactForces vertex_contact_forces() const;
 
  private:
+  // A step of dt is taken as parts: one part normally; a part that fails is rolled back to its
+  // start and replaced by two parts of half its length (at most max_step_halvings deep).
+  struct StepPlan {
+    double end_time = 0.0;  // the time the whole step ends at
+    int halvings = 0;       // depth of the current part: its length is dt / 2^halvings
+    State part_start;       // the state the current part started from
+  };
+  Progress begin_part();
+  Progress retry_or_fail(const NewtonSolver::FailureReport& failure);
+  Progress finish_converged_part();
+  void finish_part();
   void finish_step();
-  Progress fail(const std::string& reason);
+  Progress fail(Failure code, const std::string& reason);
   void record_diagnostics();
 
   std::shared_ptr<const Model> model_;
   State state_;
   StepPolicy policy_;
+  Failure failure_code_ = Failure::kNone;
   std::string failure_;
   StepDiagnostics diagnostics_;
+  StepPlan plan_;
   EnvironmentStatistics statistics_;
   std::unique_ptr<NewtonStep> step_;  // while a step is under way
   NewtonSolver newton_;

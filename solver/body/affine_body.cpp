@@ -109,13 +109,12 @@ double max_displacement(const BodyModel& body, const Eigen::VectorXd& dq) {
   return largest;
 }
 
-double add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
-                   Eigen::VectorXd& q_tilde) {
+void add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
+                 Eigen::VectorXd& q_tilde) {
   const Vector12d force = body.material.density * body.volume *
                           kernels::affine_body_jacobian(Eigen::Vector3d::Zero()).transpose() *
                           gravity;
   q_tilde.segment<12>(body.dof_offset) += h * h * body.mass_matrix_inverse * force;
-  return body.mass_matrix(0, 0) * gravity.norm();
 }
 
 Eigen::Matrix3d rotation(const BodyModel& body, const Eigen::VectorXd& q) {

@@ -27,8 +27,8 @@ Eigen::Matrix<double, 3, 12> vertex_jacobian(const BodyModel& body, int vertex);
 double max_displacement(const BodyModel& body, const Eigen::VectorXd& dq);
 
 // Adds h^2 M^-1 f_gravity to the body's inertia target; returns its weight |m g| (N).
-double add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
-                   Eigen::VectorXd& q_tilde);
+void add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
+                 Eigen::VectorXd& q_tilde);
 
 inline Eigen::Vector3d center_of_mass(const BodyModel& body, const Eigen::VectorXd& q) {
   return q.segment<3>(body.dof_offset);

@@ -123,13 +123,18 @@ double max_displacement(const BodyModel& body, const Eigen::VectorXd& dq) {
   return 0.0;
 }
 
-double add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
-                   Eigen::VectorXd& q_tilde) {
+void add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
+                 Eigen::VectorXd& q_tilde) {
+  if (body.type == BodyType::kFem) fem::add_gravity(body, gravity, h, q_tilde);
+  if (body.type == BodyType::kAffine) affine::add_gravity(body, gravity, h, q_tilde);
+}
+
+double body_mass(const BodyModel& body) {
   switch (body.type) {
     case BodyType::kFem:
-      return fem::add_gravity(body, gravity, h, q_tilde);
+      return body.vertex_mass.sum();
     case BodyType::kAffine:
-      return affine::add_gravity(body, gravity, h, q_tilde);
+      return body.mass_matrix(0, 0);
     case BodyType::kKinematic:
       break;
   }

@@ -44,9 +44,11 @@ Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 12> vertex_jacobian(const BodyMod
                                                                    int vertex);
 // The largest displacement of the body's vertices under the DOF change dq (0 kinematic).
 double max_displacement(const BodyModel& body, const Eigen::VectorXd& dq);
-// Adds gravity's h^2 M^-1 f to the inertia target; returns the body's weight (0 kinematic).
-double add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
-                   Eigen::VectorXd& q_tilde);
+// Adds gravity's h^2 M^-1 f to the inertia target.
+void add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
+                 Eigen::VectorXd& q_tilde);
+// The body's mass (kg; 0 for a kinematic body).
+double body_mass(const BodyModel& body);
 
 Eigen::Vector3d center_of_mass(const BodyModel& body, int index, const State& state);
 Eigen::Vector3d center_of_mass_velocity(const BodyModel& body, int index, const State& state);

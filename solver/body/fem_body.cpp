@@ -102,12 +102,11 @@ double max_displacement(const BodyModel& body, const Eigen::VectorXd& dq) {
   return largest;
 }
 
-double add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
-                   Eigen::VectorXd& q_tilde) {
+void add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
+                 Eigen::VectorXd& q_tilde) {
   for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
     q_tilde.segment<3>(body.dof_offset + 3 * i) += h * h * gravity;
   }
-  return body.vertex_mass.sum() * gravity.norm();
 }
 
 Eigen::Vector3d mass_weighted_mean(const BodyModel& body, const Eigen::VectorXd& values) {

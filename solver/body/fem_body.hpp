@@ -29,9 +29,9 @@ inline Eigen::Vector3d vertex_position(const BodyModel& body, const Eigen::Vecto
 // The largest displacement of the body's vertices under the DOF change dq.
 double max_displacement(const BodyModel& body, const Eigen::VectorXd& dq);
 
-// Adds h^2 g to the inertia target of every vertex; returns the body's weight |m g| (N).
-double add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
-                   Eigen::VectorXd& q_tilde);
+// Adds h^2 g to the inertia target of every vertex.
+void add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
+                 Eigen::VectorXd& q_tilde);
 
 // The lumped-mass-weighted mean of the body's per-vertex 3-vectors (positions or velocities).
 Eigen::Vector3d mass_weighted_mean(const BodyModel& body, const Eigen::VectorXd& values);

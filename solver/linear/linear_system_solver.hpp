@@ -22,6 +22,11 @@ class LinearSystemSolver {
 
   // Why the last factorize() or solve() failed.
   virtual std::string failure() const = 0;
+
+  // True when factorize() refuses every matrix that is not positive definite (a Cholesky does;
+  // an iterative solver may return a step for one). Newton gives exact, possibly indefinite
+  // contact Hessians only to such a solver.
+  virtual bool refuses_indefinite() const { return false; }
 };
 
 }  // namespace grip::solver

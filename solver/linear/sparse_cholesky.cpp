@@ -58,7 +58,9 @@ SparseCholesky::SparseCholesky(Ordering ordering) : impl_(std::make_unique<Impl>
   common.supernodal = CHOLMOD_AUTO;  // supernodal or simplicial by flop count
   // LL' also in the simplicial case: LDL' would "succeed" on an indefinite matrix.
   common.final_ll = 1;
-  common.print = 1;  // errors only: a non-positive-definite matrix is reported by factorize()
+  // Silent: factorize() reports a matrix that is not positive definite (Newton then projects
+  // its contact Hessians and tries again), and CHOLMOD would print it as an error.
+  common.print = 0;
 }
 
 SparseCholesky::SparseCholesky(std::shared_ptr<const std::vector<int>> permutation)

@@ -38,6 +38,7 @@ class SparseCholesky : public LinearSystemSolver {
   // The LinearSystemSolver form of solve(): never fails after a successful factorize().
   bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) override;
   std::string failure() const override { return "the matrix is not positive definite"; }
+  bool refuses_indefinite() const override { return true; }
 
   // Symbolic analyses done so far: one per distinct pattern seen in a row.
   int analyses() const;

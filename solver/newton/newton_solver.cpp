@@ -32,35 +32,43 @@ void NewtonSolver::use_linear_solver(std::shared_ptr<LinearSystemSolver> solver,
 void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonStep& step,
                               bool friction_at_zero_mu) {
   // The inertia target: x_tilde = x + h v + h^2 M^-1 f_gravity.
-  const double h = model_.sim().dt;
+  const double h = step.h;
   Eigen::VectorXd q_tilde = state.q + h * state.v;
   for (const BodyModel& body : model_.bodies()) {
-    step.weight += add_gravity(body, state.gravity, h, q_tilde);
+    add_gravity(body, state.gravity, h, q_tilde);
+    step.weight += body_mass(body) * state.gravity.norm();
   }
-  potential_.begin_step(q_tilde, start, state.kappa);
+  potential_.begin_step(q_tilde, start, state.kappa, h);
   potential_.set_friction(
       solver::lag_friction(model_, potential_.barrier(), start, friction_at_zero_mu));
 }
 
-void NewtonSolver::lag_friction(const State& state, const NewtonStep& step,
-                                bool friction_at_zero_mu) {
+void NewtonSolver::lag_friction(const State& state, NewtonStep& step, bool friction_at_zero_mu) {
+  step.iteration = 0;
+  step.first_residual = -1.0;
   const Vertices x = collision_positions(model_, state.q, step.targets, step.progress);
   potential_.set_friction(
       solver::lag_friction(model_, potential_.barrier(), x, friction_at_zero_mu));
 }
 
 NewtonSolver::Outcome NewtonSolver::iterate(State& state, NewtonStep& step,
-                                            StepDiagnostics& diagnostics, std::string& failure) {
-  const bool first = step.iteration++ == 0;
+                                            StepDiagnostics& diagnostics, FailureReport& failure) {
+  ++step.iteration;
   System system;
-  if (!assemble(state, step, system, failure)) return Outcome::kFailed;
-  // The residual's scale: this solve's first residual, and never less than the weight of
-  // the dynamic bodies, so a body resting in equilibrium is not asked for round-off.
-  const double h = model_.sim().dt;
-  if (first) step.first_residual = std::max(system.residual, step.weight * h * h);
+  const bool project =
+      step.iteration <= model_.sim().projected_iterations || !linear_solver().refuses_indefinite();
+  if (!assemble(state, step, system, project, failure)) {
+    return Outcome::kFailed;
+  }
+  // The residual's scale: this solve's first residual, and never less than the weight of the
+  // dynamic bodies, so that a body resting in equilibrium is not asked for round-off.
+  const double h = step.h;
+  if (step.first_residual < 0.0) {
+    step.first_residual = std::max(system.residual, step.weight * h * h);
+  }
   diagnostics.residual = system.residual / (h * h);
   Eigen::VectorXd p;
-  if (!solve(step, system, p, failure)) return Outcome::kFailed;
+  if (!solve(state, step, system, p, failure)) return Outcome::kFailed;
   if (converged(step, system, p)) return Outcome::kConverged;
   double alpha = 1.0;
   if (!filter_step(state, step, system, p, alpha, diagnostics, failure)) return Outcome::kFailed;
@@ -68,18 +76,25 @@ NewtonSolver::Outcome NewtonSolver::iterate(State& state, NewtonStep& step,
   return Outcome::kContinue;
 }
 
+LinearSystemSolver& NewtonSolver::linear_solver() {
+  if (linear_solver_ && model_.dof_count() >= linear_solver_min_dofs_) return *linear_solver_;
+  return cholesky_;
+}
+
 bool NewtonSolver::assemble(const State& state, NewtonStep& step, System& system,
-                            std::string& failure) {
+                            bool project_contacts, FailureReport& failure) {
   const SimParameters& sim = model_.sim();
   system.x = collision_positions(model_, state.q, step.targets, step.progress);
   system.near = find_contact_candidates(model_, system.x, system.x, sim.d_hat);
   system.moving = step.progress < 1.0;
   const Vertices kinematic_motion =
       collision_positions(model_, state.q, step.targets, 1.0) - system.x;
+  system.projected = project_contacts;
   potential_.derivatives(state.q, system.x, system.near, step.gradient, step.triplets,
-                         system.moving ? &kinematic_motion : nullptr, &step.kinematic_force);
+                         system.moving ? &kinematic_motion : nullptr, &step.kinematic_force,
+                         project_contacts);
   if (!step.gradient.allFinite()) {
-    failure = "non-finite gradient in Newton iteration";
+    failure = {Failure::kNonFinite, "non-finite gradient in Newton iteration"};
     return false;
   }
   eliminate_prescribed(state, step, system);
@@ -118,18 +133,22 @@ void NewtonSolver::eliminate_prescribed(const State& state, NewtonStep& step,
   }
 }
 
-bool NewtonSolver::solve(NewtonStep& step, const System& system, Eigen::VectorXd& p,
-                         std::string& failure) {
+bool NewtonSolver::solve(const State& state, NewtonStep& step, System& system, Eigen::VectorXd& p,
+                         FailureReport& failure) {
   const int n = model_.dof_count();
-  LinearSystemSolver& solver =
-      linear_solver_ && n >= linear_solver_min_dofs_ ? *linear_solver_ : cholesky_;
-  if (!solver.factorize(assembly_.assemble(n, step.free_triplets)) ||
-      !solver.solve(system.rhs, p)) {
-    failure = "Newton system not solved: " + solver.failure();
+  LinearSystemSolver& solver = linear_solver();
+  // Exact contact Hessians whose sum is not positive definite are projected one by one.
+  bool factorized = solver.factorize(assembly_.assemble(n, step.free_triplets));
+  if (!factorized && !system.projected) {
+    if (!assemble(state, step, system, true, failure)) return false;
+    factorized = solver.factorize(assembly_.assemble(n, step.free_triplets));
+  }
+  if (!factorized || !solver.solve(system.rhs, p)) {
+    failure = {Failure::kLinearSolve, "Newton system not solved: " + solver.failure()};
     return false;
   }
   if (!p.allFinite()) {
-    failure = "non-finite Newton step";
+    failure = {Failure::kNonFinite, "non-finite Newton step"};
     return false;
   }
   return true;
@@ -144,32 +163,32 @@ bool NewtonSolver::converged(const NewtonStep& step, const System& system,
   const SimParameters& sim = model_.sim();
   if (system.moving || step.held) return false;
   return system.residual <= sim.newton_tol * step.first_residual ||
-         max_vertex_displacement(model_, p) <= sim.newton_velocity_tol * sim.dt;
+         max_vertex_displacement(model_, p) <= sim.newton_velocity_tol * step.h;
 }
 
 // CCD's safe fraction of the step, then positive volumes, then (once the prescribed motion is
 // done) Armijo on the incremental potential.
 bool NewtonSolver::filter_step(const State& state, const NewtonStep& step, const System& system,
                                const Eigen::VectorXd& p, double& alpha,
-                               StepDiagnostics& diagnostics, std::string& failure) const {
+                               StepDiagnostics& diagnostics, FailureReport& failure) const {
   const SimParameters& sim = model_.sim();
   const Vertices x_end = collision_positions(model_, state.q + p, step.targets, 1.0);
   const std::vector<ContactCandidate> swept =
       find_contact_candidates(model_, system.x, x_end, sim.d_hat);
   alpha = collision_free_fraction(swept, system.x, x_end, sim.ccd_rescaling);
   if (!(alpha > 0.0)) {
-    failure = "continuous collision detection allows no motion";
+    failure = {Failure::kCcdNoMotion, "continuous collision detection allows no motion"};
     return false;
   }
   if (!halve_until_no_inversion(model_, state.q, p, alpha, diagnostics.line_search_steps)) {
-    failure = "no step keeps every tetrahedron positively oriented";
+    failure = {Failure::kInversion, "no step keeps every tetrahedron positively oriented"};
     return false;
   }
   if (system.moving) return true;
   const double energy = potential_.energy(state.q, system.x, swept);
   if (!armijo(potential_, model_, step.targets, swept, state.q, p, energy, step.gradient.dot(p),
               step.held, alpha, diagnostics.line_search_steps)) {
-    failure = "line search cannot decrease the incremental potential";
+    failure = {Failure::kLineSearch, "line search cannot decrease the incremental potential"};
     return false;
   }
   return true;

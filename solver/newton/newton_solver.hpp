@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "solver/diagnostics.hpp"
+#include "solver/failure.hpp"
 #include "solver/linear/linear_system_solver.hpp"
 #include "solver/linear/sparse_assembly.hpp"
 #include "solver/linear/sparse_cholesky.hpp"
@@ -24,12 +25,15 @@ namespace grip::solver {
 // Where a step under way stands: its targets, how much of the prescribed motion is done, which
 // friction lag and Newton iteration it is in, and the residual scale of the current solve.
 struct NewtonStep {
+  double h = 0.0;  // s, this step's length (dt, or a fraction of it when a step is retried)
   StepTargets targets;
   double progress = 0.0;
   int lag = 0;
   int iteration = 0;  // within the current lag's solve
   bool held = false;  // converged, held open (StepPolicy::freeze_converged off)
-  double first_residual = 0.0;
+  // The residual's scale: the first residual of the current solve (negative until it is taken),
+  // never less than the weight.
+  double first_residual = -1.0;
   double weight = 0.0;  // N, of the dynamic bodies under the current gravity
   Eigen::VectorXd gradient;
   Eigen::VectorXd kinematic_force;
@@ -50,12 +54,18 @@ class NewtonSolver {
   // carries), the potential's start positions and kappa, and the first friction lag.
   void begin_step(const State& state, const Vertices& start, NewtonStep& step,
                   bool friction_at_zero_mu);
-  // A further friction lag at the step's current positions.
-  void lag_friction(const State& state, const NewtonStep& step, bool friction_at_zero_mu);
+  // A further friction lag at the step's current positions; the next solve starts afresh.
+  void lag_friction(const State& state, NewtonStep& step, bool friction_at_zero_mu);
 
-  // One Newton iteration from state.q. kFailed sets `failure`.
+  // Why an iteration failed: the code, and a message for people.
+  struct FailureReport {
+    Failure code = Failure::kNone;
+    std::string message;
+  };
+
+  // One Newton iteration from state.q. kFailed fills `failure`.
   Outcome iterate(State& state, NewtonStep& step, StepDiagnostics& diagnostics,
-                  std::string& failure);
+                  FailureReport& failure);
 
   const IncrementalPotential& potential() const { return potential_; }
 
@@ -68,14 +78,18 @@ class NewtonSolver {
     Eigen::VectorXd rhs;
     double residual = 0.0;  // largest |g| over the free DOFs
     bool moving = false;    // prescribed motion still to come
+    bool projected = true;  // contact Hessians projected to PSD one by one
   };
-  bool assemble(const State& state, NewtonStep& step, System& system, std::string& failure);
+  LinearSystemSolver& linear_solver();
+  bool assemble(const State& state, NewtonStep& step, System& system, bool project_contacts,
+                FailureReport& failure);
   void eliminate_prescribed(const State& state, NewtonStep& step, System& system) const;
-  bool solve(NewtonStep& step, const System& system, Eigen::VectorXd& p, std::string& failure);
+  bool solve(const State& state, NewtonStep& step, System& system, Eigen::VectorXd& p,
+             FailureReport& failure);
   bool converged(const NewtonStep& step, const System& system, const Eigen::VectorXd& p) const;
   bool filter_step(const State& state, const NewtonStep& step, const System& system,
                    const Eigen::VectorXd& p, double& alpha, StepDiagnostics& diagnostics,
-                   std::string& failure) const;
+                   FailureReport& failure) const;
   static void commit(State& state, NewtonStep& step, const Eigen::VectorXd& p, double alpha);
 
   const Model& model_;

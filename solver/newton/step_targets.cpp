@@ -23,8 +23,7 @@ void kinematic_vertices(const Model& model, const std::vector<Pose>& start,
 
 }  // namespace
 
-StepTargets step_targets(const Model& model, const State& state) {
-  const double h = model.sim().dt;
+StepTargets step_targets(const Model& model, const State& state, double h) {
   const int body_count = static_cast<int>(model.bodies().size());
   StepTargets targets;
   targets.q_start = state.q;

@@ -18,8 +18,8 @@ struct StepTargets {
   std::vector<Pose> pose_target;  // per body (kinematic: the script's next pose)
 };
 
-// The targets of the step from `state` (its scripts advanced by one dt).
-StepTargets step_targets(const Model& model, const State& state);
+// The targets of the step of length h from `state` (its scripts advanced by h).
+StepTargets step_targets(const Model& model, const State& state, double h);
 // Targets of no motion: everything where `state` has it.
 StepTargets targets_at_rest(const Model& model, const State& state);
 

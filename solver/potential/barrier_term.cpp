@@ -106,7 +106,9 @@ void BarrierTerm::add_derivatives(const PotentialPoint& at, double scale,
     const Barrier b = barrier_of(c, x, model_.sim().d_hat, kappa_, true);
     if (b.value == 0.0 && b.gradient.isZero()) continue;
     const Stencil stencil(model_, c.vertex);
-    const Matrix12 h = scale * kernels::project_to_psd<12>(b.hessian);
+    const Matrix12 h = out.project_contacts
+                           ? Matrix12(scale * kernels::project_to_psd<12>(b.hessian))
+                           : Matrix12(scale * b.hessian);
     stencil.scatter(scale * b.gradient, h, out.gradient, out.hessian);
     if (out.kinematic_motion) {
       stencil.add_kinematic_force(h, *out.kinematic_motion, c.vertex, *out.kinematic_force);

@@ -9,7 +9,8 @@ namespace grip::solver {
 using Vector12 = Eigen::Matrix<double, 12, 1>;
 using Matrix12 = Eigen::Matrix<double, 12, 12>;
 
-void FrictionTerm::begin_step(Vertices start_positions) {
+void FrictionTerm::begin_step(Vertices start_positions, double h) {
+  eps_ = model_.sim().eps_v * h;
   start_ = std::move(start_positions);
   contacts_.clear();
 }
@@ -24,23 +25,21 @@ Vector12 FrictionTerm::displacement(const FrictionContact& contact,
 }
 
 void FrictionTerm::add_energy(const PotentialPoint& at, double& sum) const {
-  const double eps = model_.sim().eps_v * model_.sim().dt;
   for (const FrictionContact& c : contacts_) {
     sum += kernels::friction_potential<4>(displacement(c, at.positions), c.tangent_operator,
-                                          c.mu_lambda, eps);
+                                          c.mu_lambda, eps_);
   }
 }
 
 void FrictionTerm::add_derivatives(const PotentialPoint& at, double scale,
                                    PotentialDerivatives& out) const {
-  const double eps = model_.sim().eps_v * model_.sim().dt;
   for (const FrictionContact& c : contacts_) {
     const Vector12 dx = displacement(c, at.positions);
     const Stencil stencil(model_, c.vertex);
     const Matrix12 h =
-        scale * kernels::friction_potential_hessian<4>(dx, c.tangent_operator, c.mu_lambda, eps);
+        scale * kernels::friction_potential_hessian<4>(dx, c.tangent_operator, c.mu_lambda, eps_);
     stencil.scatter(
-        scale * kernels::friction_potential_gradient<4>(dx, c.tangent_operator, c.mu_lambda, eps),
+        scale * kernels::friction_potential_gradient<4>(dx, c.tangent_operator, c.mu_lambda, eps_),
         h, out.gradient, out.hessian);
     if (out.kinematic_motion) {
       stencil.add_kinematic_force(h, *out.kinematic_motion, c.vertex, *out.kinematic_force);
@@ -49,9 +48,8 @@ void FrictionTerm::add_derivatives(const PotentialPoint& at, double scale,
 }
 
 Vector12 FrictionTerm::force(const FrictionContact& contact, const Vertices& positions) const {
-  return -kernels::friction_potential_gradient<4>(displacement(contact, positions),
-                                                  contact.tangent_operator, contact.mu_lambda,
-                                                  model_.sim().eps_v * model_.sim().dt);
+  return -kernels::friction_potential_gradient<4>(
+      displacement(contact, positions), contact.tangent_operator, contact.mu_lambda, eps_);
 }
 
 }  // namespace grip::solver

@@ -22,8 +22,9 @@ struct FrictionContact {
 class FrictionTerm : public PotentialTerm {
  public:
   explicit FrictionTerm(const Model& model) : model_(model) {}
-  // The step's start positions of the collision vertices; clears the contacts.
-  void begin_step(Vertices start_positions);
+  // The step's start positions of the collision vertices and its length h (friction turns
+  // static below eps_v h of tangential displacement); clears the contacts.
+  void begin_step(Vertices start_positions, double h);
   void set_contacts(std::vector<FrictionContact> contacts) { contacts_ = std::move(contacts); }
   const std::vector<FrictionContact>& contacts() const { return contacts_; }
 
@@ -41,6 +42,7 @@ class FrictionTerm : public PotentialTerm {
                                             const Vertices& positions) const;
 
   const Model& model_;
+  double eps_ = 0.0;  // m, eps_v h
   Vertices start_;
   std::vector<FrictionContact> contacts_;
 };

@@ -6,10 +6,11 @@ IncrementalPotential::IncrementalPotential(const Model& model)
     : model_(model), inertia_(model), elasticity_(model), barrier_(model), friction_(model) {}
 
 void IncrementalPotential::begin_step(Eigen::VectorXd q_tilde, Vertices start_positions,
-                                      double kappa) {
+                                      double kappa, double h) {
+  h_ = h;
   inertia_.set_target(std::move(q_tilde));
   barrier_.set_kappa(kappa);
-  friction_.begin_step(std::move(start_positions));
+  friction_.begin_step(std::move(start_positions), h);
 }
 
 double IncrementalPotential::energy(const Eigen::VectorXd& q, const Vertices& positions,
@@ -19,7 +20,7 @@ double IncrementalPotential::energy(const Eigen::VectorXd& q, const Vertices& po
   inertia_.add_energy(at, inertia);
   double potential = 0.0;
   for (const PotentialTerm* term : potential_energies()) term->add_energy(at, potential);
-  return inertia + model_.sim().dt * model_.sim().dt * potential;
+  return inertia + h_ * h_ * potential;
 }
 
 void IncrementalPotential::derivatives(const Eigen::VectorXd& q, const Vertices& positions,
@@ -27,14 +28,15 @@ void IncrementalPotential::derivatives(const Eigen::VectorXd& q, const Vertices&
                                        Eigen::VectorXd& gradient,
                                        std::vector<Eigen::Triplet<double>>& hessian,
                                        const Vertices* kinematic_motion,
-                                       Eigen::VectorXd* kinematic_force) const {
+                                       Eigen::VectorXd* kinematic_force,
+                                       bool project_contacts) const {
   gradient.setZero(model_.dof_count());
   hessian.clear();
   if (kinematic_force) kinematic_force->setZero(model_.dof_count());
   const PotentialPoint at{q, positions, candidates};
-  PotentialDerivatives out{gradient, hessian, kinematic_motion, kinematic_force};
+  PotentialDerivatives out{gradient, hessian, kinematic_motion, kinematic_force, project_contacts};
   inertia_.add_derivatives(at, 1.0, out);
-  const double h2 = model_.sim().dt * model_.sim().dt;
+  const double h2 = h_ * h_;
   for (const PotentialTerm* term : potential_energies()) term->add_derivatives(at, h2, out);
 }
 

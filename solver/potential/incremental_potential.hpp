@@ -23,9 +23,9 @@ class IncrementalPotential {
  public:
   explicit IncrementalPotential(const Model& model);
 
-  // The step's constants: inertia target, start positions of the collision vertices and the
-  // barrier stiffness. Clears the friction contacts.
-  void begin_step(Eigen::VectorXd q_tilde, Vertices start_positions, double kappa);
+  // The step's constants: inertia target, start positions of the collision vertices, the
+  // barrier stiffness and the step's length h. Clears the friction contacts.
+  void begin_step(Eigen::VectorXd q_tilde, Vertices start_positions, double kappa, double h);
   // The contacts frozen at this friction lag iteration.
   void set_friction(std::vector<FrictionContact> friction) {
     friction_.set_contacts(std::move(friction));
@@ -41,7 +41,7 @@ class IncrementalPotential {
                    const std::vector<ContactCandidate>& candidates, Eigen::VectorXd& gradient,
                    std::vector<Eigen::Triplet<double>>& hessian,
                    const Vertices* kinematic_motion = nullptr,
-                   Eigen::VectorXd* kinematic_force = nullptr) const;
+                   Eigen::VectorXd* kinematic_force = nullptr, bool project_contacts = true) const;
 
   const BarrierTerm& barrier() const { return barrier_; }
   const FrictionTerm& friction() const { return friction_; }
@@ -53,6 +53,7 @@ class IncrementalPotential {
   }
 
   const Model& model_;
+  double h_ = 0.0;
   InertiaTerm inertia_;
   ElasticityTerm elasticity_;
   BarrierTerm barrier_;

@@ -30,6 +30,8 @@ struct PotentialDerivatives {
   std::vector<Eigen::Triplet<double>>& hessian;  // lower triangle
   const Vertices* kinematic_motion = nullptr;
   Eigen::VectorXd* kinematic_force = nullptr;
+  // Contact Hessians projected to PSD one by one (else added as they are).
+  bool project_contacts = true;
 };
 
 class PotentialTerm {

@@ -25,6 +25,14 @@ void read_sim_parameters(const config::Table& table, solver::SimParameters& p) {
   p.newton_velocity_tol = positive(table, "newton_velocity_tol", p.newton_velocity_tol);
   p.max_newton_iters = static_cast<int>(table.integer_or("max_newton_iters", p.max_newton_iters));
   if (p.max_newton_iters < 1) table.fail("max_newton_iters", "must be at least 1");
+  p.projected_iterations =
+      static_cast<int>(table.integer_or("projected_iterations", p.projected_iterations));
+  if (p.projected_iterations < 0) table.fail("projected_iterations", "must be at least 0");
+  p.max_step_halvings =
+      static_cast<int>(table.integer_or("max_step_halvings", p.max_step_halvings));
+  if (p.max_step_halvings < 0 || p.max_step_halvings > 20) {
+    table.fail("max_step_halvings", "must be between 0 and 20");
+  }
   p.friction_lag_iterations =
       static_cast<int>(table.integer_or("friction_lag_iterations", p.friction_lag_iterations));
   if (p.friction_lag_iterations < 1) table.fail("friction_lag_iterations", "must be at least 1");

@@ -70,12 +70,20 @@ bool object_touches_gripper(int object, const solver::Environment& environment) 
   return false;
 }
 
-io::FailureKind solver_failure_kind(const std::string& reason) {
-  if (reason.find("intersecting start") != std::string::npos) {
-    return io::FailureKind::kInitialPenetration;
-  }
-  if (reason.find("Newton did not converge") != std::string::npos) {
-    return io::FailureKind::kNewtonLimit;
+// The one map from the solver's failure codes to the dataset's failure kinds.
+io::FailureKind solver_failure_kind(solver::Failure failure) {
+  switch (failure) {
+    case solver::Failure::kIntersectingStart:
+      return io::FailureKind::kInitialPenetration;
+    case solver::Failure::kNewtonLimit:
+      return io::FailureKind::kNewtonLimit;
+    case solver::Failure::kNone:
+    case solver::Failure::kNonFinite:
+    case solver::Failure::kLinearSolve:
+    case solver::Failure::kCcdNoMotion:
+    case solver::Failure::kInversion:
+    case solver::Failure::kLineSearch:
+      break;
   }
   return io::FailureKind::kNumerical;
 }
@@ -359,7 +367,8 @@ class ProtocolRunner {
         state.phase == Phase::kGravity &&
         std::any_of(record.displacement.begin(), record.displacement.begin() + state.gravity_phase,
                     [&](double d) { return d >= p_.displacement_threshold(); });
-    finish(i, displaced_before ? io::FailureKind::kDisplaced : solver_failure_kind(env.failure()));
+    finish(i, displaced_before ? io::FailureKind::kDisplaced
+                               : solver_failure_kind(env.failure_code()));
   }
 
   void finish(int i, io::FailureKind failure) {
@@ -372,6 +381,7 @@ class ProtocolRunner {
     record.newton.steps = static_cast<std::uint32_t>(stats.steps);
     record.newton.iterations = static_cast<std::uint32_t>(stats.newton_iterations);
     record.newton.max_iterations = static_cast<std::uint32_t>(stats.max_step_iterations);
+    record.newton.retries = static_cast<std::uint32_t>(stats.retries);
     std::vector<RecordedFrame> frames = state.recorder.frames();
     if (options_.trajectory) state.outcome.result.trajectory = trajectory_record(frames);
     if (options_.body_frames) {

@@ -31,7 +31,8 @@ void write_report(std::ostream& out, const TrialReport& report,
                                             {"newton",
                                              {{"steps", r.newton.steps},
                                               {"iterations", r.newton.iterations},
-                                              {"max_iterations", r.newton.max_iterations}}},
+                                              {"max_iterations", r.newton.max_iterations},
+                                              {"retries", r.newton.retries}}},
                                             {"wall_time", r.wall_time}});
   }
   root["trials"] = std::move(trials);
