@@ -1,6 +1,7 @@
 #pragma once
 // What an environment reports about its steps: the last step's diagnostics (Newton and line
 // search counts, closest contact, worst tet, contact forces per pair of bodies) and totals.
+#include <cstddef>
 #include <limits>
 #include <vector>
 
@@ -27,6 +28,15 @@ struct EnvironmentStatistics {
   long newton_iterations = 0;
   int max_step_iterations = 0;  // most Newton iterations in one step (all its parts)
   long retries = 0;             // failed steps (or parts) retried as two half steps
+  // steps_by_iterations[n]: how many steps took n Newton iterations (all their parts). The
+  // step a failure gave up on counts too: a stall is what this histogram is for.
+  std::vector<long> steps_by_iterations;
+
+  void count_step(int iterations) {
+    const auto n = static_cast<std::size_t>(iterations);
+    if (steps_by_iterations.size() <= n) steps_by_iterations.resize(n + 1, 0);
+    ++steps_by_iterations[n];
+  }
 };
 
 }  // namespace grip::solver

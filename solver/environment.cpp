@@ -51,6 +51,7 @@ void Environment::use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, 
 
 Environment::Progress Environment::fail(Failure code, const std::string& reason) {
   failure_code_ = code;
+  if (step_) statistics_.count_step(diagnostics_.newton_iterations);
   failure_ = "t = " + std::to_string(state_.time) + " s: " + reason;
   step_.reset();
   return Progress::kFailed;
@@ -179,6 +180,7 @@ void Environment::finish_step() {
   record_diagnostics();
   if (sim.adaptive_kappa && diagnostics_.min_distance < 0.1 * sim.d_hat) state_.kappa *= 2.0;
   ++statistics_.steps;
+  statistics_.count_step(diagnostics_.newton_iterations);
   step_.reset();
 }
 

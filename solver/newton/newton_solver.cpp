@@ -10,6 +10,9 @@
 namespace grip::solver {
 namespace {
 
+// The default gravity's magnitude (SimParameters::gravity), the scale of the residual.
+constexpr double kStandardGravity = 9.81;  // m/s^2
+
 // The largest displacement of any vertex under the DOF change dq (m).
 double max_vertex_displacement(const Model& model, const Eigen::VectorXd& dq) {
   double largest = 0.0;
@@ -36,7 +39,7 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
   Eigen::VectorXd q_tilde = state.q + h * state.v;
   for (const BodyModel& body : model_.bodies()) {
     add_gravity(body, state.gravity, h, q_tilde);
-    step.weight += body_mass(body) * state.gravity.norm();
+    step.standard_weight += body_mass(body) * kStandardGravity;
   }
   potential_.begin_step(q_tilde, start, state.kappa, h);
   potential_.set_friction(
@@ -60,11 +63,12 @@ NewtonSolver::Outcome NewtonSolver::iterate(State& state, NewtonStep& step,
   if (!assemble(state, step, system, project, failure)) {
     return Outcome::kFailed;
   }
-  // The residual's scale: this solve's first residual, and never less than the weight of the
-  // dynamic bodies, so that a body resting in equilibrium is not asked for round-off.
+  // The residual's scale: this solve's first residual, and never less than the dynamic bodies'
+  // standard weight, so that neither a body resting in equilibrium nor a step with gravity off
+  // whose first residual is nearly zero (nothing has moved yet) is asked for round-off.
   const double h = step.h;
   if (step.first_residual < 0.0) {
-    step.first_residual = std::max(system.residual, step.weight * h * h);
+    step.first_residual = std::max(system.residual, step.standard_weight * h * h);
   }
   diagnostics.residual = system.residual / (h * h);
   Eigen::VectorXd p;

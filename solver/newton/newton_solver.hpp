@@ -32,9 +32,11 @@ struct NewtonStep {
   int iteration = 0;  // within the current lag's solve
   bool held = false;  // converged, held open (StepPolicy::freeze_converged off)
   // The residual's scale: the first residual of the current solve (negative until it is taken),
-  // never less than the weight.
+  // never less than the standard weight.
   double first_residual = -1.0;
-  double weight = 0.0;  // N, of the dynamic bodies under the current gravity
+  // N: the dynamic bodies' weight under standard gravity (9.81 m/s^2), whatever the scene's
+  // gravity, so that the convergence test asks the same force accuracy with gravity on or off.
+  double standard_weight = 0.0;
   Eigen::VectorXd gradient;
   Eigen::VectorXd kinematic_force;
   std::vector<Eigen::Triplet<double>> triplets;
@@ -50,8 +52,8 @@ class NewtonSolver {
   // Systems of at least `min_dofs` rows are solved by `solver` instead of the own Cholesky.
   void use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, int min_dofs);
 
-  // The step's constants: its inertia target under `state`'s gravity (and the weight it
-  // carries), the potential's start positions and kappa, and the first friction lag.
+  // The step's constants: its inertia target under `state`'s gravity (and the standard weight
+  // of its dynamic bodies), the potential's start positions and kappa, and the first friction lag.
   void begin_step(const State& state, const Vertices& start, NewtonStep& step,
                   bool friction_at_zero_mu);
   // A further friction lag at the step's current positions; the next solve starts afresh.

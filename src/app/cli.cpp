@@ -256,6 +256,37 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_model->callback(
       [&] { run = [&] { return grip::commands::bench_model(bench_model_args); }; });
+  grip::commands::BenchRobustnessArgs bench_robustness_args;
+  CLI::App* bench_robustness = bench->add_subcommand(
+      "robustness", "Solver failures on synthesized grasps over every object category");
+  bench_robustness
+      ->add_option("--grippers", bench_robustness_args.grippers,
+                   "Grippers: parallel-jaw, fin-ray, leap (default: all)")
+      ->delimiter(',');
+  bench_robustness
+      ->add_option("--categories", bench_robustness_args.categories,
+                   "Object categories (default: all)")
+      ->delimiter(',');
+  bench_robustness
+      ->add_option("--seeds", bench_robustness_args.seeds,
+                   "Shapes per category: the first N seeds the gripper gets a candidate on "
+                   "(default: per gripper)")
+      ->check(CLI::PositiveNumber);
+  bench_robustness
+      ->add_option("--candidates", bench_robustness_args.candidates,
+                   "Candidates per object and gripper (default: per gripper)")
+      ->check(CLI::PositiveNumber);
+  bench_robustness->add_flag("--rigid", bench_robustness_args.rigid, "Rigid objects only");
+  bench_robustness->add_flag("--soft", bench_robustness_args.soft, "Soft (FEM) objects only");
+  bench_robustness
+      ->add_option("--threads", bench_robustness_args.threads, "Threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  bench_robustness
+      ->add_option("--out", bench_robustness_args.out,
+                   "Folder for robustness.md and robustness.csv")
+      ->capture_default_str();
+  bench_robustness->callback(
+      [&] { run = [&] { return grip::commands::bench_robustness(bench_robustness_args); }; });
   grip::commands::BenchLinearArgs bench_linear_args;
   CLI::App* bench_linear = bench->add_subcommand(
       "linear",

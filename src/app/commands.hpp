@@ -168,4 +168,20 @@ struct BenchModelArgs {
 };
 int bench_model(const BenchModelArgs& args);
 
+// grip bench robustness [--grippers ...] [--categories ...] [--seeds N] [--candidates N]
+// [--rigid] [--soft] [--threads T] [--out DIR]: solver failures on synthesized grasps over
+// every object category; the counts are the result, so the exit code is 0 unless the inputs
+// are bad (bench/robustness/, docs/results.md).
+struct BenchRobustnessArgs {
+  std::vector<std::string> grippers;    // empty: parallel-jaw, fin-ray, leap
+  std::vector<std::string> categories;  // empty: every procedural category
+  int seeds = 0;                        // shapes per category; 0: each gripper's default
+  int candidates = 0;                   // per (object, gripper); 0: each gripper's default
+  bool rigid = false;                   // only rigid objects (with soft, or neither: both)
+  bool soft = false;                    // only soft objects
+  int threads = 0;                      // 0: all cores
+  std::string out = "out/robustness";
+};
+int bench_robustness(const BenchRobustnessArgs& args);
+
 }  // namespace grip::commands

@@ -23,6 +23,8 @@ struct TrialOutcome {
   io::CandidateResult result;
   std::string failure_reason;          // the solver's message for kNewtonLimit / kNumerical
   std::vector<BodyFrame> body_frames;  // closing then validation frames, when asked for
+  // [n]: steps that took n Newton iterations (solver::EnvironmentStatistics); not in the dataset.
+  std::vector<long> steps_by_newton_iterations;
 };
 
 }  // namespace grip::trial

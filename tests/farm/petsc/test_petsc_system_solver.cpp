@@ -106,11 +106,15 @@ TEST(PetscSystemSolver, MatchesCholmodOnOneRank) {
   if (world_rank() == 0) expect_matches_cholmod(MPI_COMM_SELF);
 }
 
-// Newton stops at a relative residual of 1e-3, so two valid runs can stop at slightly different
-// iterates: two CHOLMOD runs that differ only in their fill-reducing ordering end this squeeze
-// 3e-9 m apart, and the first contact's step takes 19 to 22 iterations depending on round-off.
-// PETSc's run must stay within 1e-7 m (1e-4 of d_hat) of the direct one at every step.
-constexpr double kPositionTolerance = 1e-7;  // m
+// How far apart two valid runs may end: Newton stops once the residual is below newton_tol
+// times the standard weight (times h^2, in gradient units), so a converged iterate may sit up to
+// residual / mass = newton_tol * g * h^2 from the exact one where only inertia resists (contact
+// stiffness only brings it closer), and two runs up to twice that: 2e-6 m at dt = 10 ms, 2e-3 of
+// d_hat. Measured: PETSc's run ends 1.2e-6 m from the direct one; two CHOLMOD runs that differ
+// only in their fill-reducing ordering end 3e-9 m apart.
+double position_tolerance(const solver::SimParameters& sim) {
+  return 2.0 * sim.newton_tol * 9.81 * sim.dt * sim.dt;
+}
 
 TEST(PetscSystemSolver, SimulationThroughTheHookEqualsTheDirectOne) {
   constexpr int kSteps = 10;
@@ -120,13 +124,14 @@ TEST(PetscSystemSolver, SimulationThroughTheHookEqualsTheDirectOne) {
     solver::SceneDescription scene = bench::bimanual_squeeze(0.01);
     scene.sim.projected_iterations = scene.sim.max_newton_iters;
     const auto model = solver::Model::build(scene);
+    const double tolerance = position_tolerance(scene.sim);
     solver::Environment direct(model);
     solver::Environment iterative(model);
     iterative.use_linear_solver(petsc, 0);
     for (int s = 0; s < kSteps; ++s) {
       ASSERT_TRUE(direct.step()) << direct.failure();
       ASSERT_TRUE(iterative.step()) << iterative.failure();
-      EXPECT_LE((iterative.dofs() - direct.dofs()).cwiseAbs().maxCoeff(), kPositionTolerance)
+      EXPECT_LE((iterative.dofs() - direct.dofs()).cwiseAbs().maxCoeff(), tolerance)
           << "step " << s;
       ASSERT_GT(iterative.last_step().min_distance, 0.0) << "step " << s;
       ASSERT_GT(iterative.last_step().min_volume_ratio, 0.0) << "step " << s;

@@ -1,0 +1,301 @@
+#include "bench/robustness/robustness_benchmark.hpp"
+
+#include <spdlog/spdlog.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <limits>
+#include <map>
+#include <span>
+#include <stdexcept>
+
+#include "src/geometry/boundary_surface.hpp"
+#include "src/geometry/tetrahedralize.hpp"
+#include "src/grippers/coarse_leap_hand.hpp"
+#include "src/grippers/gripper_registry.hpp"
+#include "src/objects/object_library.hpp"
+#include "src/synth/object_spec.hpp"
+#include "src/synth/prepared_object.hpp"
+#include "src/synth/synthesize.hpp"
+#include "src/trial/grasp_trial.hpp"
+#include "src/trial/hand_trial.hpp"
+
+namespace grip::bench {
+namespace {
+
+// How many seeds and candidates per (object, gripper) a gripper runs by default, for rigid and
+// for soft objects: at least 384 parallel-jaw trials and 48 each of fin-ray and hand trials.
+struct GripperDefaults {
+  std::string_view name;
+  int rigid_seeds, rigid_candidates;
+  int soft_seeds, soft_candidates;
+};
+
+constexpr GripperDefaults kDefaults[] = {
+    {"parallel-jaw", 4, 8, 1, 2},
+    {"fin-ray", 1, 2, 1, 2},
+    {"leap", 1, 2, 1, 2},
+};
+
+const GripperDefaults& defaults_of(const std::string& name) {
+  for (const GripperDefaults& d : kDefaults) {
+    if (d.name == name) return d;
+  }
+  std::string known;
+  for (const GripperDefaults& d : kDefaults)
+    known += (known.empty() ? "" : ", ") + std::string(d.name);
+  throw std::invalid_argument("grip bench robustness: unknown gripper '" + name + "' (" + known +
+                              ")");
+}
+
+// The soft object's material and tet edge are `grip trial --soft`'s defaults (rigid objects
+// take the same density and friction).
+constexpr solver::Material kObjectMaterial{1000.0, 1e6, 0.4, 3.5};
+constexpr double kTetEdge = 0.008;
+
+trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed) {
+  trial::TrialObject object;
+  object.name = set.category;
+  object.surface = synth::load_object(set.category, seed);
+  object.material = kObjectMaterial;
+  if (set.soft) {
+    geometry::TetOptions options;
+    options.edge_length = synth::object_tet_edge(set.category, seed, 1.0, kTetEdge);
+    object.tets = geometry::tetrahedralize(object.surface, options, set.category);
+    object.surface = geometry::boundary_surface(*object.tets);
+  }
+  return object;
+}
+
+// The grippers as simulated here, built once on first use.
+const grippers::ParallelGripper& rigid_jaws() {
+  static const grippers::ParallelGripper gripper =
+      grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw);
+  return gripper;
+}
+
+// The fin-ray finger with one tet layer across its depth (8 in production), same profile.
+const grippers::ParallelGripper& coarse_fin_ray() {
+  static const grippers::ParallelGripper gripper = [] {
+    grippers::FinRayOptions options;
+    options.layers = 1;
+    return grippers::make_umi_soft_gripper(options);
+  }();
+  return gripper;
+}
+
+const grippers::HandModel& coarse_hand() {
+  static const grippers::HandModel hand = grippers::coarse_leap_hand();
+  return hand;
+}
+
+// The trials of one batch's candidates as one solver::Batch.
+std::vector<trial::TrialOutcome> run_batch(const RobustnessSet& set,
+                                           const trial::TrialObject& object,
+                                           const std::vector<synth::Candidate>& candidates,
+                                           int threads) {
+  trial::TrialRunOptions options;
+  options.threads = threads;
+  options.trajectory = false;
+  trial::TrialParameters parameters;
+  if (set.gripper == "leap") {
+    // Hands approach at the squeeze speed (docs/trial.md, jobs/leap-*.toml).
+    parameters.closing_speed = parameters.squeeze_speed;
+    std::vector<trial::HandTrialGrasp> grasps;
+    for (const synth::Candidate& c : candidates) {
+      const synth::HandGrasp& h = c.hands.front();
+      grasps.push_back({h.pose, h.joints, h.contacts, h.contact_normals});
+    }
+    const trial::HandTrialScene scene(object, coarse_hand(), "leap", parameters);
+    return trial::run_hand_trials(scene, grasps, options);
+  }
+  std::vector<trial::ParallelGrasp> grasps;
+  for (const synth::Candidate& c : candidates) {
+    grasps.push_back({c.hands.front().pose, c.hands.front().joints[0]});
+  }
+  const trial::TrialScene scene(object, set.gripper == "fin-ray" ? coarse_fin_ray() : rigid_jaws(),
+                                parameters);
+  return trial::run_trials(scene, grasps, options);
+}
+
+std::string describe(const RobustnessSet& set, std::uint64_t seed) {
+  return set.gripper + " x " + set.category + " seed " + std::to_string(seed) +
+         (set.soft ? " soft" : " rigid");
+}
+
+// The seed walk of one gripper and category, batch by batch, into the result.
+struct CategoryRun {
+  RobustnessResult& result;
+  tbb::task_arena arena;
+
+  // Candidates for the seed's shape, `count` asked, as `grip synth` makes them.
+  std::vector<synth::Candidate> synthesize(const RobustnessSet& set, std::uint64_t seed,
+                                           int count) {
+    std::vector<synth::Candidate> candidates;
+    arena.execute([&] {
+      const synth::PreparedObject prepared(synth::load_object(set.category, seed));
+      candidates = synth::synthesize(prepared, grippers::gripper_type(set.gripper).kind,
+                                     /*bimanual=*/false, synth::SynthesisParams{}, seed, count)
+                       .candidates;
+    });
+    return candidates;
+  }
+
+  // One batch: the object prepared, every candidate's trial, the log line.
+  void batch(const RobustnessSet& set, std::uint64_t seed,
+             const std::vector<synth::Candidate>& candidates) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<trial::TrialOutcome> outcomes;
+    try {
+      trial::TrialObject object;
+      arena.execute([&] { object = make_object(set, seed); });
+      outcomes = run_batch(set, object, candidates, result.threads);
+    } catch (const std::exception& e) {
+      // An object that cannot be meshed or a candidate the gripper cannot take: reported, and
+      // the other batches still run.
+      result.shortfalls.push_back(describe(set, seed) + ": no trials (" + e.what() + ")");
+      spdlog::warn("{}", result.shortfalls.back());
+      return;
+    }
+    result.batches.push_back(
+        {set.gripper, set.category, seed, set.soft, static_cast<int>(outcomes.size())});
+    std::map<io::FailureKind, int> counts;
+    for (std::size_t k = 0; k < outcomes.size(); ++k) {
+      const io::CandidateRecord& record = outcomes[k].result.record;
+      result.trials.push_back({set.gripper, set.category, seed, set.soft, k, record.status,
+                               record.failure, outcomes[k].failure_reason, record.newton,
+                               outcomes[k].steps_by_newton_iterations});
+      ++counts[record.failure];
+    }
+    std::string summary;
+    for (const auto& [kind, n] : counts) {
+      summary += (summary.empty() ? "" : ", ") + std::to_string(n) + " " +
+                 std::string(kind == io::FailureKind::kNone ? "success" : io::to_string(kind));
+    }
+    spdlog::info("{}: {} trial(s) in {:.1f} s: {}", describe(set, seed), outcomes.size(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                 summary);
+  }
+
+  // Sets [first, last) of result.sets: one gripper and category.
+  void walk_seeds(std::size_t first, std::size_t last) {
+    const std::span<const RobustnessSet> sets(result.sets.data() + first, last - first);
+    std::vector<int> found(sets.size(), 0);
+    int most = 0;
+    for (const RobustnessSet& set : sets) most = std::max(most, set.seeds);
+    const std::uint64_t last_seed = static_cast<std::uint64_t>(kSeedsTriedPerShape) * most;
+    const auto done = [&] {
+      for (std::size_t k = 0; k < sets.size(); ++k) {
+        if (found[k] < sets[k].seeds) return false;
+      }
+      return true;
+    };
+    for (std::uint64_t seed = 1; seed <= last_seed && !done(); ++seed) {
+      std::map<int, std::vector<synth::Candidate>> by_count;  // this seed's, per count
+      for (std::size_t k = 0; k < sets.size(); ++k) {
+        const RobustnessSet& set = sets[k];
+        if (found[k] >= set.seeds) continue;
+        auto it = by_count.find(set.candidates);
+        if (it == by_count.end()) {
+          it = by_count.emplace(set.candidates, synthesize(set, seed, set.candidates)).first;
+        }
+        if (it->second.empty()) {
+          result.skipped.push_back(describe(set, seed));
+          spdlog::info("{}: no candidate, shape skipped", describe(set, seed));
+          continue;
+        }
+        ++found[k];
+        if (static_cast<int>(it->second.size()) < set.candidates) {
+          result.shortfalls.push_back(describe(set, seed) + ": " +
+                                      std::to_string(it->second.size()) + " of " +
+                                      std::to_string(set.candidates) + " candidates synthesized");
+        }
+        batch(set, seed, it->second);
+      }
+    }
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+      if (found[k] < sets[k].seeds) {
+        result.shortfalls.push_back(
+            sets[k].gripper + " x " + sets[k].category + (sets[k].soft ? " soft" : " rigid") +
+            ": " + std::to_string(found[k]) + " of " + std::to_string(sets[k].seeds) +
+            " shapes in seeds 1-" + std::to_string(last_seed));
+      }
+    }
+  }
+};
+
+}  // namespace
+
+std::string robustness_gripper_model(const std::string& gripper) {
+  if (gripper == "parallel-jaw") return "rigid box jaws (the registry's parallel-jaw)";
+  if (gripper == "fin-ray")
+    return "fin-ray fingers with 1 tet layer across the depth (8 in production)";
+  if (gripper == "leap") return "LEAP hand with 8-sided capsule links (coarse_leap_hand)";
+  return gripper;
+}
+
+std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options) {
+  if (options.seeds < 0 || options.candidates < 0) {
+    throw std::invalid_argument(
+        "grip bench robustness: --seeds and --candidates must not be negative");
+  }
+  if (!options.rigid && !options.soft) {
+    throw std::invalid_argument("grip bench robustness: neither rigid nor soft objects asked for");
+  }
+  std::vector<std::string> grippers = options.grippers;
+  if (grippers.empty()) {
+    for (const GripperDefaults& d : kDefaults) grippers.emplace_back(d.name);
+  }
+  std::vector<std::string> categories = options.categories;
+  if (categories.empty()) {
+    for (const objects::ObjectCategory c : objects::all_object_categories()) {
+      categories.emplace_back(objects::category_name(c));
+    }
+  }
+  for (const std::string& category : categories) {
+    try {
+      objects::parse_object_category(category);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("grip bench robustness: ") + e.what());
+    }
+  }
+  std::vector<RobustnessSet> sets;
+  for (const std::string& gripper : grippers) {
+    const GripperDefaults& d = defaults_of(gripper);
+    for (const std::string& category : categories) {
+      for (const bool soft : {false, true}) {
+        if (soft ? !options.soft : !options.rigid) continue;
+        const int seeds = options.seeds > 0 ? options.seeds : soft ? d.soft_seeds : d.rigid_seeds;
+        const int candidates = options.candidates > 0 ? options.candidates
+                               : soft                 ? d.soft_candidates
+                                                      : d.rigid_candidates;
+        sets.push_back({gripper, category, soft, seeds, candidates});
+      }
+    }
+  }
+  return sets;
+}
+
+RobustnessResult run_robustness(const RobustnessOptions& options) {
+  RobustnessResult result;
+  result.sets = plan_robustness(options);
+  result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  const auto start = std::chrono::steady_clock::now();
+  CategoryRun run{result, tbb::task_arena(result.threads)};
+  // The rigid and soft sets of one gripper and category walk the seeds together, so that a
+  // seed's candidates serve both.
+  for (std::size_t i = 0; i < result.sets.size();) {
+    std::size_t j = i + 1;
+    while (j < result.sets.size() && result.sets[j].gripper == result.sets[i].gripper &&
+           result.sets[j].category == result.sets[i].category) {
+      ++j;
+    }
+    run.walk_seeds(i, j);
+    i = j;
+  }
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace grip::bench

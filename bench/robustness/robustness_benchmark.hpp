@@ -1,0 +1,87 @@
+#pragma once
+// `grip bench robustness`: how often the solver fails on ordinary grasps. Candidates are
+// synthesized on every procedural object category for several seeds and three grippers, and
+// their trials run through the real protocol, one solver::Batch per (object, gripper).
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/candidate_record.hpp"
+
+namespace grip::bench {
+
+struct RobustnessOptions {
+  std::vector<std::string> grippers;    // parallel-jaw, fin-ray, leap; empty: all three
+  std::vector<std::string> categories;  // procedural categories; empty: every one
+  int seeds = 0;                        // shapes per category; 0: each gripper's default
+  int candidates = 0;                   // per (object, gripper); 0: each gripper's default
+  bool rigid = true;                    // run rigid objects (one affine body)
+  bool soft = true;                     // run soft objects (FEM, as `grip trial --soft`)
+  int threads = 0;                      // 0: all cores
+  std::filesystem::path out = "out/robustness";
+};
+
+// What the options ask of one gripper, category and object model: `seeds` shapes, the first
+// seeds (1, 2, 3, ...) for which synthesis finds a candidate (a shape wider than the gripper
+// opens gives none and is skipped), and `candidates` trials on each.
+struct RobustnessSet {
+  std::string gripper;  // registry name
+  std::string category;
+  bool soft = false;
+  int seeds = 0;
+  int candidates = 0;
+};
+
+// At most this many seeds are tried per shape asked for.
+inline constexpr int kSeedsTriedPerShape = 10;
+
+// One (object, gripper) batch that ran.
+struct RobustnessBatch {
+  std::string gripper;
+  std::string category;
+  std::uint64_t seed = 0;  // the shape's and the synthesis's seed, as `grip synth --seed`
+  bool soft = false;
+  int candidates = 0;  // synthesized and run (at most the set's)
+};
+
+// The gripper each registry name is simulated with in this benchmark, in words.
+std::string robustness_gripper_model(const std::string& gripper);
+
+// The sets the options ask for: gripper by gripper, then category, rigid before soft. Throws
+// std::invalid_argument for an unknown gripper or category, seeds or candidates below 0, or
+// neither rigid nor soft objects.
+std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options);
+
+struct RobustnessTrial {
+  std::string gripper;
+  std::string category;
+  std::uint64_t seed = 0;
+  bool soft = false;
+  std::uint64_t candidate = 0;  // index in the batch's synthesized candidates
+  io::Status status = io::Status::kPending;
+  io::FailureKind failure = io::FailureKind::kNone;
+  std::string failure_reason;  // the solver's message when it failed
+  io::NewtonStatistics newton;
+  std::vector<long> steps_by_iterations;  // [n]: steps with n Newton iterations, failed one too
+};
+
+struct RobustnessResult {
+  std::vector<RobustnessSet> sets;       // the plan
+  std::vector<RobustnessBatch> batches;  // what ran, in order
+  std::vector<RobustnessTrial> trials;   // batch by batch, candidates in order
+  // "parallel-jaw x box seed 1 rigid": seeds whose shape got no candidate, so no batch.
+  std::vector<std::string> skipped;
+  // Sets that got fewer shapes or candidates than asked, and batches whose object could not be
+  // prepared or run, in words.
+  std::vector<std::string> shortfalls;
+  int threads = 0;
+  double wall_seconds = 0.0;
+};
+
+// Runs the planned sets on options.threads threads: per gripper and category, seed by seed,
+// synthesis, object preparation and the trials. Logs one line per batch. Deterministic for
+// given options, whatever the thread count.
+RobustnessResult run_robustness(const RobustnessOptions& options);
+
+}  // namespace grip::bench

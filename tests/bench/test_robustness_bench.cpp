@@ -1,0 +1,111 @@
+// `grip bench robustness` on a small plan: the plan follows its options and refuses bad ones,
+// the per-step statistics are nearest-rank ones, and rigid jaws on three categories that used
+// to stall Newton (box, capsule, plate) end every trial without a solver failure.
+#include "bench/robustness/robustness_benchmark.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "bench/robustness/robustness_report.hpp"
+
+namespace grip::bench {
+namespace {
+
+TEST(RobustnessBench, DefaultPlanMeetsTheTrialCounts) {
+  const std::vector<RobustnessSet> sets = plan_robustness(RobustnessOptions{});
+  std::map<std::string, int> trials;
+  std::map<std::string, std::set<std::string>> categories;
+  for (const RobustnessSet& set : sets) {
+    trials[set.gripper] += set.seeds * set.candidates;
+    categories[set.gripper].insert(set.category);
+  }
+  EXPECT_GE(trials["parallel-jaw"], 384);
+  EXPECT_GE(trials["fin-ray"], 48);
+  EXPECT_GE(trials["leap"], 48);
+  for (const auto& [gripper, names] : categories) EXPECT_EQ(names.size(), 12u) << gripper;
+}
+
+TEST(RobustnessBench, PlanFollowsOptionsAndRefusesBadOnes) {
+  RobustnessOptions options;
+  options.grippers = {"fin-ray"};
+  options.categories = {"box", "plate"};
+  options.soft = false;
+  options.seeds = 3;
+  const std::vector<RobustnessSet> sets = plan_robustness(options);
+  ASSERT_EQ(sets.size(), 2u);
+  for (const RobustnessSet& set : sets) {
+    EXPECT_EQ(set.gripper, "fin-ray");
+    EXPECT_FALSE(set.soft);
+    EXPECT_EQ(set.seeds, 3);
+  }
+  RobustnessOptions bad = options;
+  bad.grippers = {"claw"};
+  EXPECT_THROW(plan_robustness(bad), std::invalid_argument);
+  bad = options;
+  bad.categories = {"teacup"};
+  EXPECT_THROW(plan_robustness(bad), std::invalid_argument);
+  bad = options;
+  bad.rigid = false;
+  EXPECT_THROW(plan_robustness(bad), std::invalid_argument);
+}
+
+TEST(RobustnessBench, RankStatisticsOfAHistogram) {
+  // 100 steps: 90 of 3 iterations, 9 of 7, 1 of 40.
+  std::vector<long> counts(41, 0);
+  counts[3] = 90;
+  counts[7] = 9;
+  counts[40] = 1;
+  const RankStatistics s = rank_statistics(counts);
+  EXPECT_EQ(s.count, 100);
+  EXPECT_EQ(s.median, 3.0);
+  EXPECT_EQ(s.p99, 7.0);  // rank 99 of 100
+  EXPECT_EQ(s.max, 40.0);
+  EXPECT_TRUE(std::isnan(rank_statistics({0, 0}).median));
+}
+
+TEST(RobustnessBench, RigidJawsEndWithoutSolverFailures) {
+  RobustnessOptions options;
+  options.grippers = {"parallel-jaw"};
+  options.categories = {"box", "capsule", "plate"};
+  options.soft = false;
+  options.seeds = 1;
+  options.candidates = 4;
+  options.threads = 2;
+  options.out = std::filesystem::path(::testing::TempDir()) / "robustness";
+  const RobustnessResult result = run_robustness(options);
+  ASSERT_GE(result.trials.size(), 8u) << "too few shapes took a candidate";
+  for (const RobustnessTrial& t : result.trials) {
+    EXPECT_NE(t.status, io::Status::kPending);
+    EXPECT_NE(t.failure, io::FailureKind::kNewtonLimit)
+        << t.category << " seed " << t.seed << " #" << t.candidate << ": " << t.failure_reason;
+    EXPECT_NE(t.failure, io::FailureKind::kNumerical)
+        << t.category << " seed " << t.seed << " #" << t.candidate << ": " << t.failure_reason;
+    long steps = 0;
+    for (const long n : t.steps_by_iterations) steps += n;
+    EXPECT_EQ(steps, static_cast<long>(t.newton.steps) + (t.failure_reason.empty() ? 0 : 1));
+  }
+
+  const std::vector<RobustnessTally> rows = robustness_rows(result);
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(rows.back().trials, static_cast<int>(result.trials.size()));
+  std::ostringstream line;
+  write_robustness_json_line(line, result, rows);
+  const nlohmann::json json = nlohmann::json::parse(line.str());
+  EXPECT_EQ(json["benchmark"], "robustness");
+  EXPECT_EQ(json["trials"], result.trials.size());
+  EXPECT_EQ(json["failures"]["newton_limit"], 0);
+  EXPECT_GT(json["newton_iterations_per_step"]["steps"].get<long>(), 0);
+  write_robustness_files(options.out, result, rows);
+  EXPECT_TRUE(std::filesystem::exists(options.out / "robustness.csv"));
+  EXPECT_TRUE(std::filesystem::exists(options.out / "robustness.md"));
+}
+
+}  // namespace
+}  // namespace grip::bench
