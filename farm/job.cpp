@@ -138,15 +138,19 @@ void read_randomization(const Table& t, objects::RandomizationRanges& r) {
 }
 
 void read_trial(const Table& t, trial::TrialParameters& p) {
-  t.allow({"closing_speed", "squeeze_speed", "stop_force", "final_opening", "settle_speed",
-           "settle_steps", "settle_max_steps", "gravity", "phase_duration", "displacement_factor",
-           "metric_samples", "finger_friction"});
-  p.closing_speed = positive(t, "closing_speed", p.closing_speed);
+  t.allow({"placement_gap", "squeeze_speed", "grip_force", "final_opening", "settle_speed",
+           "settle_angular_speed", "force_tolerance", "settle_steps", "settle_max_steps", "gravity",
+           "phase_duration", "displacement_factor", "metric_samples", "finger_friction"});
+  p.placement_gap = t.number_or("placement_gap", p.placement_gap);
+  if (!(p.placement_gap >= 1.0)) t.fail("placement_gap", "must be at least 1 (times d_hat)");
   p.squeeze_speed = positive(t, "squeeze_speed", p.squeeze_speed);
-  p.stop_force = positive(t, "stop_force", p.stop_force);
+  p.grip_force = positive(t, "grip_force", p.grip_force);
   p.final_opening = t.number_or("final_opening", p.final_opening);
   if (!(p.final_opening >= 0)) t.fail("final_opening", "must be non-negative (m)");
   p.settle_speed = positive(t, "settle_speed", p.settle_speed);
+  p.settle_angular_speed = positive(t, "settle_angular_speed", p.settle_angular_speed);
+  p.force_tolerance = positive(t, "force_tolerance", p.force_tolerance);
+  if (!(p.force_tolerance < 1.0)) t.fail("force_tolerance", "must be below 1 (of grip_force)");
   p.settle_steps = positive_integer(t, "settle_steps", p.settle_steps);
   p.settle_max_steps = positive_integer(t, "settle_max_steps", p.settle_max_steps);
   p.gravity_magnitude = positive(t, "gravity", p.gravity_magnitude);
@@ -254,11 +258,13 @@ std::vector<io::Parameter> resolved_parameters(const Job& job) {
   add("physics.friction_lag_iterations", s.friction_lag_iterations);
   add("physics.ccd_rescaling", s.ccd_rescaling);
   const trial::TrialParameters& t = job.trial;
-  add("trial.closing_speed", t.closing_speed);
+  add("trial.placement_gap", t.placement_gap);
   add("trial.squeeze_speed", t.squeeze_speed);
-  add("trial.stop_force", t.stop_force);
+  add("trial.grip_force", t.grip_force);
   add("trial.final_opening", t.final_opening);
   add("trial.settle_speed", t.settle_speed);
+  add("trial.settle_angular_speed", t.settle_angular_speed);
+  add("trial.force_tolerance", t.force_tolerance);
   add("trial.settle_steps", t.settle_steps);
   add("trial.settle_max_steps", t.settle_max_steps);
   add("trial.gravity", t.gravity_magnitude);

@@ -30,6 +30,8 @@ std::string_view to_string(FailureKind kind) {
       return "newton_limit";
     case FailureKind::kNumerical:
       return "numerical";
+    case FailureKind::kUnsettled:
+      return "unsettled";
   }
   return "unknown";
 }

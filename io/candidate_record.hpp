@@ -23,8 +23,9 @@ enum class FailureKind : std::uint8_t {
   kDisplaced = 4,           // still held, but the centre of mass moved past the threshold
   kNewtonLimit = 5,         // Newton did not converge within the iteration limit
   kNumerical = 6,           // non-finite state or a failed factorization
+  kUnsettled = 7,           // the closed grasp never came to a steady state; not tested
 };
-inline constexpr std::uint8_t kFailureKindCount = 7;
+inline constexpr std::uint8_t kFailureKindCount = 8;
 
 std::string_view to_string(Status status);
 std::string_view to_string(FailureKind kind);
@@ -48,7 +49,8 @@ struct CandidateRecord {
   double d2 = 0;  // m, absolute gripper-object distance (paper Eq. D2)
   // m, centre-of-mass displacement at the end of each gravity phase: +x, -x, +y, -y, +z, -z.
   std::array<double, 6> displacement{};
-  std::vector<double> closing_forces;  // N, per finger per hand, when closing stopped
+  std::vector<double> closing_forces;  // N, per finger per hand, when the squeeze settled
+  double contact_friction = 0;         // mu of the finger-object contact pairs
   NewtonStatistics newton;
   double wall_time = 0;  // s; the one column that differs between otherwise equal runs
 

@@ -140,6 +140,8 @@ constexpr std::array kColumns = {
            record_field<&CandidateRecord::displacement>()},
     Column{"closing_forces", P::kResult, E::kFloat64, F::kNaN, table_fingers,
            record_field<&CandidateRecord::closing_forces>(), finger_values},
+    Column{"contact_friction", P::kResult, E::kFloat64, F::kNaN, one_value,
+           record_field<&CandidateRecord::contact_friction>()},
     Column{"newton_steps", P::kResult, E::kUint32, F::kZero, one_value,
            record_field<&CandidateRecord::newton, &NewtonStatistics::steps>()},
     Column{"newton_iterations", P::kResult, E::kUint32, F::kZero, one_value,

@@ -26,8 +26,9 @@ class Environment {
   ~Environment();
   Environment(Environment&&) noexcept;
 
-  // Before the first step: moves a body rigidly by `motion` from where the scene starts it
-  // (its velocities turn with it; scripts are left as they are). Environments of one model
+  // Before the first step: moves a body rigidly by `motion` from where it is (in a fresh
+  // environment, where the scene starts it); its velocities turn with it, scripts are left as
+  // they are. Environments of one model
   // start apart this way, e.g. a gripper at each candidate's pose. A pinned FEM body and its
   // mount must be moved together. Throws std::logic_error after the first step.
   void place(int body, const Eigen::Isometry3d& motion);
@@ -84,6 +85,9 @@ class Environment {
   Eigen::Matrix3d rotation(int body) const;
   // The smallest det F over the tets of every FEM body (1 without FEM).
   double min_volume_ratio() const;
+  // The exact distance between the surfaces of `bodies` and of body `other` now, if it is below
+  // `search` (m); infinity otherwise. The broad phase's cost grows with `search`.
+  double surface_distance(const std::vector<int>& bodies, int other, double search) const;
   // The contact forces on every collision vertex at the current state (between steps).
   VertexContactForces vertex_contact_forces() const;
 

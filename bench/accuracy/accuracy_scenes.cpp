@@ -153,9 +153,9 @@ AccuracyScene hand_rigid() {
   scene.name = "hand x rigid";
   scene.setup =
       "rigid cylinder r 3 cm, 8 cm long, 16 sides, mu 1; LEAP hand with 8-sided capsule links; "
-      "2 candidates synthesized on it (300 steps, seed 1); fingers approach at 1 cm/s";
+      "2 candidates synthesized on it (300 steps, seed 1); placed near the object, then closing at "
+      "1 cm/s";
   scene.parameters = reduced();
-  scene.parameters.closing_speed = scene.parameters.squeeze_speed;
   scene.mesh_setting = "none";
   scene.run = [](const trial::TrialParameters& p, double, int threads) {
     trial::TrialObject object;

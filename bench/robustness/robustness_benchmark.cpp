@@ -99,8 +99,6 @@ std::vector<trial::TrialOutcome> run_batch(const RobustnessSet& set,
   options.trajectory = false;
   trial::TrialParameters parameters;
   if (set.gripper == "leap") {
-    // Hands approach at the squeeze speed (docs/trial.md, jobs/leap-*.toml).
-    parameters.closing_speed = parameters.squeeze_speed;
     std::vector<trial::HandTrialGrasp> grasps;
     for (const synth::Candidate& c : candidates) {
       const synth::HandGrasp& h = c.hands.front();

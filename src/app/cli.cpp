@@ -101,11 +101,11 @@ int main(int argc, char** argv) {
   trial->add_option("--vtk", trial_args.vtk, "Write each candidate's frames as a VTK series here");
   trial->add_option("--threads", trial_args.threads, "Threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
-  trial->add_option("--closing-speed", trial_args.closing_speed, "Jaw closing speed (m/s)")
-      ->capture_default_str();
   trial
       ->add_option("--squeeze-speed", trial_args.squeeze_speed,
-                   "Jaw speed once its finger touches the object (m/s)")
+                   "Fastest finger speed while closing and servoing its force (m/s)")
+      ->capture_default_str();
+  trial->add_option("--grip-force", trial_args.grip_force, "Force each finger servos to (N)")
       ->capture_default_str();
   trial->add_flag("--compare-solo", trial_args.compare_solo,
                   "Also run each candidate alone: batch speedup and bit-identity");

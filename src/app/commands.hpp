@@ -96,8 +96,8 @@ struct TrialArgs {
   std::string report;           // JSON report file; stdout when empty
   std::string vtk;              // folder for per-candidate VTK series; none when empty
   int threads = 0;              // 0: all cores
-  double closing_speed = 0.05;  // m/s per jaw, before its finger touches the object
-  double squeeze_speed = 0.01;  // m/s per jaw, once it does
+  double squeeze_speed = 0.01;  // m/s per finger, closing and servoing
+  double grip_force = 50.0;     // N per finger
   bool compare_solo = false;    // also run each candidate alone: speedup and identity
 };
 int trial(const TrialArgs& args);

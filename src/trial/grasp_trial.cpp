@@ -22,6 +22,7 @@ class ParallelTrialGripper final : public TrialGripper {
   int object_body() const override { return scene_.object_body(); }
   std::size_t candidate_count() const override { return grasps_.size(); }
   int finger_count() const override { return 2; }
+  bool fingers_squeeze_together() const override { return false; }
   const std::vector<int>& finger_bodies(int finger) const override {
     return finger_bodies_[finger];
   }
@@ -30,6 +31,11 @@ class ParallelTrialGripper final : public TrialGripper {
     scene_.place(environment, grasps_[k]);
     const double travel = 0.5 * (grasps_[k].opening - scene_.parameters().final_opening);
     return {travel, travel};
+  }
+
+  void place_finger(solver::Environment& environment, std::size_t k, int finger, double from,
+                    double to) const override {
+    scene_.advance_jaw(environment, grasps_[k], finger, to - from);
   }
 
   void move_finger(solver::Environment& environment, std::size_t k, int finger, double,

@@ -36,6 +36,7 @@ class HandTrialGripper final : public TrialGripper {
   int object_body() const override { return scene_.object_body(); }
   std::size_t candidate_count() const override { return grasps_.size(); }
   int finger_count() const override { return static_cast<int>(scene_.fingers().size()); }
+  bool fingers_squeeze_together() const override { return true; }
   const std::vector<int>& finger_bodies(int finger) const override {
     return scene_.fingers()[static_cast<std::size_t>(finger)].bodies;
   }
@@ -43,6 +44,15 @@ class HandTrialGripper final : public TrialGripper {
   std::vector<double> place(solver::Environment& environment, std::size_t k) const override {
     scene_.place(environment, grasps_[k]);
     return paths_[k].travel;
+  }
+
+  void place_finger(solver::Environment& environment, std::size_t k, int finger, double from,
+                    double to) const override {
+    const Eigen::VectorXd& direction = paths_[k].direction[static_cast<std::size_t>(finger)];
+    const Eigen::VectorXd& start = grasps_[k].joints;
+    scene_.place_finger(environment, grasps_[k].pose, finger,
+                        scene_.finger_joints(start, direction, finger, from),
+                        scene_.finger_joints(start, direction, finger, to));
   }
 
   void move_finger(solver::Environment& environment, std::size_t k, int finger, double travel,

@@ -236,6 +236,18 @@ void HandTrialScene::move_finger(solver::Environment& environment, const Eigen::
   }
 }
 
+void HandTrialScene::place_finger(solver::Environment& environment, const Eigen::Isometry3d& pose,
+                                  int finger, const Eigen::VectorXd& from,
+                                  const Eigen::VectorXd& to) const {
+  const std::vector<Eigen::Isometry3d> now = kinematics().link_poses(pose, from);
+  const std::vector<Eigen::Isometry3d> next = kinematics().link_poses(pose, to);
+  for (int link : fingers_.at(static_cast<std::size_t>(finger)).links) {
+    const auto l = static_cast<std::size_t>(link);
+    if (link_body_[l] < 0) continue;
+    environment.place(link_body_[l], next[l] * now[l].inverse());
+  }
+}
+
 void HandTrialScene::hold_finger(solver::Environment& environment, int finger) const {
   for (int body : fingers_.at(static_cast<std::size_t>(finger)).bodies) {
     environment.set_script(body, solver::Script{});

@@ -92,6 +92,10 @@ class HandTrialScene {
   void move_finger(solver::Environment& environment, const Eigen::Isometry3d& pose, int finger,
                    const Eigen::VectorXd& joints) const;
   void hold_finger(solver::Environment& environment, int finger) const;
+  // Before the first step: moves the finger's links from where joint values `from` put them to
+  // where `to` does.
+  void place_finger(solver::Environment& environment, const Eigen::Isometry3d& pose, int finger,
+                    const Eigen::VectorXd& from, const Eigen::VectorXd& to) const;
 
   // The hand's surface: every link with a surface in link order, each link's vertices in its
   // mesh's order. rest_surface() has the joints at 0 in the hand frame (the dataset's gripper

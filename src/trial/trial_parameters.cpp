@@ -17,13 +17,16 @@ void require(bool ok, const std::string& name, const std::string& what) {
 void validate(const TrialParameters& p) {
   require(p.sim.dt > 0.0 && std::isfinite(p.sim.dt), "sim.dt", "a positive time step (s)");
   require(p.sim.eps_v > 0.0, "sim.eps_v", "positive (m/s)");
-  require(p.closing_speed > 0.0 && std::isfinite(p.closing_speed), "closing_speed",
+  require(p.placement_gap >= 1.0 && std::isfinite(p.placement_gap), "placement_gap",
+          "at least 1 (a multiple of d_hat)");
+  require(p.squeeze_speed > 0.0 && std::isfinite(p.squeeze_speed), "squeeze_speed",
           "positive (m/s)");
-  require(p.squeeze_speed > 0.0 && p.squeeze_speed <= p.closing_speed, "squeeze_speed",
-          "positive and at most closing_speed (m/s)");
-  require(p.stop_force > 0.0, "stop_force", "positive (N)");
+  require(p.grip_force > 0.0 && std::isfinite(p.grip_force), "grip_force", "positive (N)");
   require(p.final_opening >= 0.0, "final_opening", ">= 0 (m)");
   require(p.settle_speed > 0.0, "settle_speed", "positive (m/s)");
+  require(p.settle_angular_speed > 0.0, "settle_angular_speed", "positive (rad/s)");
+  require(p.force_tolerance > 0.0 && p.force_tolerance < 1.0, "force_tolerance",
+          "between 0 and 1 (relative to grip_force)");
   require(p.settle_steps >= 1, "settle_steps", "at least 1");
   require(p.settle_max_steps >= p.settle_steps, "settle_max_steps", "at least settle_steps");
   require(p.gravity_magnitude >= 0.0, "gravity_magnitude", ">= 0 (m/s^2)");

@@ -12,20 +12,28 @@ struct TrialParameters {
   // The solver's settings; `sim.gravity` is ignored (the protocol sets gravity per phase).
   solver::SimParameters sim;
 
-  // Closing: each jaw moves at closing_speed towards the other, and at squeeze_speed once its
-  // finger touches the object, until the contact force between its finger and the object
-  // exceeds stop_force, or until the opening reaches final_opening (a gripper closing on air
-  // stops there).
-  double closing_speed = 0.05;   // m/s per jaw
-  double squeeze_speed = 0.01;   // m/s per jaw
-  double stop_force = 50.0;      // N
+  // Placement: before the first step each finger moves along its closing path until its surface
+  // is placement_gap * d_hat from the object's (exact distances), or to the end of its path.
+  double placement_gap = 1.5;  // x d_hat
+  // Closing: each finger approaches at squeeze_speed until it touches the object or its path
+  // ends (a parallel gripper's at final_opening, a hand finger's at a joint limit); a finger
+  // that touched waits for the others; then each servos its travel so that its normal contact
+  // force with the object settles on grip_force (at most squeeze_speed either way).
+  double squeeze_speed = 0.01;   // m/s per finger
+  double grip_force = 50.0;      // N per finger
   double final_opening = 0.002;  // m
 
-  // Settling, gravity off: done once the object's centre of mass moved slower than
-  // settle_speed for settle_steps steps in a row, or after settle_max_steps steps.
-  double settle_speed = 5e-3;  // m/s
+  // Settling, gravity off, fingers still servoing: done once the object moves slower than
+  // settle_speed and turns slower than settle_angular_speed, and the finger forces are steady
+  // (each finger's, or for fingers that squeeze together their mean, within force_tolerance of
+  // grip_force; a finger held at the end of its path, or one of fingers squeezing together,
+  // changing by less than that over a step), for settle_steps steps in a row. A trial that
+  // does not get there within settle_max_steps steps of closing and settling is `unsettled`.
+  double settle_speed = 5e-3;         // m/s
+  double settle_angular_speed = 0.1;  // rad/s
+  double force_tolerance = 0.05;      // relative to grip_force
   int settle_steps = 3;
-  int settle_max_steps = 50;
+  int settle_max_steps = 200;
 
   // Gravity test: gravity_magnitude along +x, -x, +y, -y, +z, -z (world), phase_duration each.
   double gravity_magnitude = 9.8;  // m/s^2

@@ -9,6 +9,7 @@
 
 #include "solver/batch/batch.hpp"
 #include "src/scene/invariants.hpp"
+#include "src/trial/finger_servo.hpp"
 #include "src/trial/frame_recorder.hpp"
 
 #include <tbb/parallel_for.h>
@@ -25,17 +26,23 @@ const std::array<Eigen::Vector3d, 6> kGravityAxes = {
 
 enum class Phase { kClosing, kSettling, kGravity, kDone };
 
+// Placement's broad-phase reach (m), its most moves per finger, and how close to the gap a
+// finger counts as placed (a fraction of the gap).
+constexpr double kPlacementSearch = 0.02;
+constexpr int kPlacementMoves = 32;
+constexpr double kPlacementTolerance = 0.1;
+
 // One candidate's progress through the protocol.
 struct TrialState {
   std::size_t candidate = 0;
   Phase phase = Phase::kClosing;
-  std::vector<char> moving;        // per finger
-  std::vector<double> speed;       // m/s, each finger's current closing speed
-  std::vector<double> travel;      // m, each finger since the start
-  std::vector<double> max_travel;  // m, each finger's longest travel
-  std::vector<double> closing_force;
-  int settle_steps = 0;
-  int slow_steps = 0;
+  std::vector<FingerServo> fingers;
+  // Fingers that squeeze together: the servo of their mean force, its travel shared by every
+  // finger in contact.
+  FingerServo grip;
+  int steady_steps = 0;                                           // in a row
+  int squeeze_steps = 0;                                          // closing and settling
+  Eigen::Matrix3d object_rotation = Eigen::Matrix3d::Identity();  // at the last step
   int gravity_phase = 0;
   int phase_step = 0;
   Eigen::Vector3d settled_center = Eigen::Vector3d::Zero();
@@ -43,14 +50,17 @@ struct TrialState {
   FrameRecorder recorder;
   TrialOutcome outcome;
 
-  TrialState(std::size_t k, int fingers, const TrialParameters& p, int steps_per_phase)
+  TrialState(std::size_t k, const TrialParameters& p, int steps_per_phase)
       : candidate(k),
-        moving(fingers, 0),
-        speed(fingers, 0.0),
-        travel(fingers, 0.0),
-        max_travel(fingers, 0.0),
-        closing_force(fingers, 0.0),
+        grip(0.0, std::numeric_limits<double>::infinity(), p.grip_force,
+             p.force_tolerance * p.grip_force),
         recorder(p.closing_frames, p.validation_frames, steps_per_phase) {}
+
+  std::vector<double> travel() const {
+    std::vector<double> t;
+    for (const FingerServo& f : fingers) t.push_back(f.travel());
+    return t;
+  }
 };
 
 // Sum of the normal contact forces between two bodies in the environment's last step (N).
@@ -142,7 +152,7 @@ class ProtocolRunner {
     } catch (const std::out_of_range& e) {
       throw std::out_of_range("candidate " + std::to_string(k) + ": " + e.what());
     }
-    states_.emplace_back(k, fingers_, p_, steps_per_phase_);
+    states_.emplace_back(k, p_, steps_per_phase_);
     TrialState& state = states_.back();
     io::CandidateRecord& record = state.outcome.result.record;
     record.id = options_.ids.empty() ? k : options_.ids.at(k);
@@ -153,17 +163,58 @@ class ProtocolRunner {
         record.hand_poses[static_cast<std::size_t>(4 * r + c)] = pose.matrix()(r, c);
       }
     }
-    record.joints = gripper_.joints(k, state.travel);
+    record.joints = gripper_.joints(k, std::vector<double>(fingers_, 0.0));
+    record.contact_friction =
+        gripper_.model()->pair_friction(gripper_.object_body(), gripper_.finger_bodies(0).front());
     record.displacement.fill(std::numeric_limits<double>::quiet_NaN());
     for (int j = 0; j < fingers_; ++j) {
-      state.max_travel[j] = max_travel.at(static_cast<std::size_t>(j));
-      state.moving[j] = state.max_travel[j] >= p_.closing_speed * p_.sim.dt;
-      if (state.moving[j]) {
-        state.speed[j] = p_.closing_speed;
-        gripper_.move_finger(env, k, j, 0.0, p_.closing_speed);
+      const double longest = max_travel.at(static_cast<std::size_t>(j));
+      state.fingers.emplace_back(place_near_object(env, k, j, longest), longest, p_.grip_force,
+                                 p_.force_tolerance * p_.grip_force);
+    }
+    state.object_rotation = env.rotation(gripper_.object_body());
+    state.recorder.add_closing(frame(i));
+    command(i, false);
+  }
+
+  // Places finger j along its closing path placement_gap * d_hat from the object (an exact
+  // distance query), or at the end of its path if nothing lies on it, so that no step closes on
+  // air and nothing arrives with momentum; returns its travel. Conservative advancement: each
+  // move is at most the free distance, measured as the largest displacement of any vertex of
+  // the finger (a hand's finger turns, so travel and displacement differ).
+  double place_near_object(solver::Environment& env, std::size_t k, int j, double max_travel) {
+    const double gap = p_.placement_gap * p_.sim.d_hat;
+    const double search = std::max(10.0 * gap, kPlacementSearch);
+    const std::vector<int>& bodies = gripper_.finger_bodies(j);
+    const auto finger_vertices = [&] {
+      std::vector<geometry::Vertices> v;
+      for (int b : bodies) v.push_back(env.body_vertices(b));
+      return v;
+    };
+    double travel = 0.0;
+    std::vector<geometry::Vertices> at = finger_vertices();
+    for (int move = 0; move < kPlacementMoves && travel < max_travel; ++move) {
+      const double free =
+          std::min(env.surface_distance(bodies, gripper_.object_body(), search), search) - gap;
+      if (free <= kPlacementTolerance * gap) break;
+      double step = std::min(free, max_travel - travel);
+      for (int shrink = 0; shrink < kPlacementMoves; ++shrink) {
+        gripper_.place_finger(env, k, j, travel, travel + step);
+        const std::vector<geometry::Vertices> next = finger_vertices();
+        double moved = 0.0;
+        for (std::size_t b = 0; b < next.size(); ++b) {
+          moved = std::max(moved, (next[b] - at[b]).rowwise().norm().maxCoeff());
+        }
+        if (moved <= free) {
+          at = next;
+          travel += step;
+          break;
+        }
+        gripper_.place_finger(env, k, j, travel + step, travel);
+        step *= 0.9 * free / moved;
       }
     }
-    state.recorder.add_closing(frame(i));
+    return travel;
   }
 
   // Adds candidates until max_active trials run (environments are added in candidate order,
@@ -232,7 +283,7 @@ class ProtocolRunner {
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 4; ++c) f.hand_pose[4 * r + c] = pose.matrix()(r, c);
     }
-    f.joints = gripper_.joints(state.candidate, state.travel);
+    f.joints = gripper_.joints(state.candidate, state.travel());
     if (options_.body_frames) {
       f.bodies.time = env.time();
       const int bodies = static_cast<int>(env.model().bodies().size());
@@ -279,38 +330,105 @@ class ProtocolRunner {
     }
   }
 
-  void close(int i) {
+  // Every finger approaches at squeeze_speed until it touches the object or reaches the end of
+  // its path; a finger in contact holds still while any other one is out of contact (so that
+  // no finger pushes the weightless object out of the others' reach: not before they touch,
+  // and not after the object slipped off one of them); with every finger in contact or at the
+  // end of its path, each servos its own force towards grip_force.
+  void squeeze(int i) {
     solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
-    bool any_moving = false;
+    bool all_resolved = true;
+    double total = 0.0;
+    int touching = 0;
     for (int j = 0; j < fingers_; ++j) {
-      if (!state.moving[j]) continue;
-      state.travel[j] += state.speed[j] * p_.sim.dt;
-      const double force = finger_force(env, j);
-      const double speed = force > 0.0 ? p_.squeeze_speed : state.speed[j];
-      if (force > p_.stop_force || state.travel[j] + speed * p_.sim.dt > state.max_travel[j]) {
-        state.moving[j] = 0;
-        state.closing_force[j] = force;
+      FingerServo& finger = state.fingers[j];
+      finger.observe(finger_force(env, j));
+      all_resolved = all_resolved && finger.resolved();
+      if (finger.force() > 0.0) total += finger.force(), ++touching;
+    }
+    state.grip.observe(touching > 0 ? total / touching : 0.0);
+    command(i, all_resolved);
+    if (all_resolved) state.phase = Phase::kSettling;
+  }
+
+  // Each finger's motion over the next step.
+  void command(int i, bool all_resolved) {
+    solver::Environment& env = batch_.environment(i);
+    TrialState& state = states_[i];
+    const double max_step = p_.squeeze_speed * p_.sim.dt;
+    const bool together = gripper_.fingers_squeeze_together();
+    const double grip = together ? state.grip.next_increment(max_step, !all_resolved) : 0.0;
+    if (together) state.grip.advance(grip);
+    for (int j = 0; j < fingers_; ++j) {
+      FingerServo& finger = state.fingers[j];
+      const double increment = together && finger.force() > 0.0
+                                   ? finger.on_path(grip)
+                                   : finger.next_increment(max_step, !all_resolved);
+      if (increment == 0.0) {
         gripper_.hold_finger(env, j);
       } else {
-        state.speed[j] = speed;
-        gripper_.move_finger(env, state.candidate, j, state.travel[j], speed);
-        any_moving = true;
+        gripper_.move_finger(env, state.candidate, j, finger.travel(), increment / p_.sim.dt);
       }
+      finger.advance(increment);
     }
-    if (state.recorder.closing_step()) state.recorder.add_closing(frame(i));
-    if (!any_moving) state.phase = Phase::kSettling;
+  }
+
+  void close(int i) {
+    TrialState& state = states_[i];
+    squeeze(i);
+    if (++state.squeeze_steps >= p_.settle_max_steps) return unsettled(i);
+    if (state.phase == Phase::kClosing && state.recorder.closing_step()) {
+      state.recorder.add_closing(frame(i));
+    }
+  }
+
+  void unsettled(int i) {
+    TrialState& state = states_[i];
+    state.outcome.failure_reason = "not steady after " + std::to_string(state.squeeze_steps) +
+                                   " steps of closing and settling";
+    io::CandidateRecord& record = state.outcome.result.record;
+    record.closing_forces = finger_forces(state);
+    record.d1 = record.d2 = std::numeric_limits<double>::quiet_NaN();  // no settled grasp
+    // The closing frames end with the state the trial stopped in.
+    state.recorder.closing_step();
+    state.recorder.add_settled(frame(i));
+    finish(i, io::FailureKind::kUnsettled);
+  }
+
+  // Steady: the object's linear and angular speeds below settle_speed and
+  // settle_angular_speed, and every finger's force steady: within force_tolerance of grip_force
+  // for a finger still servoing, changing by less than that over the step for one held at the
+  // end of its path.
+  bool steady(int i) {
+    const solver::Environment& env = batch_.environment(i);
+    TrialState& state = states_[i];
+    const int object = gripper_.object_body();
+    const Eigen::Matrix3d rotation = env.rotation(object);
+    const double turned = Eigen::AngleAxisd(state.object_rotation.transpose() * rotation).angle();
+    state.object_rotation = rotation;
+    if (env.center_of_mass_velocity(object).norm() >= p_.settle_speed) return false;
+    if (turned / p_.sim.dt >= p_.settle_angular_speed) return false;
+    const double tolerance = p_.force_tolerance * p_.grip_force;
+    const bool together = gripper_.fingers_squeeze_together();
+    if (together && state.grip.force() > 0.0 && !state.grip.on_target()) return false;
+    for (const FingerServo& f : state.fingers) {
+      const bool steady_force = f.at_limit() || together
+                                    ? std::abs(f.force() - f.previous_force()) <= tolerance
+                                    : !f.touched() || f.on_target();
+      if (!steady_force) return false;
+    }
+    return true;
   }
 
   void settle(int i) {
     solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
-    ++state.settle_steps;
-    const double speed = env.center_of_mass_velocity(gripper_.object_body()).norm();
-    state.slow_steps = speed < p_.settle_speed ? state.slow_steps + 1 : 0;
-    const bool settled =
-        state.slow_steps >= p_.settle_steps || state.settle_steps >= p_.settle_max_steps;
-    if (!settled) {
+    ++state.squeeze_steps;
+    squeeze(i);
+    state.steady_steps = steady(i) ? state.steady_steps + 1 : 0;
+    if (state.steady_steps < p_.settle_steps) {
+      if (state.squeeze_steps >= p_.settle_max_steps) return unsettled(i);
       if (state.recorder.closing_step()) state.recorder.add_closing(frame(i));
       return;
     }
@@ -318,13 +436,21 @@ class ProtocolRunner {
     state.recorder.add_settled(frame(i));
     measure(i);
     io::CandidateRecord& record = state.outcome.result.record;
-    record.closing_forces = state.closing_force;
+    record.closing_forces = finger_forces(state);
     if (!object_touches_gripper(gripper_.object_body(), env)) {
       return finish(i, io::FailureKind::kNoContact);
     }
+    // The gravity test holds every finger where the squeeze left it.
+    for (int j = 0; j < fingers_; ++j) gripper_.hold_finger(env, j);
     state.settled_center = env.center_of_mass(gripper_.object_body());
     state.phase = Phase::kGravity;
     env.set_gravity(p_.gravity_magnitude * kGravityAxes[0]);
+  }
+
+  static std::vector<double> finger_forces(const TrialState& state) {
+    std::vector<double> forces;
+    for (const FingerServo& f : state.fingers) forces.push_back(f.force());
+    return forces;
   }
 
   void shake(int i) {
@@ -359,7 +485,7 @@ class ProtocolRunner {
     const solver::Environment& env = batch_.environment(i);
     state.outcome.failure_reason = env.failure();
     io::CandidateRecord& record = state.outcome.result.record;
-    if (state.phase != Phase::kGravity) record.closing_forces = state.closing_force;
+    if (state.phase != Phase::kGravity) record.closing_forces = finger_forces(state);
     if (!state.metrics_done) {
       record.d1 = record.d2 = std::numeric_limits<double>::quiet_NaN();
     }

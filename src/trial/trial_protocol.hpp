@@ -43,12 +43,18 @@ class TrialGripper {
   virtual int object_body() const = 0;
   virtual std::size_t candidate_count() const = 0;
   virtual int finger_count() const = 0;
+  // Whether the fingers squeeze together (one servo on their mean force, every finger in contact
+  // moving alike) rather than each on its own force (docs/trial.md says why the hand does).
+  virtual bool fingers_squeeze_together() const = 0;
   // The bodies whose normal contact force with the object is the finger's force.
   virtual const std::vector<int>& finger_bodies(int finger) const = 0;
 
   // Puts candidate k in a fresh environment (gravity off, fingers held) and returns each
   // finger's longest travel (m). Throws std::out_of_range for a candidate the gripper cannot take.
   virtual std::vector<double> place(solver::Environment& environment, std::size_t k) const = 0;
+  // Before the first step: moves the finger along its closing path from travel `from` to `to`.
+  virtual void place_finger(solver::Environment& environment, std::size_t k, int finger,
+                            double from, double to) const = 0;
   // Moves the finger over the next step from `travel` on at `speed` (m/s), or holds it.
   virtual void move_finger(solver::Environment& environment, std::size_t k, int finger,
                            double travel, double speed) const = 0;

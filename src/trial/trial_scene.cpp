@@ -88,6 +88,16 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
     scene.bodies.push_back(std::move(finger));
   }
 
+  // The fin-ray's pads set their contacts' friction themselves (GRIP: mu = 3.5 for the fin-ray
+  // gripper, whatever the object); other fingers combine sqrt(mu_object mu_finger), so that the
+  // object's own mu matters against rigid jaws and hand links (docs/trial.md, "Friction").
+  if (gripper.soft_finger) {
+    for (int j = 0; j < 2; ++j) {
+      scene.contacts.push_back(
+          {object_body(), jaws_[j].finger, gripper.soft_finger->material.friction});
+    }
+  }
+
   if (gripper.soft_finger) {
     geometry::boundary_surface(gripper.soft_finger->mesh, &surface_to_body_);
   } else {
@@ -117,6 +127,14 @@ void TrialScene::place(solver::Environment& environment, const ParallelGrasp& gr
     environment.set_script(jaws_[j].jaw, solver::Script{});
   }
   environment.set_gravity(Eigen::Vector3d::Zero());
+}
+
+void TrialScene::advance_jaw(solver::Environment& environment, const ParallelGrasp& grasp, int jaw,
+                             double distance) const {
+  const Eigen::Isometry3d motion(
+      Eigen::Translation3d(closing_velocity(grasp, kJaws[jaw], distance)));
+  environment.place(jaws_[jaw].jaw, motion);
+  if (jaws_[jaw].finger != jaws_[jaw].jaw) environment.place(jaws_[jaw].finger, motion);
 }
 
 Eigen::Vector3d TrialScene::closing_velocity(const ParallelGrasp& grasp, grippers::Jaw jaw,

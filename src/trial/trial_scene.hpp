@@ -56,6 +56,10 @@ class TrialScene {
   // (Environment::place) and holds its jaws still. Throws std::out_of_range for an opening
   // outside the gripper's range.
   void place(solver::Environment& environment, const ParallelGrasp& grasp) const;
+  // Before the first step: moves one jaw (and its finger) `distance` m further along its
+  // closing path (negative: back).
+  void advance_jaw(solver::Environment& environment, const ParallelGrasp& grasp, int jaw,
+                   double distance) const;
 
   // World velocity of a jaw closing at `speed` (m/s) along the candidate's closing axis.
   Eigen::Vector3d closing_velocity(const ParallelGrasp& grasp, grippers::Jaw jaw,

@@ -36,7 +36,7 @@ candidates = 4
 dt = 0.005
 
 [trial]
-stop_force = 40
+grip_force = 40
 
 [outputs]
 validation_frames = 12
@@ -65,7 +65,7 @@ TEST(Job, ResolvesDefaultsAndOverrides) {
   EXPECT_EQ(job.grippers[0].kind, grippers::GripperKind::kParallelJaw);
   EXPECT_EQ(job.grippers[0].candidates, 4);
   EXPECT_DOUBLE_EQ(job.trial.sim.dt, 0.005);
-  EXPECT_DOUBLE_EQ(job.trial.stop_force, 40.0);
+  EXPECT_DOUBLE_EQ(job.trial.grip_force, 40.0);
   EXPECT_EQ(job.trial.validation_frames, 12);
   EXPECT_EQ(job.trial.closing_frames, 40);  // the default, as GRIP's released files
   EXPECT_EQ(job.text, kValid);              // verbatim, for the dataset's provenance

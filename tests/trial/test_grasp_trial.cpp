@@ -44,20 +44,20 @@ TrialParameters parameters() {
   return p;
 }
 
-// For the rigid jaws: they approach at the squeeze speed too.
-TrialParameters rigid_parameters() {
-  TrialParameters p = parameters();
-  p.closing_speed = p.squeeze_speed;
-  return p;
-}
+TrialParameters rigid_parameters() { return parameters(); }
 
-// For the fin-ray gripper: its compliant fingers squeeze at 2 mm/s and close at most 7.5 mm
-// past the object per jaw (they wrap it before 50 N).
+// For the fin-ray gripper: its compliant fingers close at 2 cm/s and at most 7.5 mm past the
+// object per jaw.
 TrialParameters fin_ray_parameters(double width) {
   TrialParameters p = parameters();
   p.squeeze_speed = 0.02;
   p.final_opening = width - 0.015;
   return p;
+}
+
+// Every finger in contact holds the grip force within the protocol's tolerance.
+void expect_grip_force(const std::vector<double>& forces, const TrialParameters& p) {
+  for (double f : forces) EXPECT_NEAR(f, p.grip_force, p.force_tolerance * p.grip_force);
 }
 
 // A rigid cylinder of radius 2 cm along the approach axis (z), 3 cm long: the jaws meet it
@@ -84,8 +84,7 @@ double largest(const std::array<double, 6>& values) {
 }
 
 TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
-  // A 4 cm box; the fingers close 5 mm past it per jaw (further, the frictionless box is
-  // squeezed out of the wrapping fingers before gravity is switched on).
+  // A 4 cm box at the paper's finger friction, mu 3.5; the fingers close 5 mm past it per jaw.
   TrialObject box = rigid_cylinder(3.5);
   box.name = "box";
   box.surface = geometry::make_box(Eigen::Vector3d(0.04, 0.03, 0.03));
@@ -97,11 +96,12 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
       << io::to_string(with.result.record.failure) << " " << with.failure_reason;
   const io::CandidateRecord& h = with.result.record;
   EXPECT_LT(largest(h.displacement), p.displacement_threshold());
-  // The compliant fingers wrap the box: the jaws reach the final opening before 50 N, and the
-  // symmetric grasp squeezes equally from both sides.
+  // The coarse compliant fingers wrap the box: the jaws reach the end of their path below 50 N
+  // (the one-layer finger of the tests is far softer than the production one; docs/trial.md),
+  // and the symmetric grasp squeezes equally from both sides.
   ASSERT_EQ(h.closing_forces.size(), 2u);
   EXPECT_GT(h.closing_forces[0], 0.5);
-  EXPECT_LT(h.closing_forces[0], p.stop_force);
+  EXPECT_LT(h.closing_forces[0], p.grip_force);
   EXPECT_NEAR(h.closing_forces[0], h.closing_forces[1], 0.01 * h.closing_forces[0]);
   EXPECT_EQ(h.d1, 0.0);  // IPC never penetrates
   EXPECT_GT(h.d2, 0.0);
@@ -109,9 +109,13 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   EXPECT_GT(h.newton.steps, 30u);                // closing, settling and 6 x 5 gravity steps
   EXPECT_FALSE(with.result.stress.has_value());  // a rigid object has no stress
 
-  // mu = 0: the same squeeze, and the box slides away under the first gravity phase.
-  box.material.friction = 0.0;
-  const TrialScene scene(box, fin_ray(), p);
+  // The fin-ray's pads set their contacts' friction, whatever the object's mu.
+  EXPECT_EQ(h.contact_friction, 3.5);
+  // Frictionless pads (mu = 0): the same squeeze, and the box slides away under the first
+  // gravity phase.
+  grippers::ParallelGripper slick = fin_ray();
+  slick.soft_finger->material.friction = 0.0;
+  const TrialScene scene(box, slick, p);
   const TrialOutcome without = run_trials(scene, {centred(0.04)}).front();
   const io::CandidateRecord& r = without.result.record;
   EXPECT_EQ(r.status, io::Status::kFailure);
@@ -140,9 +144,13 @@ TEST(GraspTrial, RigidJawsHoldABallWithFrictionAndLoseItWithout) {
   EXPECT_EQ(with.failure, io::FailureKind::kNone);
   EXPECT_LT(largest(with.displacement), held.parameters().displacement_threshold());
   EXPECT_EQ(with.d1, 0.0);
+  expect_grip_force(with.closing_forces, held.parameters());
+  // Rigid jaws combine the object's and their own mu: sqrt(1 x 1).
+  EXPECT_EQ(with.contact_friction, 1.0);
 
-  // mu = 0: nothing holds the ball in the squeeze. It leaves the jaws (squeezed out while
-  // settling, or dropped or displaced by gravity): a physical failure, not a solver one.
+  // mu = 0: nothing holds the ball in the squeeze. It leaves the jaws (squeezed out, so that the
+  // squeeze never settles, or dropped or displaced by gravity): a physical failure, not a
+  // solver one.
   ball.material.friction = 0.0;
   const TrialScene scene(ball, rigid_jaws(), rigid_parameters());
   const TrialOutcome outcome = run_trials(scene, {centred(0.04)}).front();
@@ -150,11 +158,10 @@ TEST(GraspTrial, RigidJawsHoldABallWithFrictionAndLoseItWithout) {
   EXPECT_EQ(r.status, io::Status::kFailure);
   EXPECT_TRUE(r.failure == io::FailureKind::kNoContact ||
               r.failure == io::FailureKind::kLostContact ||
-              r.failure == io::FailureKind::kDisplaced)
+              r.failure == io::FailureKind::kDisplaced || r.failure == io::FailureKind::kUnsettled)
       << io::to_string(r.failure) << " " << outcome.failure_reason;
-  EXPECT_EQ(r.d1, 0.0);
-  // The ball touched both jaws hard before it went.
-  for (double f : r.closing_forces) EXPECT_GT(f, scene.parameters().stop_force);
+  EXPECT_TRUE(outcome.failure_reason.empty() || r.failure == io::FailureKind::kUnsettled)
+      << outcome.failure_reason;  // no solver failure
 }
 
 TEST(GraspTrial, ClosingOnAirFindsNoContact) {
@@ -171,7 +178,7 @@ TEST(GraspTrial, ClosingOnAirFindsNoContact) {
   const io::TrajectoryRecord& t = *outcome.result.trajectory;
   const double last_opening = t.joints[scene.parameters().closing_frames - 1];
   EXPECT_NEAR(last_opening, scene.parameters().final_opening,
-              2 * scene.parameters().closing_speed * scene.parameters().sim.dt);
+              2 * scene.parameters().squeeze_speed * scene.parameters().sim.dt);
 }
 
 TEST(GraspTrial, StartingInsideTheObjectIsAnInitialPenetration) {
@@ -215,19 +222,26 @@ TEST(GraspTrial, RecordsTheDatasetTrajectory) {
   EXPECT_EQ(t.object_poses.size(), frames * 12);
   EXPECT_EQ(t.hand_poses.size(), frames * 12);
   ASSERT_EQ(t.joints.size(), frames);
-  // The first frame is the candidate: its opening, the object at rest at the origin, the
-  // gripper's vertices where gripper.surface(opening) puts them in the world.
-  EXPECT_EQ(t.joints.front(), grasp.opening);
-  EXPECT_TRUE(std::is_sorted(t.joints.begin(), t.joints.begin() + 8, std::greater<>()));
-  // Rigid jaws stop on the force threshold, well before the final opening.
+  // The first frame is the placed candidate: each jaw moved along its closing path until its
+  // surface is placement_gap * d_hat (within a tenth of it) from the cylinder, the object at
+  // rest at the origin, the gripper's vertices where gripper.surface(opening) puts them.
+  const TrialParameters& p = scene.parameters();
+  const double gap = p.placement_gap * p.sim.d_hat;
+  const auto across = geometry::make_cylinder(0.02, 0.03, 24).vertices.col(1);  // closing axis
+  const double width = across.maxCoeff() - across.minCoeff();
+  EXPECT_GE(t.joints.front(), width + 2.0 * gap - 1e-9);
+  EXPECT_LE(t.joints.front(), width + 2.2 * gap + 1e-9);
+  // The servo may back a jaw off, but never past where placement put it.
+  for (int f = 1; f < 8; ++f) EXPECT_LE(t.joints[f], t.joints.front() + 1e-12) << "frame " << f;
+  // Rigid jaws stop on force, well before the final opening.
   const io::CandidateRecord& r = outcome.result.record;
   EXPECT_EQ(r.failure, io::FailureKind::kNone) << outcome.failure_reason;
-  for (double f : r.closing_forces) EXPECT_GT(f, scene.parameters().stop_force);
+  expect_grip_force(r.closing_forces, p);
   EXPECT_GT(t.joints[7], 0.035);
   const std::vector<double> identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   for (int k = 0; k < 12; ++k) EXPECT_NEAR(t.object_poses[k], identity[k], 1e-12);
   // The settled frame (the last closing frame): the object's per-vertex normal forces add up
-  // to at least the two fingers' stop forces in magnitude and cancel as vectors (no gravity).
+  // to the two fingers' grip forces in magnitude and cancel as vectors (no gravity).
   const std::size_t settled = 7 * n * 3;
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
   double magnitude = 0.0;
@@ -238,9 +252,9 @@ TEST(GraspTrial, RecordsTheDatasetTrajectory) {
     total += f;
     magnitude += f.norm();
   }
-  EXPECT_GT(magnitude, 2.0 * scene.parameters().stop_force);
+  EXPECT_GT(magnitude, 2.0 * (1.0 - p.force_tolerance) * p.grip_force);
   EXPECT_LT(total.norm(), 0.05 * magnitude);
-  const geometry::SurfaceMesh surface = rigid_jaws().surface(grasp.opening);
+  const geometry::SurfaceMesh surface = rigid_jaws().surface(t.joints.front());
   for (std::size_t v = 0; v < g; ++v) {
     const Eigen::Vector3d expected = grasp.pose * surface.vertices.row(v).transpose();
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.gripper_vertices[3 * v + c], expected[c], 1e-6);

@@ -146,8 +146,8 @@ int trial(const TrialArgs& args) {
                  object.tets->tets.rows());
   }
   trial::TrialParameters parameters;
-  parameters.closing_speed = args.closing_speed;
   parameters.squeeze_speed = args.squeeze_speed;
+  parameters.grip_force = args.grip_force;
 
   if (type.is_hand()) {
     const trial::HandTrialScene scene(object,

@@ -1,0 +1,64 @@
+#include "src/trial/finger_servo.hpp"
+
+#include <algorithm>
+
+namespace grip::trial {
+
+FingerServo::FingerServo(double travel, double max_travel, double target, double tolerance)
+    : start_(travel),
+      travel_(travel),
+      max_travel_(max_travel),
+      target_(target),
+      tolerance_(tolerance) {}
+
+void FingerServo::observe(double force) {
+  const bool same_side = (force < target_) == (force_ < target_) && (force > 0.0) == (force_ > 0.0);
+  same_side_ = same_side ? same_side_ + 1 : 0;
+  previous_force_ = force_;
+  force_ = force;
+  ++observations_;
+  touched_ = touched_ || force > 0.0;
+  if (!touched_) return;
+  Sample& side = force < target_ ? below_ : above_;
+  side = {travel_, force, observations_};
+  // The object moved under the finger: a bracket that no longer closes (more force further
+  // out) keeps only its newer side.
+  if (below_.known() && above_.known() && below_.travel >= above_.travel) {
+    (force < target_ ? above_ : below_) = Sample{};
+  }
+}
+
+double FingerServo::next_increment(double max_step, bool wait) const {
+  // Once the finger has touched, from a quarter of max_step: within d_hat the barrier's force
+  // goes from zero to hundreds of newtons over a few tenths of a millimetre.
+  const double step =
+      touched_ ? std::min(1.0, kTouchedStepFraction * std::ldexp(1.0, std::min(same_side_, 2))) *
+                     max_step
+               : max_step;
+  double next = travel_;
+  if (!(force_ > 0.0)) {
+    next = travel_ + step;
+  } else if (!wait && std::abs(target_ - force_) > 0.25 * tolerance_) {
+    const auto fresh = [&](const Sample& s) {
+      return s.known() && observations_ - s.observation < kBracketAge;
+    };
+    if (fresh(below_) && fresh(above_) && above_.travel - below_.travel > 1e-9) {
+      const double width = above_.travel - below_.travel;
+      const double fraction = (target_ - below_.force) / (above_.force - below_.force);
+      // Inside the bracket, off its ends (regula falsi alone can creep along one side).
+      next = below_.travel + width * std::clamp(fraction, 0.1, 0.9);
+    } else {
+      next = travel_ + (force_ < target_ ? step : -step);
+    }
+    next = std::clamp(next, travel_ - step, travel_ + step);
+  }
+  return on_path(next - travel_);
+}
+
+double FingerServo::on_path(double increment) const {
+  return std::clamp(travel_ + increment, std::min(start_, travel_), max_travel_) - travel_;
+}
+
+void FingerServo::advance(double increment) { travel_ += increment; }
+
+}  // namespace grip::trial

@@ -1,0 +1,68 @@
+#pragma once
+// One finger's squeeze: its travel along the closing path, servoed so that its normal contact
+// force with the object settles on the grip force (docs/trial.md, "Closing").
+#include <cmath>
+#include <limits>
+
+namespace grip::trial {
+
+class FingerServo {
+ public:
+  // `travel` where placement left the finger, `max_travel` where its path ends (m); the force
+  // it servos to and the tolerance it is held within (N).
+  FingerServo(double travel, double max_travel, double target, double tolerance);
+
+  // The finger's force with the object after a step (N).
+  void observe(double force);
+
+  // The travel change over the next step (m): the approach at `max_step` until the first
+  // contact (and at a quarter of it after losing contact, doubling while it stays lost); none while
+  // `wait` (another finger is not in contact) or while the force is within a quarter of the
+  // tolerance of the target (so that it settles near the target, not at the edge of the tolerance);
+  // otherwise regula falsi between the latest travels whose forces fell below and rose above the
+  // target (the barrier's force grows by orders of magnitude within d_hat, so a bracket is what
+  // keeps the servo from hunting), or a step towards the target while one side of the bracket is
+  // missing or stale: a quarter of max_step, doubled at each observation the force stays on the
+  // same side of the target (a compliant finger needs millimetres of travel), up to max_step (the
+  // object moves under the fingers, so a sample older than kBracketAge observations no longer says
+  // where the force is). Never past the end of the path, nor back past where the finger started.
+  double next_increment(double max_step, bool wait) const;
+  // `increment` cut to the finger's path (never past its end, nor back past its start).
+  double on_path(double increment) const;
+  // Commits an increment returned by next_increment or on_path.
+  void advance(double increment);
+
+  double travel() const { return travel_; }
+  double force() const { return force_; }
+  double previous_force() const { return previous_force_; }
+  bool touched() const { return touched_; }
+  bool on_target() const { return std::abs(target_ - force_) <= tolerance_; }
+  bool at_limit() const { return travel_ >= max_travel_; }
+  // In contact with the object now, or at the end of its path: nothing more to find.
+  bool resolved() const { return force_ > 0.0 || at_limit(); }
+
+ private:
+  struct Sample {
+    double travel = std::numeric_limits<double>::quiet_NaN();
+    double force = 0.0;
+    long observation = 0;
+    bool known() const { return !std::isnan(travel); }
+  };
+  static constexpr long kBracketAge = 4;
+  static constexpr double kTouchedStepFraction = 0.25;
+
+  double start_;
+  double travel_;
+  double max_travel_;
+  double target_;
+  double tolerance_;
+  double force_ = 0.0;
+  double previous_force_ = std::numeric_limits<double>::quiet_NaN();
+  Sample below_;  // the latest sample whose force was below the target
+  Sample above_;  // the latest sample whose force was above it
+  bool touched_ = false;
+  long observations_ = 0;
+  int same_side_ = 0;  // observations in a row on one side of the target (or out of contact)
+};
+
+}  // namespace grip::trial
