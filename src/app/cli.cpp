@@ -69,14 +69,12 @@ int main(int argc, char** argv) {
   CLI::App* trial = app.add_subcommand(
       "trial",
       "Grasp trials of candidates as one batch: close, settle, six-axis gravity (docs/trial.md)");
-  trial
-      ->add_option("--object", trial_args.object,
-                   "Object category name (shape drawn from --seed) or surface mesh file")
-      ->required();
-  trial->add_option("--seed", trial_args.seed, "The seed the candidates were synthesized with")
-      ->capture_default_str();
-  trial->add_option("--scale", trial_args.scale, "Multiply a mesh file's coordinates by this")
-      ->capture_default_str();
+  trial->add_option("--object", trial_args.object,
+                    "Object category or mesh file (default: the candidate file's; must agree)");
+  trial->add_option("--seed", trial_args.seed,
+                    "The seed the candidates were synthesized with (default: the file's)");
+  trial->add_option("--scale", trial_args.scale,
+                    "A mesh file's scale (default: the candidate file's; must agree)");
   trial->add_flag("--soft", trial_args.soft, "Simulate the object as FEM (tetrahedralized)");
   trial->add_option("--tet-edge", trial_args.tet_edge, "Soft object: target tet edge length (m)")
       ->capture_default_str();
@@ -90,8 +88,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   trial
       ->add_option("--gripper", trial_args.gripper,
-                   "Gripper: " + grip::grippers::gripper_name_list())
-      ->required()
+                   "Gripper: " + grip::grippers::gripper_name_list() +
+                       " (default: the candidate file's; must agree)")
       ->check(CLI::IsMember(grip::grippers::gripper_names()));
   trial->add_option("--candidates", trial_args.candidates, "Candidate file from grip synth")
       ->required();

@@ -2,6 +2,7 @@
 // The work behind each `grip` subcommand, one function per subcommand, called by cli.cpp.
 // Each returns the process exit code.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,28 +78,29 @@ struct SynthArgs {
 };
 int synth(const SynthArgs& args);
 
-// grip trial --object SPEC --gripper fin-ray|parallel-jaw --candidates FILE --index I|A-B
-// [--report FILE] [--vtk DIR] [--soft] [--compare-solo]: grasp trials of candidates as one
-// batch (src/app/commands/trial.cpp, docs/trial.md).
+// grip trial --candidates FILE [--object SPEC] [--seed S] [--scale X] [--gripper G] --index
+// I|A-B [--report FILE] [--vtk DIR] [--soft] [--compare-solo]: grasp trials of candidates as
+// one batch (src/app/commands/trial.cpp, docs/trial.md). The object and gripper come from the
+// candidate file; given on the command line they must agree with it.
 struct TrialArgs {
-  std::string object;           // an object category name (shape from --seed) or a mesh file
-  double scale = 1.0;           // multiplies a mesh file's coordinates
-  std::uint64_t seed = 0;       // the category's shape, as given to grip synth
-  bool soft = false;            // FEM object (tetrahedralized) instead of one affine body
-  double tet_edge = 0.008;      // m, target tet edge length of a soft object
-  double density = 1000.0;      // kg/m^3
-  double youngs = 1e6;          // Pa, soft objects
-  double poisson = 0.4;         // soft objects
-  double friction = 3.5;        // the object's mu; a pair's mu is sqrt(mu_object mu_finger)
-  std::string gripper;          // fin-ray or parallel-jaw
-  std::string candidates;       // candidate file (docs/synthesis.md)
-  std::string index = "0";      // one candidate "I" or a range "A-B", run as one batch
-  std::string report;           // JSON report file; stdout when empty
-  std::string vtk;              // folder for per-candidate VTK series; none when empty
-  int threads = 0;              // 0: all cores
-  double squeeze_speed = 0.01;  // m/s per finger, closing and servoing
-  double grip_force = 50.0;     // N per finger
-  bool compare_solo = false;    // also run each candidate alone: speedup and identity
+  std::optional<std::string> object;   // a category name (shape from the seed) or a mesh file
+  std::optional<double> scale;         // multiplies a mesh file's coordinates
+  std::optional<std::uint64_t> seed;   // the category's shape, as given to grip synth
+  bool soft = false;                   // FEM object (tetrahedralized) instead of one affine body
+  double tet_edge = 0.008;             // m, target tet edge length of a soft object
+  double density = 1000.0;             // kg/m^3
+  double youngs = 1e6;                 // Pa, soft objects
+  double poisson = 0.4;                // soft objects
+  double friction = 3.5;               // the object's mu; a pair's mu is sqrt(mu_object mu_finger)
+  std::optional<std::string> gripper;  // fin-ray, parallel-jaw or leap
+  std::string candidates;              // candidate file (docs/synthesis.md)
+  std::string index = "0";             // one candidate "I" or a range "A-B", run as one batch
+  std::string report;                  // JSON report file; stdout when empty
+  std::string vtk;                     // folder for per-candidate VTK series; none when empty
+  int threads = 0;                     // 0: all cores
+  double squeeze_speed = 0.01;         // m/s per finger, closing and servoing
+  double grip_force = 50.0;            // N per finger
+  bool compare_solo = false;           // also run each candidate alone: speedup and identity
 };
 int trial(const TrialArgs& args);
 

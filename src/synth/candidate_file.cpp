@@ -11,7 +11,8 @@ namespace grip::synth {
 namespace {
 
 constexpr const char* kMagic = "grip-candidates";
-constexpr int kVersion = 1;
+// Version 2 names the object (version 1 did not, so a trial could build another object).
+constexpr int kVersion = 2;
 
 std::string number(double value) {
   char text[32];
@@ -47,9 +48,10 @@ class LineReader {
       std::size_t used = 0;
       const double value = std::stod(word, &used);
       if (used != word.size()) throw std::invalid_argument(word);
+      if (!std::isfinite(value)) throw std::invalid_argument(word);
       return value;
     } catch (const std::exception&) {
-      fail(what + " '" + word + "' is not a number");
+      fail(what + " '" + word + "' is not a finite number");
     }
   }
 
@@ -59,6 +61,15 @@ class LineReader {
       fail(what + " must be a non-negative integer");
     }
     return static_cast<int>(value);
+  }
+
+  // The rest of the line, without its leading blank (a path may hold spaces).
+  std::string rest(const std::string& what) {
+    std::string text;
+    std::getline(tokens_, text);
+    if (!text.empty() && text.front() == ' ') text.erase(0, 1);
+    if (text.empty()) fail("missing " + what);
+    return text;
   }
 
   std::string word(const std::string& what) {
@@ -100,7 +111,8 @@ class LineReader {
 
 }  // namespace
 
-void write_candidates(const std::filesystem::path& file, const std::vector<Candidate>& candidates) {
+void write_candidates(const std::filesystem::path& file, const CandidateObject& object,
+                      const std::vector<Candidate>& candidates) {
   const grippers::GripperType& gripper = grippers::gripper_type(
       candidates.empty() ? grippers::GripperKind::kFinRay : candidates[0].gripper);
   const std::size_t hands = candidates.empty() ? 1 : candidates[0].hands.size();
@@ -121,6 +133,9 @@ void write_candidates(const std::filesystem::path& file, const std::vector<Candi
   if (!out) throw std::runtime_error(file.string() + ": cannot open for writing");
   out << "# grip synthesized grasp candidates (docs/synthesis.md)\n";
   out << kMagic << ' ' << kVersion << '\n';
+  out << "object seed " << object.seed << " scale " << number(object.scale) << " hash "
+      << (object.content_hash.empty() ? "-" : object.content_hash) << " spec " << object.spec
+      << '\n';
   out << "gripper " << gripper.name << '\n';
   out << "hands " << hands << '\n';
   out << "joints " << gripper.joints << '\n';
@@ -160,16 +175,38 @@ void write_candidates(const std::filesystem::path& file, const std::vector<Candi
   if (!out.flush()) throw std::runtime_error(file.string() + ": write failed");
 }
 
-std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
+CandidateFile read_candidates(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file.string() + ": cannot open the candidate file");
   LineReader reader(in, file);
   reader.next(kMagic);
   if (reader.count("format version") != kVersion) {
     reader.fail("unsupported format version (this grip reads version " + std::to_string(kVersion) +
-                ")");
+                "; version 1 files do not name their object: synthesize them again)");
   }
   reader.end();
+  CandidateFile result;
+  reader.next("object");
+  reader.expect("seed");
+  const std::string seed = reader.word("seed");
+  if (seed.empty() || seed.find_first_not_of("0123456789") != std::string::npos) {
+    reader.fail("the seed '" + seed + "' is not a non-negative integer");
+  }
+  try {
+    result.object.seed = std::stoull(seed);
+  } catch (const std::out_of_range&) {
+    reader.fail("the seed '" + seed + "' is too large");
+  }
+  reader.expect("scale");
+  result.object.scale = reader.real("scale");
+  if (!(result.object.scale > 0) || !std::isfinite(result.object.scale)) {
+    reader.fail("the scale must be positive");
+  }
+  reader.expect("hash");
+  result.object.content_hash = reader.word("hash");
+  if (result.object.content_hash == "-") result.object.content_hash.clear();
+  reader.expect("spec");
+  result.object.spec = reader.rest("object spec");
   reader.next("gripper");
   const grippers::GripperType* gripper = nullptr;
   try {
@@ -196,7 +233,8 @@ std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
   const int count = reader.count("candidate count");
   reader.end();
 
-  std::vector<Candidate> candidates(static_cast<std::size_t>(count));
+  std::vector<Candidate>& candidates = result.candidates;
+  candidates.resize(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
     Candidate& c = candidates[static_cast<std::size_t>(i)];
     c.gripper = gripper->kind;
@@ -247,7 +285,7 @@ std::vector<Candidate> read_candidates(const std::filesystem::path& file) {
     }
   }
   reader.finish();
-  return candidates;
+  return result;
 }
 
 }  // namespace grip::synth

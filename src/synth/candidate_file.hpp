@@ -2,19 +2,37 @@
 // The candidate file `grip synth` writes and the trial reads: a line-oriented text format
 // (docs/synthesis.md) that carries each hand's pose both as the dataset's row-major 3x4
 // [R | t] and as position + unit quaternion, with joints, contacts and energy terms.
+#include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "src/synth/candidate.hpp"
 
 namespace grip::synth {
 
+// The object the candidates were synthesized on, as `grip synth` was told: its spec (a
+// category name or a mesh path), seed and scale, and for a mesh file the hash of its bytes
+// (object_file_hash), so that a trial builds the same object or says why it cannot.
+struct CandidateObject {
+  std::string spec;
+  std::uint64_t seed = 0;
+  double scale = 1.0;
+  std::string content_hash;  // empty for a category
+};
+
+struct CandidateFile {
+  CandidateObject object;
+  std::vector<Candidate> candidates;
+};
+
 // Throws std::invalid_argument if the candidates mix grippers, hand counts or energy names,
 // std::runtime_error naming the file if it cannot be written. Numbers are written with 17
 // significant digits, so reading gives back the same doubles.
-void write_candidates(const std::filesystem::path& file, const std::vector<Candidate>& candidates);
+void write_candidates(const std::filesystem::path& file, const CandidateObject& object,
+                      const std::vector<Candidate>& candidates);
 
 // Throws std::runtime_error naming the file, the line and what was expected.
-std::vector<Candidate> read_candidates(const std::filesystem::path& file);
+CandidateFile read_candidates(const std::filesystem::path& file);
 
 }  // namespace grip::synth

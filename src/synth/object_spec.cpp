@@ -1,7 +1,11 @@
 #include "src/synth/object_spec.hpp"
 
+#include <cinttypes>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <stdexcept>
 
@@ -49,6 +53,19 @@ double object_tet_edge(const std::string& spec, std::uint64_t seed, double categ
   return category ? objects::tet_edge_for(objects::sample_shape(*category, seed), category_scale,
                                           requested)
                   : requested;
+}
+
+std::string object_file_hash(const std::string& spec) {
+  if (category_of(spec)) return "";
+  std::ifstream in(spec, std::ios::binary);
+  if (!in) throw std::invalid_argument("--object '" + spec + "': cannot read the mesh file");
+  std::uint64_t hash = 14695981039346656037ULL;  // FNV-1a, 64 bits
+  for (std::istreambuf_iterator<char> c(in), end; c != end; ++c) {
+    hash = (hash ^ static_cast<unsigned char>(*c)) * 1099511628211ULL;
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016" PRIx64, hash);
+  return text;
 }
 
 }  // namespace grip::synth

@@ -20,4 +20,8 @@ geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, d
 double object_tet_edge(const std::string& spec, std::uint64_t seed, double category_scale,
                        double requested);
 
+// For a mesh file, a hash of its bytes (64-bit FNV-1a, 16 hex digits), which says whether the
+// file changed since candidates were synthesized on it; empty for a category.
+std::string object_file_hash(const std::string& spec);
+
 }  // namespace grip::synth

@@ -16,6 +16,8 @@ std::filesystem::path scratch(const std::string& name) {
          ("grip_synth_" + std::to_string(::getpid()) + "_" + name);
 }
 
+const CandidateObject kObject{"mug", 12345678901234567890ULL, 1.0, ""};
+
 Candidate hand_candidate(double shift) {
   Candidate c;
   c.gripper = grippers::GripperKind::kLeap;
@@ -37,8 +39,13 @@ Candidate hand_candidate(double shift) {
 TEST(SynthCandidateFileTest, RoundTripIsExact) {
   const std::vector<Candidate> written{hand_candidate(0.0), hand_candidate(0.25)};
   const auto file = scratch("round_trip.txt");
-  write_candidates(file, written);
-  const std::vector<Candidate> read = read_candidates(file);
+  write_candidates(file, kObject, written);
+  const CandidateFile back = read_candidates(file);
+  EXPECT_EQ(back.object.spec, kObject.spec);
+  EXPECT_EQ(back.object.seed, kObject.seed);  // a 64-bit seed, exactly
+  EXPECT_EQ(back.object.scale, kObject.scale);
+  EXPECT_EQ(back.object.content_hash, "");
+  const std::vector<Candidate>& read = back.candidates;
   ASSERT_EQ(read.size(), written.size());
   for (std::size_t i = 0; i < read.size(); ++i) {
     EXPECT_EQ(read[i].gripper, written[i].gripper);
@@ -57,15 +64,21 @@ TEST(SynthCandidateFileTest, RoundTripIsExact) {
 
 TEST(SynthCandidateFileTest, EmptySetRoundTrips) {
   const auto file = scratch("empty.txt");
-  write_candidates(file, {});
-  EXPECT_TRUE(read_candidates(file).empty());
+  // A mesh path with a space, and its hash, survive the round trip.
+  const CandidateObject mesh{"my meshes/teapot.obj", 3, 0.01, "0123456789abcdef"};
+  write_candidates(file, mesh, {});
+  const CandidateFile back = read_candidates(file);
+  EXPECT_TRUE(back.candidates.empty());
+  EXPECT_EQ(back.object.spec, mesh.spec);
+  EXPECT_EQ(back.object.scale, mesh.scale);
+  EXPECT_EQ(back.object.content_hash, mesh.content_hash);
   std::filesystem::remove(file);
 }
 
 TEST(SynthCandidateFileTest, RefusesMixedSets) {
   Candidate other = hand_candidate(0.0);
   other.hands.pop_back();
-  EXPECT_THROW(write_candidates(scratch("mixed.txt"), {hand_candidate(0.0), other}),
+  EXPECT_THROW(write_candidates(scratch("mixed.txt"), kObject, {hand_candidate(0.0), other}),
                std::invalid_argument);
 }
 
@@ -80,21 +93,34 @@ std::string read_error(const std::filesystem::path& file) {
 
 TEST(SynthCandidateFileTest, ErrorsNameFileAndLine) {
   const auto file = scratch("bad.txt");
-  write_candidates(file, {hand_candidate(0.0)});
+  write_candidates(file, kObject, {hand_candidate(0.0)});
   std::ifstream in(file);
   std::string text((std::istreambuf_iterator<char>(in)), {});
   in.close();
-  // Break the joint values of the first hand (line 9: comment, 6 header lines, candidate line).
+  // Break the joint values of the first hand (line 10: comment, 7 header lines, candidate line).
   const std::size_t joints = text.find(" joints ", text.find("hand position"));
-  text.replace(joints + 8, 1, "x");
-  std::ofstream(file) << text;
+  std::string broken = text;
+  broken.replace(joints + 8, 1, "x");
+  std::ofstream(file) << broken;
   const std::string error = read_error(file);
-  EXPECT_NE(error.find(file.string() + ":9:"), std::string::npos) << error;
+  EXPECT_NE(error.find(file.string() + ":10:"), std::string::npos) << error;
   EXPECT_NE(error.find("joint value"), std::string::npos) << error;
-
-  std::ofstream(file) << "grip-candidates 1\ngripper claw\n";
-  EXPECT_NE(read_error(file).find(":2: unknown gripper 'claw'"), std::string::npos)
+  // A non-finite pose is refused on its line.
+  const std::size_t position = text.find("hand position ") + 14;
+  broken = text;
+  broken.replace(position, text.find(' ', position) - position, "nan");
+  std::ofstream(file) << broken;
+  EXPECT_NE(read_error(file).find(":10: position 'nan' is not a finite number"), std::string::npos)
       << read_error(file);
+
+  std::ofstream(file) << "grip-candidates 2\nobject seed 1 scale 1 hash - spec box\ngripper claw\n";
+  EXPECT_NE(read_error(file).find(":3: unknown gripper 'claw'"), std::string::npos)
+      << read_error(file);
+  // Version 1 named no object: refused, with what to do.
+  std::ofstream(file) << "grip-candidates 1\ngripper leap\n";
+  EXPECT_NE(read_error(file).find(":1: unsupported format version"), std::string::npos)
+      << read_error(file);
+  EXPECT_NE(read_error(file).find("synthesize them again"), std::string::npos);
   EXPECT_NE(read_error(scratch("missing.txt")).find("cannot open"), std::string::npos);
   std::filesystem::remove(file);
 }

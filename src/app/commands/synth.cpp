@@ -37,7 +37,9 @@ int synth(const SynthArgs& args) {
   params.hand.steps = args.steps;
   const synth::SynthesisResult result =
       synth::synthesize(object, gripper, args.bimanual, params, args.seed, args.count);
-  synth::write_candidates(args.out, result.candidates);
+  const synth::CandidateObject source{args.object, args.seed, args.scale,
+                                      synth::object_file_hash(args.object)};
+  synth::write_candidates(args.out, source, result.candidates);
 
   for (const auto& [reason, n] : result.rejections) {
     spdlog::info("rejected {}: {}", n, reason);

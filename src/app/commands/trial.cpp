@@ -91,8 +91,8 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
     }
   }
   trial::TrialReport report;
-  report.object = args.object;
-  report.gripper = args.gripper;
+  report.object = *args.object;
+  report.gripper = *args.gripper;
   report.soft = args.soft;
   report.threads = solver::Batch(args.threads).threads();
   report.wall_seconds = seconds;
@@ -109,12 +109,51 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
   return identical ? 0 : 1;
 }
 
+// The object and gripper the candidate file names, checked against what the command line says
+// (a trial on another object than the candidates' would start every grasp inside it).
+TrialArgs with_file_object(const TrialArgs& given, const synth::CandidateFile& file) {
+  const synth::CandidateObject& o = file.object;
+  TrialArgs args = given;
+  const auto mismatch = [&](const std::string& option, const std::string& file_value,
+                            const std::string& given_value) {
+    throw std::invalid_argument(given.candidates + ": the candidates were synthesized with " +
+                                option + " " + file_value + ", not " + given_value + "; leave " +
+                                option + " out or synthesize again");
+  };
+  if (args.object && *args.object != o.spec) mismatch("--object", o.spec, *args.object);
+  if (args.seed && *args.seed != o.seed) {
+    mismatch("--seed", std::to_string(o.seed), std::to_string(*args.seed));
+  }
+  if (args.scale && *args.scale != o.scale) {
+    mismatch("--scale", std::to_string(o.scale), std::to_string(*args.scale));
+  }
+  args.object = o.spec;
+  args.seed = o.seed;
+  args.scale = o.scale;
+  if (synth::object_file_hash(o.spec) != o.content_hash) {
+    throw std::invalid_argument(given.candidates + ": the mesh file '" + o.spec +
+                                "' changed since the candidates were synthesized on it; "
+                                "synthesize again");
+  }
+  const std::string file_gripper =
+      file.candidates.empty()
+          ? ""
+          : std::string(grippers::gripper_type(file.candidates[0].gripper).name);
+  if (args.gripper && !file_gripper.empty() && *args.gripper != file_gripper) {
+    mismatch("--gripper", file_gripper, *args.gripper);
+  }
+  if (!args.gripper) args.gripper = file_gripper;
+  return args;
+}
+
 }  // namespace
 
-int trial(const TrialArgs& args) {
-  const grippers::GripperType& type = grippers::gripper_type(args.gripper);
-  const std::vector<synth::Candidate> candidates = synth::read_candidates(args.candidates);
-  if (candidates.empty()) throw std::invalid_argument(args.candidates + ": no candidates");
+int trial(const TrialArgs& given) {
+  const synth::CandidateFile file = synth::read_candidates(given.candidates);
+  const std::vector<synth::Candidate>& candidates = file.candidates;
+  if (candidates.empty()) throw std::invalid_argument(given.candidates + ": no candidates");
+  const TrialArgs args = with_file_object(given, file);
+  const grippers::GripperType& type = grippers::gripper_type(*args.gripper);
   const std::vector<std::size_t> indices = parse_indices(args.index, candidates.size());
   std::vector<std::uint64_t> ids;
   for (std::size_t i : indices) {
@@ -125,22 +164,22 @@ int trial(const TrialArgs& args) {
                                   " is for '" +
                                   std::string(grippers::gripper_type(c.gripper).name) + "' with " +
                                   std::to_string(c.hands.size()) + " hand(s), not one '" +
-                                  args.gripper + "'; synthesize with the same --gripper");
+                                  *args.gripper + "'; synthesize with the same --gripper");
     }
     ids.push_back(i);
   }
 
   trial::TrialObject object;
-  object.name = args.object;
-  object.surface = synth::load_object(args.object, args.seed, args.scale);
+  object.name = *args.object;
+  object.surface = synth::load_object(*args.object, *args.seed, *args.scale);
   object.material = {args.density, args.youngs, args.poisson, args.friction};
   if (args.soft) {
     geometry::TetOptions options;
-    options.edge_length = synth::object_tet_edge(args.object, args.seed, 1.0, args.tet_edge);
+    options.edge_length = synth::object_tet_edge(*args.object, *args.seed, 1.0, args.tet_edge);
     if (options.edge_length < args.tet_edge) {
       spdlog::info("tet edge {:.4f} m: half the object's thinnest part", options.edge_length);
     }
-    object.tets = geometry::tetrahedralize(object.surface, options, args.object);
+    object.tets = geometry::tetrahedralize(object.surface, options, *args.object);
     object.surface = geometry::boundary_surface(*object.tets);
     spdlog::info("soft object: {} vertices, {} tets", object.tets->vertices.rows(),
                  object.tets->tets.rows());
