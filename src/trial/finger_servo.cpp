@@ -14,6 +14,13 @@ FingerServo::FingerServo(double travel, double max_travel, double target, double
 void FingerServo::observe(double force) {
   const bool same_side = (force < target_) == (force_ < target_) && (force > 0.0) == (force_ > 0.0);
   same_side_ = same_side ? same_side_ + 1 : 0;
+  // The secant of two samples in contact and apart in travel: the finger's stiffness as the
+  // servo sees it (a non-positive one, the object moving under the finger, is not kept).
+  const double moved = travel_ - travel_at_force_;
+  if (force > 0.0 && force_ > 0.0 && std::abs(moved) > 1e-9 && (force - force_) / moved > 0.0) {
+    stiffness_ = (force - force_) / moved;
+  }
+  travel_at_force_ = travel_;
   previous_force_ = force_;
   force_ = force;
   ++observations_;
@@ -47,10 +54,15 @@ double FingerServo::next_increment(double max_step, bool wait) const {
       const double fraction = (target_ - below_.force) / (above_.force - below_.force);
       // Inside the bracket, off its ends (regula falsi alone can creep along one side).
       next = below_.travel + width * std::clamp(fraction, 0.1, 0.9);
+      next = std::clamp(next, travel_ - step, travel_ + step);
+    } else if (stiffness_ > 0.0) {
+      // Half the secant step: a compliant finger (the fin-ray bends by centimetres before it
+      // pushes with 50 N) moves faster than squeeze_speed, a rigid contact far slower.
+      const double reach = kFastSteps * max_step;
+      next = travel_ + std::clamp(0.5 * (target_ - force_) / stiffness_, -reach, reach);
     } else {
       next = travel_ + (force_ < target_ ? step : -step);
     }
-    next = std::clamp(next, travel_ - step, travel_ + step);
   }
   return on_path(next - travel_);
 }

@@ -16,16 +16,18 @@ class FingerServo {
   void observe(double force);
 
   // The travel change over the next step (m): the approach at `max_step` until the first
-  // contact (and at a quarter of it after losing contact, doubling while it stays lost); none while
-  // `wait` (another finger is not in contact) or while the force is within a quarter of the
-  // tolerance of the target (so that it settles near the target, not at the edge of the tolerance);
-  // otherwise regula falsi between the latest travels whose forces fell below and rose above the
-  // target (the barrier's force grows by orders of magnitude within d_hat, so a bracket is what
-  // keeps the servo from hunting), or a step towards the target while one side of the bracket is
-  // missing or stale: a quarter of max_step, doubled at each observation the force stays on the
-  // same side of the target (a compliant finger needs millimetres of travel), up to max_step (the
-  // object moves under the fingers, so a sample older than kBracketAge observations no longer says
-  // where the force is). Never past the end of the path, nor back past where the finger started.
+  // contact (and at a quarter of it after losing contact, doubling while it stays lost); none
+  // while `wait` (another finger is not in contact) or while the force is within a quarter of
+  // the tolerance of the target (so that it settles near the target, not at the edge of the
+  // tolerance); otherwise regula falsi between the latest travels whose forces fell below and
+  // rose above the target (the barrier's force grows by orders of magnitude within d_hat, so a
+  // bracket is what keeps the servo from hunting), or, while one side of the bracket is missing
+  // or stale (the object moves under the fingers, so a sample older than kBracketAge
+  // observations no longer says where the force is): half the secant step on the last two
+  // samples in contact, at most kFastSteps x max_step (a compliant finger needs centimetres of
+  // travel), or without a secant a quarter of max_step, doubled at each observation the force
+  // stays on one side of the target, up to max_step. Never past the end of the path, nor back
+  // past where the finger started.
   double next_increment(double max_step, bool wait) const;
   // `increment` cut to the finger's path (never past its end, nor back past its start).
   double on_path(double increment) const;
@@ -50,6 +52,7 @@ class FingerServo {
   };
   static constexpr long kBracketAge = 4;
   static constexpr double kTouchedStepFraction = 0.25;
+  static constexpr double kFastSteps = 4.0;  // a secant step's limit, in max_step
 
   double start_;
   double travel_;
@@ -62,6 +65,8 @@ class FingerServo {
   Sample above_;  // the latest sample whose force was above it
   bool touched_ = false;
   long observations_ = 0;
+  double travel_at_force_ = 0.0;  // the travel force_ was measured at
+  double stiffness_ = 0.0;        // N/m, the last positive secant; 0: none yet
   int same_side_ = 0;  // observations in a row on one side of the target (or out of contact)
 };
 
