@@ -91,7 +91,7 @@ struct TrialArgs {
   double density = 1000.0;             // kg/m^3
   double youngs = 1e6;                 // Pa, soft objects
   double poisson = 0.4;                // soft objects
-  double friction = 3.5;               // the object's mu; a pair's mu is sqrt(mu_object mu_finger)
+  double friction = 3.5;               // the object's mu (a fin-ray pad's pairs use the pad's 3.5)
   std::optional<std::string> gripper;  // fin-ray, parallel-jaw or leap
   std::string candidates;              // candidate file (docs/synthesis.md)
   std::string index = "0";             // one candidate "I" or a range "A-B", run as one batch

@@ -135,11 +135,9 @@ TrialArgs with_file_object(const TrialArgs& given, const synth::CandidateFile& f
                                 "' changed since the candidates were synthesized on it; "
                                 "synthesize again");
   }
-  const std::string file_gripper =
-      file.candidates.empty()
-          ? ""
-          : std::string(grippers::gripper_type(file.candidates[0].gripper).name);
-  if (args.gripper && !file_gripper.empty() && *args.gripper != file_gripper) {
+  // Called with at least one candidate: their gripper is the file's.
+  const std::string file_gripper(grippers::gripper_type(file.candidates.front().gripper).name);
+  if (args.gripper && *args.gripper != file_gripper) {
     mismatch("--gripper", file_gripper, *args.gripper);
   }
   if (!args.gripper) args.gripper = file_gripper;
