@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 
@@ -43,6 +44,47 @@ void Environment::place(int index, const Eigen::Isometry3d& motion) {
 
 void Environment::set_script(int body, const Script& script) {
   state_.scripts.at(static_cast<std::size_t>(body)) = script;
+}
+
+void Environment::hold(int index) {
+  const BodyModel& body = model_->bodies().at(static_cast<std::size_t>(index));
+  if (body.type == BodyType::kKinematic) {
+    throw std::invalid_argument("Environment::hold: body '" + body.name + "' is kinematic");
+  }
+  std::vector<int> dofs;
+  if (body.type == BodyType::kAffine) {
+    for (int d = 0; d < body.dof_count; ++d) dofs.push_back(body.dof_offset + d);
+  } else {
+    const Eigen::Vector3d center = center_of_mass(index);
+    const auto vertex = [&](int v) { return state_.q.segment<3>(body.dof_offset + 3 * v); };
+    const FemTet* nearest = nullptr;
+    double nearest_sq = std::numeric_limits<double>::infinity();
+    for (const FemTet& tet : body.tets) {
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (int v : tet.vertices) centroid += 0.25 * vertex(v);
+      if ((centroid - center).squaredNorm() < nearest_sq) {
+        nearest_sq = (centroid - center).squaredNorm();
+        nearest = &tet;
+      }
+    }
+    for (int v : nearest->vertices) {
+      for (int k = 0; k < 3; ++k) dofs.push_back(body.dof_offset + 3 * v + k);
+    }
+  }
+  if (state_.held.empty()) state_.held.assign(static_cast<std::size_t>(model_->dof_count()), 0);
+  for (int d : dofs) {
+    state_.held[static_cast<std::size_t>(d)] = 1;
+    state_.v[d] = 0.0;
+  }
+}
+
+void Environment::release(int index) {
+  const BodyModel& body = model_->bodies().at(static_cast<std::size_t>(index));
+  if (state_.held.empty()) return;
+  std::fill_n(state_.held.begin() + body.dof_offset, body.dof_count, 0);
+  if (std::none_of(state_.held.begin(), state_.held.end(), [](char h) { return h != 0; })) {
+    state_.held.clear();
+  }
 }
 
 void Environment::use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, int min_dofs) {

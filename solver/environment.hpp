@@ -54,6 +54,12 @@ class Environment {
   // Between steps, the caller may redirect gravity and change kinematic scripts.
   void set_gravity(const Eigen::Vector3d& gravity) { state_.gravity = gravity; }
   void set_script(int body, const Script& script);
+  // Between steps: holds a dynamic body still where it is, as a fixture would, until release()
+  // (a trial's object while the fingers close on it): an affine body whole, an FEM body by the
+  // four vertices of its tet nearest its centre of mass, so that it still deforms around them.
+  // The held DOFs' velocities are zeroed. Throws std::invalid_argument for a kinematic body.
+  void hold(int body);
+  void release(int body);
 
   // Newton systems of at least `min_dofs` rows (all DOFs, prescribed ones included) are solved
   // by `solver` instead of the environment's own sparse Cholesky; a failure of `solver` fails

@@ -16,6 +16,7 @@ struct State {
   std::vector<Eigen::Vector3d> kinematic_velocity;  // per body, over the last step
   std::vector<Script> scripts;                      // per body
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
+  std::vector<char> held;  // per DOF: held still by a fixture (Environment::hold); empty: none
   double kappa = 0.0;
   double time = 0.0;
 };

@@ -4,6 +4,7 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <span>
@@ -25,6 +26,8 @@ namespace {
 
 // How many seeds and candidates per (object, gripper) a gripper runs by default, for rigid and
 // for soft objects: at least 384 parallel-jaw trials and 48 each of fin-ray and hand trials.
+// One candidate per soft object: a soft cup or bowl (walls of 4-8 mm, tets of half that) costs
+// minutes per trial, and a soft batch's trials share one object, so more of them say little new.
 struct GripperDefaults {
   std::string_view name;
   int rigid_seeds, rigid_candidates;
@@ -32,9 +35,9 @@ struct GripperDefaults {
 };
 
 constexpr GripperDefaults kDefaults[] = {
-    {"parallel-jaw", 4, 8, 1, 2},
-    {"fin-ray", 1, 2, 1, 2},
-    {"leap", 1, 2, 1, 2},
+    {"parallel-jaw", 4, 8, 1, 1},
+    {"fin-ray", 1, 3, 1, 1},
+    {"leap", 1, 3, 1, 1},
 };
 
 const GripperDefaults& defaults_of(const std::string& name) {
@@ -93,11 +96,10 @@ const grippers::HandModel& coarse_hand() {
 std::vector<trial::TrialOutcome> run_batch(const RobustnessSet& set,
                                            const trial::TrialObject& object,
                                            const std::vector<synth::Candidate>& candidates,
-                                           int threads) {
+                                           const trial::TrialParameters& parameters, int threads) {
   trial::TrialRunOptions options;
   options.threads = threads;
   options.trajectory = false;
-  trial::TrialParameters parameters;
   if (set.gripper == "leap") {
     std::vector<trial::HandTrialGrasp> grasps;
     for (const synth::Candidate& c : candidates) {
@@ -124,6 +126,7 @@ std::string describe(const RobustnessSet& set, std::uint64_t seed) {
 // The seed walk of one gripper and category, batch by batch, into the result.
 struct CategoryRun {
   RobustnessResult& result;
+  const trial::TrialParameters& parameters;
   tbb::task_arena arena;
 
   // Candidates for the seed's shape, `count` asked, as `grip synth` makes them.
@@ -147,7 +150,7 @@ struct CategoryRun {
     try {
       trial::TrialObject object;
       arena.execute([&] { object = make_object(set, seed); });
-      outcomes = run_batch(set, object, candidates, result.threads);
+      outcomes = run_batch(set, object, candidates, parameters, result.threads);
     } catch (const std::exception& e) {
       // An object that cannot be meshed or a candidate the gripper cannot take: reported, and
       // the other batches still run.
@@ -160,9 +163,14 @@ struct CategoryRun {
     std::map<io::FailureKind, int> counts;
     for (std::size_t k = 0; k < outcomes.size(); ++k) {
       const io::CandidateRecord& record = outcomes[k].result.record;
+      double largest = std::numeric_limits<double>::quiet_NaN();
+      for (const double d : record.displacement) {
+        if (!std::isnan(d)) largest = std::isnan(largest) ? d : std::max(largest, d);
+      }
       result.trials.push_back({set.gripper, set.category, seed, set.soft, k, record.status,
                                record.failure, outcomes[k].failure_reason, record.newton,
-                               outcomes[k].steps_by_newton_iterations});
+                               outcomes[k].steps_by_newton_iterations, record.closing_forces,
+                               outcomes[k].closed, outcomes[k].settle_displacement, largest});
       ++counts[record.failure];
     }
     std::string summary;
@@ -279,7 +287,7 @@ RobustnessResult run_robustness(const RobustnessOptions& options) {
   result.sets = plan_robustness(options);
   result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   const auto start = std::chrono::steady_clock::now();
-  CategoryRun run{result, tbb::task_arena(result.threads)};
+  CategoryRun run{result, options.parameters, tbb::task_arena(result.threads)};
   // The rigid and soft sets of one gripper and category walk the seeds together, so that a
   // seed's candidates serve both.
   for (std::size_t i = 0; i < result.sets.size();) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/candidate_record.hpp"
+#include "src/trial/trial_parameters.hpp"
 
 namespace grip::bench {
 
@@ -18,6 +19,7 @@ struct RobustnessOptions {
   int candidates = 0;                   // per (object, gripper); 0: each gripper's default
   bool rigid = true;                    // run rigid objects (one affine body)
   bool soft = true;                     // run soft objects (FEM, as `grip trial --soft`)
+  trial::TrialParameters parameters;    // the protocol and the solver's settings
   int threads = 0;                      // 0: all cores
   std::filesystem::path out = "out/robustness";
 };
@@ -64,6 +66,10 @@ struct RobustnessTrial {
   std::string failure_reason;  // the solver's message when it failed
   io::NewtonStatistics newton;
   std::vector<long> steps_by_iterations;  // [n]: steps with n Newton iterations, failed one too
+  std::vector<double> closing_forces;     // N per finger, at the end of closing
+  bool closed = false;                    // closing ended (trial::TrialOutcome::closed)
+  double settle_displacement = 0.0;       // m; NaN if it did not settle
+  double largest_displacement = 0.0;      // m, over the gravity phases run; NaN if none ran
 };
 
 struct RobustnessResult {

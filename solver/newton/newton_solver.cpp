@@ -109,6 +109,9 @@ void NewtonSolver::eliminate_prescribed(const State& state, NewtonStep& step,
                                         System& system) const {
   const int n = model_.dof_count();
   const std::vector<char>& prescribed = model_.prescribed();
+  // Held DOFs (Environment::hold) are prescribed to stay where they are.
+  const std::vector<char>& held = state.held;
+  const auto fixed = [&](int i) { return prescribed[i] || (!held.empty() && held[i]); };
   // The prescribed DOFs' motion still to come.
   Eigen::VectorXd lift = Eigen::VectorXd::Zero(n);
   if (system.moving) {
@@ -124,11 +127,11 @@ void NewtonSolver::eliminate_prescribed(const State& state, NewtonStep& step,
       system.rhs[r] -= e.value() * lift[c];
       if (r != c) system.rhs[c] -= e.value() * lift[r];
     }
-    if (!prescribed[r] && !prescribed[c]) step.free_triplets.push_back(e);
+    if (!fixed(r) && !fixed(c)) step.free_triplets.push_back(e);
   }
   system.residual = 0.0;
   for (int i = 0; i < n; ++i) {
-    if (prescribed[i]) {
+    if (fixed(i)) {
       step.free_triplets.emplace_back(i, i, 1.0);
       system.rhs[i] = lift[i];
     } else {

@@ -285,6 +285,30 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_robustness->callback(
       [&] { run = [&] { return grip::commands::bench_robustness(bench_robustness_args); }; });
+  grip::commands::BenchLabelsArgs bench_labels_args;
+  CLI::App* bench_labels = bench->add_subcommand(
+      "labels", "Trial verdicts at the defaults against a refined reference (dt/2, ...)");
+  bench_labels
+      ->add_option("--arms", bench_labels_args.arms,
+                   "Gripper and object model, e.g. fin-ray:soft,leap:rigid (default: "
+                   "parallel-jaw:rigid,fin-ray:rigid,fin-ray:soft,leap:rigid)")
+      ->delimiter(',');
+  bench_labels
+      ->add_option("--categories", bench_labels_args.categories,
+                   "Object categories (default: box,cylinder,capsule,bottle)")
+      ->delimiter(',');
+  bench_labels->add_option("--seeds", bench_labels_args.seeds, "Shapes per category")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  bench_labels->add_option("--candidates", bench_labels_args.candidates, "Candidates per shape")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  bench_labels->add_option("--threads", bench_labels_args.threads, "Threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  bench_labels->add_option("--out", bench_labels_args.out, "Folder for labels.md and labels.csv")
+      ->capture_default_str();
+  bench_labels->callback(
+      [&] { run = [&] { return grip::commands::bench_labels(bench_labels_args); }; });
   grip::commands::BenchLinearArgs bench_linear_args;
   CLI::App* bench_linear = bench->add_subcommand(
       "linear",

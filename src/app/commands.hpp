@@ -186,4 +186,14 @@ struct BenchRobustnessArgs {
 };
 int bench_robustness(const BenchRobustnessArgs& args);
 
+struct BenchLabelsArgs {
+  std::vector<std::string> arms;        // "gripper:rigid|soft"; empty: the benchmark's four
+  std::vector<std::string> categories;  // empty: box, cylinder, capsule, bottle
+  int seeds = 2;                        // shapes per category
+  int candidates = 4;                   // per shape
+  int threads = 0;                      // 0: all cores
+  std::string out = "out/labels";
+};
+int bench_labels(const BenchLabelsArgs& args);
+
 }  // namespace grip::commands

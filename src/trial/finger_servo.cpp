@@ -35,7 +35,26 @@ void FingerServo::observe(double force) {
   }
 }
 
-double FingerServo::next_increment(double max_step, bool wait) const {
+void FingerServo::hold_as_spring(double stiffness) {
+  spring_stiffness_ = stiffness;
+  spring_rest_ = travel_ + force_ / stiffness;
+}
+
+double FingerServo::spring_increment(double max_step) const {
+  const double spring = spring_stiffness_ * (spring_rest_ - travel_);
+  double next = spring_rest_;  // out of contact: the spring relaxes
+  if (force_ > 0.0) {
+    // Half a Newton step on force - spring = 0, the contact's stiffness taken from the last
+    // secant; without one, a quarter of max_step towards balance.
+    const double excess = force_ - spring;
+    next = stiffness_ > 0.0 ? travel_ - 0.5 * excess / (stiffness_ + spring_stiffness_)
+                            : travel_ - std::copysign(kTouchedStepFraction * max_step, excess);
+  }
+  return on_path(std::clamp(next - travel_, -max_step, max_step));
+}
+
+double FingerServo::next_increment(double max_step) const {
+  if (spring_stiffness_ > 0.0) return spring_increment(max_step);
   // Once the finger has touched, from a quarter of max_step: within d_hat the barrier's force
   // goes from zero to hundreds of newtons over a few tenths of a millimetre.
   const double step =
@@ -45,7 +64,7 @@ double FingerServo::next_increment(double max_step, bool wait) const {
   double next = travel_;
   if (!(force_ > 0.0)) {
     next = travel_ + step;
-  } else if (!wait && std::abs(target_ - force_) > 0.25 * tolerance_) {
+  } else if (std::abs(target_ - force_) > 0.25 * tolerance_) {
     const auto fresh = [&](const Sample& s) {
       return s.known() && observations_ - s.observation < kBracketAge;
     };

@@ -17,7 +17,7 @@ class FingerServo {
 
   // The travel change over the next step (m): the approach at `max_step` until the first
   // contact (and at a quarter of it after losing contact, doubling while it stays lost); none
-  // while `wait` (another finger is not in contact) or while the force is within a quarter of
+  // while the force is within a quarter of
   // the tolerance of the target (so that it settles near the target, not at the edge of the
   // tolerance); otherwise regula falsi between the latest travels whose forces fell below and
   // rose above the target (the barrier's force grows by orders of magnitude within d_hat, so a
@@ -28,7 +28,12 @@ class FingerServo {
   // travel), or without a secant a quarter of max_step, doubled at each observation the force
   // stays on one side of the target, up to max_step. Never past the end of the path, nor back
   // past where the finger started.
-  double next_increment(double max_step, bool wait) const;
+  double next_increment(double max_step) const;
+  // After closing: from now on the finger acts as a spring of `stiffness` (N/m) preloaded with
+  // its force now, standing for its drive's compliance. next_increment then moves it (at most
+  // max_step a step) so that its contact force matches the spring's.
+  void hold_as_spring(double stiffness);
+
   // `increment` cut to the finger's path (never past its end, nor back past its start).
   double on_path(double increment) const;
   // Commits an increment returned by next_increment or on_path.
@@ -54,6 +59,9 @@ class FingerServo {
   static constexpr double kTouchedStepFraction = 0.25;
   static constexpr double kFastSteps = 4.0;  // a secant step's limit, in max_step
 
+  // The increment of a finger held as a spring.
+  double spring_increment(double max_step) const;
+
   double start_;
   double travel_;
   double max_travel_;
@@ -68,6 +76,8 @@ class FingerServo {
   double travel_at_force_ = 0.0;  // the travel force_ was measured at
   double stiffness_ = 0.0;        // N/m, the last positive secant; 0: none yet
   int same_side_ = 0;  // observations in a row on one side of the target (or out of contact)
+  double spring_stiffness_ = 0.0;  // N/m; 0: still closing
+  double spring_rest_ = 0.0;       // the travel at which the spring's force is zero
 };
 
 }  // namespace grip::trial

@@ -22,7 +22,6 @@ class ParallelTrialGripper final : public TrialGripper {
   int object_body() const override { return scene_.object_body(); }
   std::size_t candidate_count() const override { return grasps_.size(); }
   int finger_count() const override { return 2; }
-  bool fingers_squeeze_together() const override { return false; }
   const std::vector<int>& finger_bodies(int finger) const override {
     return finger_bodies_[finger];
   }

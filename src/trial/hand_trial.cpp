@@ -36,7 +36,6 @@ class HandTrialGripper final : public TrialGripper {
   int object_body() const override { return scene_.object_body(); }
   std::size_t candidate_count() const override { return grasps_.size(); }
   int finger_count() const override { return static_cast<int>(scene_.fingers().size()); }
-  bool fingers_squeeze_together() const override { return true; }
   const std::vector<int>& finger_bodies(int finger) const override {
     return scene_.fingers()[static_cast<std::size_t>(finger)].bodies;
   }

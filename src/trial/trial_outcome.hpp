@@ -2,6 +2,7 @@
 // What one grasp trial produced: the dataset's result for the candidate (record, trajectory,
 // the soft object's stress at the settled grasp), the solver's reason when it failed, and,
 // when asked for, every body's vertices and stress at each recorded frame (for VTK files).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,12 @@ struct TrialOutcome {
   std::vector<BodyFrame> body_frames;  // closing then validation frames, when asked for
   // [n]: steps that took n Newton iterations (solver::EnvironmentStatistics); not in the dataset.
   std::vector<long> steps_by_newton_iterations;
+  // Closing ended with every finger within force_tolerance of grip_force or at the end of its
+  // path (TrialParameters), and the object was released.
+  bool closed = false;
+  // How far the object's centre of mass moved from the candidate's start to the settled grasp
+  // (m); NaN for a trial that did not settle.
+  double settle_displacement = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace grip::trial

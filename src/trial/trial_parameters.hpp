@@ -15,19 +15,21 @@ struct TrialParameters {
   // Placement: before the first step each finger moves along its closing path until its surface
   // is placement_gap * d_hat from the object's (exact distances), or to the end of its path.
   double placement_gap = 1.5;  // x d_hat
-  // Closing: each finger approaches at squeeze_speed until it touches the object or its path
-  // ends (a parallel gripper's at final_opening, a hand finger's at a joint limit); a finger
-  // that touched waits for the others; then each servos its travel so that its normal contact
-  // force with the object settles on grip_force (at most squeeze_speed either way).
-  double squeeze_speed = 0.01;   // m/s per finger
-  double grip_force = 50.0;      // N per finger
-  double final_opening = 0.002;  // m
+  // Closing, on the object held where the candidate found it: each finger approaches at
+  // squeeze_speed until it touches the object or its path ends (a parallel gripper's at
+  // final_opening, a hand finger's at a joint limit), then servos its travel so that its normal
+  // contact force with the object settles on grip_force (at most squeeze_speed either way).
+  // Closing ends when every finger is within force_tolerance of grip_force or at the end of
+  // its path: the object is released, and from then on each finger acts as a spring of
+  // finger_stiffness preloaded with its force, standing for its drive's compliance.
+  double squeeze_speed = 0.01;    // m/s per finger
+  double grip_force = 50.0;       // N per finger
+  double final_opening = 0.002;   // m
+  double finger_stiffness = 2e4;  // N/m: 50 N over 2.5 mm
 
-  // Settling, gravity off, fingers still servoing: done once the object moves slower than
-  // settle_speed and turns slower than settle_angular_speed, and the finger forces are steady
-  // (each finger's, or for fingers that squeeze together their mean, within force_tolerance of
-  // grip_force; a finger held at the end of its path, or one of fingers squeezing together,
-  // changing by less than that over a step), for settle_steps steps in a row. A trial that
+  // Settling, gravity off, fingers held by their springs: done once the object moves slower than
+  // settle_speed and turns slower than settle_angular_speed, and no finger's force changes by more
+  // than force_tolerance * grip_force over a step, for settle_steps steps in a row. A trial that
   // does not get there within settle_max_steps steps of closing and settling is `unsettled`.
   double settle_speed = 5e-3;         // m/s
   double settle_angular_speed = 0.1;  // rad/s

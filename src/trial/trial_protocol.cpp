@@ -37,24 +37,19 @@ struct TrialState {
   std::size_t candidate = 0;
   Phase phase = Phase::kClosing;
   std::vector<FingerServo> fingers;
-  // Fingers that squeeze together: the servo of their mean force, its travel shared by every
-  // finger in contact.
-  FingerServo grip;
   int steady_steps = 0;                                           // in a row
   int squeeze_steps = 0;                                          // closing and settling
   Eigen::Matrix3d object_rotation = Eigen::Matrix3d::Identity();  // at the last step
   int gravity_phase = 0;
   int phase_step = 0;
+  Eigen::Vector3d start_center = Eigen::Vector3d::Zero();  // the object's, at the candidate's start
   Eigen::Vector3d settled_center = Eigen::Vector3d::Zero();
   bool metrics_done = false;
   FrameRecorder recorder;
   TrialOutcome outcome;
 
   TrialState(std::size_t k, const TrialParameters& p, int steps_per_phase)
-      : candidate(k),
-        grip(0.0, std::numeric_limits<double>::infinity(), p.grip_force,
-             p.force_tolerance * p.grip_force),
-        recorder(p.closing_frames, p.validation_frames, steps_per_phase) {}
+      : candidate(k), recorder(p.closing_frames, p.validation_frames, steps_per_phase) {}
 
   std::vector<double> travel() const {
     std::vector<double> t;
@@ -172,9 +167,14 @@ class ProtocolRunner {
       state.fingers.emplace_back(place_near_object(env, k, j, longest), longest, p_.grip_force,
                                  p_.force_tolerance * p_.grip_force);
     }
-    state.object_rotation = env.rotation(gripper_.object_body());
+    const int object = gripper_.object_body();
+    state.object_rotation = env.rotation(object);
+    state.start_center = env.center_of_mass(object);
+    // Held where the candidate found it while the fingers close, as a table would hold it: a
+    // free, weightless object would be pushed away by the first finger to touch it.
+    env.hold(object);
     state.recorder.add_closing(frame(i));
-    command(i, false);
+    command(i);
   }
 
   // Places finger j along its closing path placement_gap * d_hat from the object (an exact
@@ -330,41 +330,45 @@ class ProtocolRunner {
     }
   }
 
-  // Every finger approaches at squeeze_speed until it touches the object or reaches the end of
-  // its path; a finger in contact holds still while any other one is out of contact (so that
-  // no finger pushes the weightless object out of the others' reach: not before they touch,
-  // and not after the object slipped off one of them); with every finger in contact or at the
-  // end of its path, each servos its own force towards grip_force.
-  void squeeze(int i) {
+  // Closing, on the held object: every finger approaches at squeeze_speed until it touches the
+  // object or reaches the end of its path, then servos its travel so that its force settles on
+  // grip_force. Once every finger is on target or at the end of its path, closing ends: the
+  // object is released, and each finger from then on acts as a spring preloaded with its force
+  // (the paper's "halted", with the drive's compliance: a finger held rigidly would lose its
+  // whole force to a creep of a few hundredths of a millimetre, so stiff is the barrier).
+  void close(int i) {
     solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
-    bool all_resolved = true;
-    double total = 0.0;
-    int touching = 0;
+    bool closed = true;
     for (int j = 0; j < fingers_; ++j) {
       FingerServo& finger = state.fingers[j];
       finger.observe(finger_force(env, j));
-      all_resolved = all_resolved && finger.resolved();
-      if (finger.force() > 0.0) total += finger.force(), ++touching;
+      closed = closed && (finger.at_limit() || finger.on_target());
     }
-    state.grip.observe(touching > 0 ? total / touching : 0.0);
-    command(i, all_resolved);
-    if (all_resolved) state.phase = Phase::kSettling;
+    ++state.squeeze_steps;
+    if (!closed) {
+      if (state.squeeze_steps >= p_.settle_max_steps) return unsettled(i);
+      command(i);
+      if (state.recorder.closing_step()) state.recorder.add_closing(frame(i));
+      return;
+    }
+    state.outcome.result.record.closing_forces = finger_forces(state);
+    state.outcome.closed = true;
+    for (FingerServo& finger : state.fingers) finger.hold_as_spring(p_.finger_stiffness);
+    env.release(gripper_.object_body());
+    state.phase = Phase::kSettling;
+    command(i);
+    if (state.recorder.closing_step()) state.recorder.add_closing(frame(i));
   }
 
-  // Each finger's motion over the next step.
-  void command(int i, bool all_resolved) {
+  // Each finger's motion over the next step: its servo's while closing, its spring's after.
+  void command(int i) {
     solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
     const double max_step = p_.squeeze_speed * p_.sim.dt;
-    const bool together = gripper_.fingers_squeeze_together();
-    const double grip = together ? state.grip.next_increment(max_step, !all_resolved) : 0.0;
-    if (together) state.grip.advance(grip);
     for (int j = 0; j < fingers_; ++j) {
       FingerServo& finger = state.fingers[j];
-      const double increment = together && finger.force() > 0.0
-                                   ? finger.on_path(grip)
-                                   : finger.next_increment(max_step, !all_resolved);
+      const double increment = finger.next_increment(max_step);
       if (increment == 0.0) {
         gripper_.hold_finger(env, j);
       } else {
@@ -374,21 +378,12 @@ class ProtocolRunner {
     }
   }
 
-  void close(int i) {
-    TrialState& state = states_[i];
-    squeeze(i);
-    if (++state.squeeze_steps >= p_.settle_max_steps) return unsettled(i);
-    if (state.phase == Phase::kClosing && state.recorder.closing_step()) {
-      state.recorder.add_closing(frame(i));
-    }
-  }
-
   void unsettled(int i) {
     TrialState& state = states_[i];
     state.outcome.failure_reason = "not steady after " + std::to_string(state.squeeze_steps) +
                                    " steps of closing and settling";
     io::CandidateRecord& record = state.outcome.result.record;
-    record.closing_forces = finger_forces(state);
+    if (state.phase == Phase::kClosing) record.closing_forces = finger_forces(state);
     record.d1 = record.d2 = std::numeric_limits<double>::quiet_NaN();  // no settled grasp
     // The closing frames end with the state the trial stopped in.
     state.recorder.closing_step();
@@ -397,9 +392,8 @@ class ProtocolRunner {
   }
 
   // Steady: the object's linear and angular speeds below settle_speed and
-  // settle_angular_speed, and every finger's force steady: within force_tolerance of grip_force
-  // for a finger still servoing, changing by less than that over the step for one held at the
-  // end of its path.
+  // settle_angular_speed, and no finger's force changing by more than force_tolerance *
+  // grip_force over the step.
   bool steady(int i) {
     const solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
@@ -410,22 +404,24 @@ class ProtocolRunner {
     if (env.center_of_mass_velocity(object).norm() >= p_.settle_speed) return false;
     if (turned / p_.sim.dt >= p_.settle_angular_speed) return false;
     const double tolerance = p_.force_tolerance * p_.grip_force;
-    const bool together = gripper_.fingers_squeeze_together();
-    if (together && state.grip.force() > 0.0 && !state.grip.on_target()) return false;
-    for (const FingerServo& f : state.fingers) {
-      const bool steady_force = f.at_limit() || together
-                                    ? std::abs(f.force() - f.previous_force()) <= tolerance
-                                    : !f.touched() || f.on_target();
-      if (!steady_force) return false;
-    }
-    return true;
+    return std::all_of(state.fingers.begin(), state.fingers.end(), [&](const FingerServo& f) {
+      return std::abs(f.force() - f.previous_force()) <= tolerance;
+    });
   }
 
+  // Settling, fingers on their springs and the object free (gravity still off): until the grasp is
+  // steady for settle_steps steps in a row. An object that touches no finger any more was not
+  // grasped.
   void settle(int i) {
     solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
     ++state.squeeze_steps;
-    squeeze(i);
+    for (int j = 0; j < fingers_; ++j) state.fingers[j].observe(finger_force(env, j));
+    if (!object_touches_gripper(gripper_.object_body(), env)) {
+      measure(i);
+      return finish(i, io::FailureKind::kNoContact);
+    }
+    command(i);
     state.steady_steps = steady(i) ? state.steady_steps + 1 : 0;
     if (state.steady_steps < p_.settle_steps) {
       if (state.squeeze_steps >= p_.settle_max_steps) return unsettled(i);
@@ -435,14 +431,8 @@ class ProtocolRunner {
     state.recorder.closing_step();
     state.recorder.add_settled(frame(i));
     measure(i);
-    io::CandidateRecord& record = state.outcome.result.record;
-    record.closing_forces = finger_forces(state);
-    if (!object_touches_gripper(gripper_.object_body(), env)) {
-      return finish(i, io::FailureKind::kNoContact);
-    }
-    // The gravity test holds every finger where the squeeze left it.
-    for (int j = 0; j < fingers_; ++j) gripper_.hold_finger(env, j);
     state.settled_center = env.center_of_mass(gripper_.object_body());
+    state.outcome.settle_displacement = (state.settled_center - state.start_center).norm();
     state.phase = Phase::kGravity;
     env.set_gravity(p_.gravity_magnitude * kGravityAxes[0]);
   }
@@ -457,6 +447,8 @@ class ProtocolRunner {
     solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
     ++state.phase_step;
+    for (int j = 0; j < fingers_; ++j) state.fingers[j].observe(finger_force(env, j));
+    command(i);
     if (state.recorder.validation_due(state.phase_step)) state.recorder.add_validation(frame(i));
     if (state.phase_step < steps_per_phase_) return;
     io::CandidateRecord& record = state.outcome.result.record;
@@ -485,7 +477,7 @@ class ProtocolRunner {
     const solver::Environment& env = batch_.environment(i);
     state.outcome.failure_reason = env.failure();
     io::CandidateRecord& record = state.outcome.result.record;
-    if (state.phase != Phase::kGravity) record.closing_forces = finger_forces(state);
+    if (state.phase == Phase::kClosing) record.closing_forces = finger_forces(state);
     if (!state.metrics_done) {
       record.d1 = record.d2 = std::numeric_limits<double>::quiet_NaN();
     }

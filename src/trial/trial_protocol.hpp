@@ -43,9 +43,6 @@ class TrialGripper {
   virtual int object_body() const = 0;
   virtual std::size_t candidate_count() const = 0;
   virtual int finger_count() const = 0;
-  // Whether the fingers squeeze together (one servo on their mean force, every finger in contact
-  // moving alike) rather than each on its own force (docs/trial.md says why the hand does).
-  virtual bool fingers_squeeze_together() const = 0;
   // The bodies whose normal contact force with the object is the finger's force.
   virtual const std::vector<int>& finger_bodies(int finger) const = 0;
 

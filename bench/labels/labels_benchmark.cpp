@@ -1,0 +1,82 @@
+#include "bench/labels/labels_benchmark.hpp"
+
+#include <spdlog/spdlog.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <stdexcept>
+
+namespace grip::bench {
+
+trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults) {
+  trial::TrialParameters p = defaults;
+  p.sim.dt = defaults.sim.dt / 2;
+  p.sim.newton_tol = defaults.sim.newton_tol / 10;
+  p.sim.friction_lag_iterations = 2;
+  p.settle_steps = 2 * defaults.settle_steps;
+  p.settle_max_steps = 2 * defaults.settle_max_steps;
+  p.displacement_factor = 2 * defaults.displacement_factor;
+  return p;
+}
+
+namespace {
+
+RobustnessOptions arm_options(const LabelsOptions& options, const LabelsArm& arm,
+                              const trial::TrialParameters& parameters) {
+  RobustnessOptions o;
+  o.grippers = {arm.gripper};
+  o.categories = options.categories.empty() ? kLabelsCategories : options.categories;
+  o.seeds = options.seeds;
+  o.candidates = options.candidates;
+  o.rigid = !arm.soft;
+  o.soft = arm.soft;
+  o.parameters = parameters;
+  o.threads = options.threads;
+  return o;
+}
+
+std::vector<LabelsArm> arms_of(const LabelsOptions& options) {
+  if (!options.arms.empty()) return options.arms;
+  return {{"parallel-jaw", false}, {"fin-ray", false}, {"fin-ray", true}, {"leap", false}};
+}
+
+}  // namespace
+
+void check_labels_options(const LabelsOptions& options) {
+  if (options.seeds < 1 || options.candidates < 1) {
+    throw std::invalid_argument("grip bench labels: --seeds and --candidates must be at least 1");
+  }
+  for (const LabelsArm& arm : arms_of(options)) {
+    try {
+      plan_robustness(arm_options(options, arm, {}));
+    } catch (const std::invalid_argument& e) {
+      std::string what = e.what();
+      const std::string prefix = "grip bench robustness: ";
+      if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+      throw std::invalid_argument("grip bench labels: " + what);
+    }
+  }
+}
+
+LabelsResult run_labels(const LabelsOptions& options) {
+  check_labels_options(options);
+  LabelsResult result;
+  result.reference = reference_parameters(result.defaults);
+  result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  const auto start = std::chrono::steady_clock::now();
+  for (const LabelsArm& arm : arms_of(options)) {
+    LabelsArmResult run{arm, {}, {}};
+    spdlog::info("labels: {} x {} objects at the defaults", arm.gripper,
+                 arm.soft ? "soft" : "rigid");
+    run.defaults = run_robustness(arm_options(options, arm, result.defaults));
+    spdlog::info("labels: {} x {} objects at the reference", arm.gripper,
+                 arm.soft ? "soft" : "rigid");
+    run.reference = run_robustness(arm_options(options, arm, result.reference));
+    result.arms.push_back(std::move(run));
+  }
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace grip::bench

@@ -1,0 +1,64 @@
+#pragma once
+// `grip bench labels`: whether the trial protocol's verdicts are physics or numerics. The same
+// synthesized candidates run at the defaults and at a refined reference (half the step, a
+// Newton tolerance ten times tighter, two friction lag iterations), for rigid jaws on rigid
+// objects, the fin-ray gripper on rigid and on soft objects and the LEAP hand on rigid objects;
+// the verdicts must agree, and every finger in contact at the end of closing must hold the grip
+// force.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bench/robustness/robustness_benchmark.hpp"
+#include "src/trial/trial_parameters.hpp"
+
+namespace grip::bench {
+
+// A gripper and an object model: one column of the benchmark.
+struct LabelsArm {
+  std::string gripper;  // registry name
+  bool soft = false;
+};
+
+struct LabelsOptions {
+  // Empty: parallel-jaw x rigid, fin-ray x rigid, fin-ray x soft, leap x rigid.
+  std::vector<LabelsArm> arms;
+  std::vector<std::string> categories;  // empty: kLabelsCategories
+  int seeds = 2;                        // shapes per category
+  int candidates = 4;                   // per shape
+  int threads = 0;                      // 0: all cores
+  std::filesystem::path out = "out/labels";
+};
+
+// The default categories: four that every gripper finds candidates on.
+inline const std::vector<std::string> kLabelsCategories = {"box", "cylinder", "capsule", "bottle"};
+
+// The reference settings for `defaults`: dt / 2, newton_tol / 10, two friction lag iterations.
+// What the protocol measures in seconds and metres stays the same: its steps are counted at
+// the reference's dt (settle_steps and settle_max_steps doubled), and the verdict's
+// displacement threshold stays the same length (displacement_factor doubled): a verdict is
+// "moved less than 1 mm", not a multiple of the step.
+trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults);
+
+// One arm's trials, run at the defaults and at the reference, in the same order.
+struct LabelsArmResult {
+  LabelsArm arm;
+  RobustnessResult defaults;
+  RobustnessResult reference;
+};
+
+struct LabelsResult {
+  std::vector<LabelsArmResult> arms;
+  trial::TrialParameters defaults;
+  trial::TrialParameters reference;
+  int threads = 0;
+  double wall_seconds = 0.0;
+};
+
+// Throws std::invalid_argument for an unknown gripper or category, or seeds or candidates
+// below 1.
+void check_labels_options(const LabelsOptions& options);
+
+LabelsResult run_labels(const LabelsOptions& options);
+
+}  // namespace grip::bench

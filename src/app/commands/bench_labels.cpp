@@ -1,0 +1,55 @@
+// grip bench labels: trial verdicts at the defaults against a refined reference
+// (bench/labels/labels_benchmark.hpp, docs/results.md).
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <iostream>
+#include <stdexcept>
+
+#include "bench/labels/labels_benchmark.hpp"
+#include "bench/labels/labels_report.hpp"
+#include "src/app/commands.hpp"
+
+namespace grip::commands {
+
+namespace {
+
+// "fin-ray:soft" -> {"fin-ray", true}.
+bench::LabelsArm parse_arm(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  const std::string model = colon == std::string::npos ? "" : text.substr(colon + 1);
+  if (model != "rigid" && model != "soft") {
+    throw std::invalid_argument("grip bench labels: --arms '" + text +
+                                "': write gripper:rigid or gripper:soft");
+  }
+  return {text.substr(0, colon), model == "soft"};
+}
+
+}  // namespace
+
+int bench_labels(const BenchLabelsArgs& args) {
+  bench::LabelsOptions options;
+  options.categories = args.categories;
+  options.seeds = args.seeds;
+  options.candidates = args.candidates;
+  options.threads = args.threads;
+  options.out = args.out;
+  try {
+    for (const std::string& arm : args.arms) options.arms.push_back(parse_arm(arm));
+    bench::check_labels_options(options);
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  const bench::LabelsResult result = bench::run_labels(options);
+  const std::vector<bench::LabelsArmTally> tallies = bench::labels_tallies(result);
+  std::cout << "\n";
+  bench::write_labels_table(std::cout, tallies);
+  bench::write_labels_files(options.out, result, tallies);
+  std::printf("tables: %s/labels.md, candidates: %s/labels.csv\n", args.out.c_str(),
+              args.out.c_str());
+  bench::write_labels_json_line(std::cout, result, tallies);
+  return 0;
+}
+
+}  // namespace grip::commands
