@@ -166,16 +166,16 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
   }
   std::ofstream csv(out / "labels.csv");
   csv << "arm,category,seed,candidate,verdict,verdict_reference,closed,closing_forces_n,"
-         "settle_displacement_mm,largest_displacement_mm,largest_displacement_reference_mm\n";
+         "settle_displacement_mm,slip_mm,center_displacement_mm,slip_reference_mm\n";
   for (const LabelsArmResult& arm : result.arms) {
     for (const LabelsPair& pair : pair_trials(arm)) {
       const RobustnessTrial& t = *pair.defaults;
       csv << arm_name(arm.arm) << ',' << t.category << ',' << t.seed << ',' << t.candidate << ','
           << verdict(t) << ',' << (pair.reference ? verdict(*pair.reference) : "-") << ','
           << (t.closed ? 1 : 0) << ',' << forces_text(t.closing_forces) << ','
-          << fixed(t.settle_displacement * 1e3, 4) << ',' << fixed(t.largest_displacement * 1e3, 4)
-          << ',' << (pair.reference ? fixed(pair.reference->largest_displacement * 1e3, 4) : "-")
-          << '\n';
+          << fixed(t.settle_displacement * 1e3, 4) << ',' << fixed(t.largest_slip * 1e3, 4) << ','
+          << fixed(t.largest_center_displacement * 1e3, 4) << ','
+          << (pair.reference ? fixed(pair.reference->largest_slip * 1e3, 4) : "-") << '\n';
     }
   }
 }

@@ -163,14 +163,18 @@ struct CategoryRun {
     std::map<io::FailureKind, int> counts;
     for (std::size_t k = 0; k < outcomes.size(); ++k) {
       const io::CandidateRecord& record = outcomes[k].result.record;
-      double largest = std::numeric_limits<double>::quiet_NaN();
-      for (const double d : record.displacement) {
-        if (!std::isnan(d)) largest = std::isnan(largest) ? d : std::max(largest, d);
-      }
-      result.trials.push_back({set.gripper, set.category, seed, set.soft, k, record.status,
-                               record.failure, outcomes[k].failure_reason, record.newton,
-                               outcomes[k].steps_by_newton_iterations, record.closing_forces,
-                               outcomes[k].closed, outcomes[k].settle_displacement, largest});
+      const auto largest = [](const auto& values) {
+        double most = std::numeric_limits<double>::quiet_NaN();
+        for (const double d : values) {
+          if (!std::isnan(d)) most = std::isnan(most) ? d : std::max(most, d);
+        }
+        return most;
+      };
+      result.trials.push_back(
+          {set.gripper, set.category, seed, set.soft, k, record.status, record.failure,
+           outcomes[k].failure_reason, record.newton, outcomes[k].steps_by_newton_iterations,
+           record.closing_forces, outcomes[k].closed, outcomes[k].settle_displacement,
+           largest(record.displacement), largest(outcomes[k].center_displacement)});
       ++counts[record.failure];
     }
     std::string summary;

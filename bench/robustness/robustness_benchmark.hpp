@@ -69,7 +69,8 @@ struct RobustnessTrial {
   std::vector<double> closing_forces;     // N per finger, at the end of closing
   bool closed = false;                    // closing ended (trial::TrialOutcome::closed)
   double settle_displacement = 0.0;       // m; NaN if it did not settle
-  double largest_displacement = 0.0;      // m, over the gravity phases run; NaN if none ran
+  double largest_slip = 0.0;  // m, the verdict's, over the gravity phases run; NaN if none
+  double largest_center_displacement = 0.0;  // m, the centre of mass's (sag and slip); NaN if none
 };
 
 struct RobustnessResult {

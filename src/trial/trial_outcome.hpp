@@ -2,6 +2,7 @@
 // What one grasp trial produced: the dataset's result for the candidate (record, trajectory,
 // the soft object's stress at the settled grasp), the solver's reason when it failed, and,
 // when asked for, every body's vertices and stress at each recorded frame (for VTK files).
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@ struct BodyFrame {
 };
 
 struct TrialOutcome {
+  static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   io::CandidateResult result;
   std::string failure_reason;          // the solver's message for kNewtonLimit / kNumerical
   std::vector<BodyFrame> body_frames;  // closing then validation frames, when asked for
@@ -32,6 +34,9 @@ struct TrialOutcome {
   // How far the object's centre of mass moved from the candidate's start to the settled grasp
   // (m); NaN for a trial that did not settle.
   double settle_displacement = std::numeric_limits<double>::quiet_NaN();
+  // The object's centre-of-mass displacement from the settled grasp after each gravity phase (m),
+  // sag and slip together (the record's `displacement` is the slip alone); NaN for phases not run.
+  std::array<double, 6> center_displacement = {nan, nan, nan, nan, nan, nan};
 };
 
 }  // namespace grip::trial

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -44,6 +45,11 @@ struct TrialState {
   int phase_step = 0;
   Eigen::Vector3d start_center = Eigen::Vector3d::Zero();  // the object's, at the candidate's start
   Eigen::Vector3d settled_center = Eigen::Vector3d::Zero();
+  // The gripper's contact patch at the settled grasp: collision vertices that bear a contact
+  // force, their positions and their weights (the force's magnitude).
+  std::vector<int> patch;
+  std::vector<Eigen::Vector3d> patch_start;
+  std::vector<double> patch_weight;
   bool metrics_done = false;
   FrameRecorder recorder;
   TrialOutcome outcome;
@@ -433,8 +439,45 @@ class ProtocolRunner {
     measure(i);
     state.settled_center = env.center_of_mass(gripper_.object_body());
     state.outcome.settle_displacement = (state.settled_center - state.start_center).norm();
+    record_patch(i);
     state.phase = Phase::kGravity;
     env.set_gravity(p_.gravity_magnitude * kGravityAxes[0]);
+  }
+
+  // The gripper's side of the settled grasp's contacts, against which slip is measured.
+  void record_patch(int i) {
+    const solver::Environment& env = batch_.environment(i);
+    TrialState& state = states_[i];
+    const solver::VertexContactForces forces = env.vertex_contact_forces();
+    const solver::Vertices x = env.collision_positions();
+    const std::vector<int>& body = env.model().collision().vertex_body;
+    for (int v = 0; v < x.rows(); ++v) {
+      const double force = forces.normal.row(v).norm();
+      if (body[v] == gripper_.object_body() || !(force > 0.0)) continue;
+      state.patch.push_back(v);
+      state.patch_start.push_back(x.row(v).transpose());
+      state.patch_weight.push_back(force);
+    }
+  }
+
+  // How far the object slipped over the gripper since the settled grasp: its centre of mass's
+  // displacement less the force-weighted mean displacement of the contact patch, so that the
+  // fingers' own motion (a soft finger's sag, a finger's spring) is not counted as slip.
+  // Without a patch (no gripper vertex bore a force), the centre of mass's displacement.
+  double slip(int i) const {
+    const solver::Environment& env = batch_.environment(i);
+    const TrialState& state = states_[i];
+    const Eigen::Vector3d moved = env.center_of_mass(gripper_.object_body()) - state.settled_center;
+    if (state.patch.empty()) return moved.norm();
+    const solver::Vertices x = env.collision_positions();
+    Eigen::Vector3d patch_moved = Eigen::Vector3d::Zero();
+    double weight = 0.0;
+    for (std::size_t k = 0; k < state.patch.size(); ++k) {
+      patch_moved +=
+          state.patch_weight[k] * (x.row(state.patch[k]).transpose() - state.patch_start[k]);
+      weight += state.patch_weight[k];
+    }
+    return (moved - patch_moved / weight).norm();
   }
 
   static std::vector<double> finger_forces(const TrialState& state) {
@@ -452,7 +495,8 @@ class ProtocolRunner {
     if (state.recorder.validation_due(state.phase_step)) state.recorder.add_validation(frame(i));
     if (state.phase_step < steps_per_phase_) return;
     io::CandidateRecord& record = state.outcome.result.record;
-    record.displacement[state.gravity_phase] =
+    record.displacement[state.gravity_phase] = slip(i);
+    state.outcome.center_displacement[state.gravity_phase] =
         (env.center_of_mass(gripper_.object_body()) - state.settled_center).norm();
     state.phase_step = 0;
     if (++state.gravity_phase < 6) {

@@ -1,14 +1,17 @@
 // Known outcomes of the grasp trial (GRIP, Sec. III-D) on a coarse fin-ray gripper and on
-// rigid jaws: a centred antipodal grasp of a box holds and slides away without friction, a
-// ball held with friction is lost without it, a grasp closing on air fails, a squeezed soft
-// box is stressed under the fingers, IPC leaves D1 = 0 and D2 within d_hat, and a batch
-// matches solo runs for any thread count.
+// rigid jaws: a centred fin-ray grasp of a box stops on force and holds, its slip measured
+// apart from the fingers' sag, and is squeezed out without friction; a ball held with friction
+// is lost without it; a trial not steady in time is unsettled; a grasp closing on air fails; a
+// squeezed soft box is stressed under the fingers; IPC leaves D1 = 0 and D2 within d_hat; and
+// a batch matches solo runs for any thread count.
 #include "src/trial/grasp_trial.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
+#include <string>
 
 #include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/primitives.hpp"
@@ -84,25 +87,30 @@ double largest(const std::array<double, 6>& values) {
 }
 
 TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
-  // A 4 cm box at the paper's finger friction, mu 3.5; the fingers close 5 mm past it per jaw.
+  // A 4 cm box at the paper's finger friction, mu 3.5; the fingers may close 15 mm past it per
+  // jaw. The one-layer test finger is far softer than the production one (it pushes with about
+  // 17 N 15 mm past the box; docs/trial.md), so it squeezes to 10 N.
   TrialObject box = rigid_cylinder(3.5);
   box.name = "box";
   box.surface = geometry::make_box(Eigen::Vector3d(0.04, 0.03, 0.03));
   TrialParameters p = fin_ray_parameters(0.04);
-  p.final_opening = 0.03;
+  p.final_opening = 0.01;
+  p.grip_force = 10.0;
   const TrialScene held(box, fin_ray(), p);
   const TrialOutcome with = run_trials(held, {centred(0.04)}).front();
   EXPECT_EQ(with.result.record.failure, io::FailureKind::kNone)
       << io::to_string(with.result.record.failure) << " " << with.failure_reason;
   const io::CandidateRecord& h = with.result.record;
   EXPECT_LT(largest(h.displacement), p.displacement_threshold());
-  // The coarse compliant fingers wrap the box: the jaws reach the end of their path below 50 N
-  // (the one-layer finger of the tests is far softer than the production one; docs/trial.md),
-  // and the symmetric grasp squeezes equally from both sides.
+  // The compliant fingers wrap the box and stop on force, each at 50 N within 5 %, before the
+  // end of their path: the last closing frame's opening is wider than final_opening.
   ASSERT_EQ(h.closing_forces.size(), 2u);
-  EXPECT_GT(h.closing_forces[0], 0.5);
-  EXPECT_LT(h.closing_forces[0], p.grip_force);
-  EXPECT_NEAR(h.closing_forces[0], h.closing_forces[1], 0.01 * h.closing_forces[0]);
+  expect_grip_force(h.closing_forces, p);
+  const io::TrajectoryRecord& t = *with.result.trajectory;
+  EXPECT_GT(t.joints[static_cast<std::size_t>(p.closing_frames - 1)], p.final_opening + 0.002);
+  // The verdict measures slip, not the fingers' sag: under gravity across the fingers the box
+  // sinks with them by more than it slips.
+  EXPECT_GT(largest(with.center_displacement), largest(h.displacement));
   EXPECT_EQ(h.d1, 0.0);  // IPC never penetrates
   EXPECT_GT(h.d2, 0.0);
   EXPECT_LT(h.d2, p.sim.d_hat);                  // held within the barrier's reach
@@ -111,28 +119,20 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
 
   // The fin-ray's pads set their contacts' friction, whatever the object's mu.
   EXPECT_EQ(h.contact_friction, 3.5);
-  // Frictionless pads (mu = 0): the same squeeze, and the box slides away under the first
-  // gravity phase.
+  // Frictionless pads (mu = 0): the same squeeze, but the wrapping fingers' converging normals
+  // squeeze the released box out along the approach axis before any gravity phase.
   grippers::ParallelGripper slick = fin_ray();
   slick.soft_finger->material.friction = 0.0;
   const TrialScene scene(box, slick, p);
   const TrialOutcome without = run_trials(scene, {centred(0.04)}).front();
   const io::CandidateRecord& r = without.result.record;
-  EXPECT_EQ(r.status, io::Status::kFailure);
-  EXPECT_TRUE(r.failure == io::FailureKind::kDisplaced ||
-              r.failure == io::FailureKind::kLostContact)
+  EXPECT_EQ(r.failure, io::FailureKind::kNoContact)
       << io::to_string(r.failure) << " " << without.failure_reason;
-  EXPECT_GT(r.displacement[0], 10.0 * p.displacement_threshold());
-  // The box leaves fast enough that a later step may exceed Newton's iteration limit; the
-  // verdict stays the displacement already measured.
-  if (!without.failure_reason.empty()) {
-    EXPECT_EQ(r.failure, io::FailureKind::kDisplaced);
-  }
+  EXPECT_TRUE(without.closed);
   EXPECT_EQ(r.d1, 0.0);
-  // Both grasps squeezed alike before gravity: friction plays no part while closing.
+  // Both grasps squeezed to the grip force before gravity.
   ASSERT_EQ(r.closing_forces.size(), 2u);
-  EXPECT_NEAR(r.closing_forces[0], with.result.record.closing_forces[0],
-              0.05 * with.result.record.closing_forces[0]);
+  expect_grip_force(r.closing_forces, p);
 }
 
 TEST(GraspTrial, RigidJawsHoldABallWithFrictionAndLoseItWithout) {
@@ -162,6 +162,26 @@ TEST(GraspTrial, RigidJawsHoldABallWithFrictionAndLoseItWithout) {
       << io::to_string(r.failure) << " " << outcome.failure_reason;
   EXPECT_TRUE(outcome.failure_reason.empty() || r.failure == io::FailureKind::kUnsettled)
       << outcome.failure_reason;  // no solver failure
+}
+
+TEST(GraspTrial, ATrialThatIsNotSteadyInTimeIsUnsettled) {
+  // Rigid jaws on the rigid cylinder, with too few steps allowed to close and settle: no gravity
+  // test on a grasp that has not come to rest, and no D1/D2 of it.
+  TrialParameters p = rigid_parameters();
+  p.settle_max_steps = 4;
+  const TrialScene scene(rigid_cylinder(1.0), rigid_jaws(), p);
+  const TrialOutcome outcome = run_trials(scene, {centred(0.04)}).front();
+  const io::CandidateRecord& r = outcome.result.record;
+  EXPECT_EQ(r.failure, io::FailureKind::kUnsettled);
+  EXPECT_NE(outcome.failure_reason.find("not steady after 4 steps"), std::string::npos)
+      << outcome.failure_reason;
+  EXPECT_TRUE(std::isnan(r.d1));
+  EXPECT_TRUE(std::isnan(r.displacement[0]));
+  EXPECT_EQ(r.newton.steps, 4u);
+  // The same trial with the default allowance settles and is held.
+  const TrialScene patient(rigid_cylinder(1.0), rigid_jaws(), rigid_parameters());
+  EXPECT_EQ(run_trials(patient, {centred(0.04)}).front().result.record.failure,
+            io::FailureKind::kNone);
 }
 
 TEST(GraspTrial, ClosingOnAirFindsNoContact) {
