@@ -1,6 +1,8 @@
 // The result benchmarks as a user runs them from a fresh build: `grip bench hard` writes its
 // table, CSV and plot and exits 0 when every case holds; an unknown case, a bimanual accuracy
-// scene (there is none) or an unknown sweep is one message and exit status 1.
+// scene (there is none) or an unknown sweep is one message and exit status 1; `grip bench
+// labels` refuses an arm without its object model or an unknown category in one line, exit 2,
+// writing nothing.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -45,6 +47,19 @@ TEST(BenchCli, UnknownNamesAreOneMessageAndExitOne) {
   EXPECT_EQ(sweep.exit_code, 1);
   EXPECT_NE((sweep.out + sweep.err).find("no_such_setting"), std::string::npos) << sweep.err;
   fs::remove_all(out);
+}
+
+TEST(BenchCli, LabelsRefusesBadArmsAndCategoriesInOneLine) {
+  const fs::path out = scratch("labels");
+  const auto arm = run_grip("bench labels --arms fin-ray --out " + out.string());
+  EXPECT_EQ(arm.exit_code, 2);
+  EXPECT_NE(arm.err.find("--arms 'fin-ray': write gripper:rigid or gripper:soft"),
+            std::string::npos)
+      << arm.err;
+  const auto category = run_grip("bench labels --categories teacup --out " + out.string());
+  EXPECT_EQ(category.exit_code, 2);
+  EXPECT_NE(category.err.find("teacup"), std::string::npos) << category.err;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

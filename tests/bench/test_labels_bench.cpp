@@ -1,0 +1,109 @@
+// `grip bench labels` on a small plan: the reference refines the numerics but keeps what the
+// protocol measures in seconds and millimetres, bad options are refused, candidates pair up by
+// (category, seed, candidate), the tally counts what the pairs say, and rigid jaws on a box
+// hold every finger in contact at 50 N within 5 %.
+#include "bench/labels/labels_benchmark.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "bench/labels/labels_report.hpp"
+
+namespace grip::bench {
+namespace {
+
+TEST(LabelsBench, ReferenceRefinesTheNumericsNotTheQuestion) {
+  const trial::TrialParameters d;
+  const trial::TrialParameters r = reference_parameters(d);
+  EXPECT_EQ(r.sim.dt, d.sim.dt / 2);
+  EXPECT_EQ(r.sim.newton_tol, d.sim.newton_tol / 10);
+  EXPECT_EQ(r.sim.friction_lag_iterations, 2);
+  // The same verdict threshold (m) and the same settling allowance (s).
+  EXPECT_DOUBLE_EQ(r.displacement_threshold(), d.displacement_threshold());
+  EXPECT_DOUBLE_EQ(r.settle_max_steps * r.sim.dt, d.settle_max_steps * d.sim.dt);
+  EXPECT_DOUBLE_EQ(r.settle_steps * r.sim.dt, d.settle_steps * d.sim.dt);
+  EXPECT_EQ(r.grip_force, d.grip_force);
+  EXPECT_EQ(r.phase_duration, d.phase_duration);
+}
+
+TEST(LabelsBench, RefusesBadOptions) {
+  LabelsOptions options;
+  options.seeds = 0;
+  EXPECT_THROW(check_labels_options(options), std::invalid_argument);
+  options.seeds = 1;
+  options.arms = {{"gripper-x", false}};
+  EXPECT_THROW(check_labels_options(options), std::invalid_argument);
+  options.arms = {{"leap", false}};
+  options.categories = {"teacup"};
+  try {
+    check_labels_options(options);
+    FAIL() << "an unknown category was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("grip bench labels: ", 0), 0u) << e.what();
+  }
+}
+
+TEST(LabelsBench, ForceSummaryCountsFingersInContactOfClosedTrials) {
+  RobustnessTrial closed, open;
+  closed.closed = true;
+  closed.closing_forces = {49.0, 0.0, 53.0, 50.5};
+  open.closing_forces = {10.0, 20.0};  // closing never ended: not counted
+  const ForceSummary s = force_summary({&closed, &open}, 50.0, 2.5);
+  EXPECT_EQ(s.fingers, 3);
+  EXPECT_EQ(s.within, 2);
+  EXPECT_EQ(s.min, 49.0);
+  EXPECT_EQ(s.median, 50.5);
+  EXPECT_EQ(s.max, 53.0);
+}
+
+TEST(LabelsBench, RigidJawsOnABoxHoldTheGripForceAndTheTallyCountsThePairs) {
+  LabelsOptions options;
+  options.arms = {{"parallel-jaw", false}};
+  options.categories = {"box"};
+  options.seeds = 1;
+  options.candidates = 3;
+  options.threads = 2;
+  options.out = std::filesystem::path(::testing::TempDir()) / "labels";
+  const LabelsResult result = run_labels(options);
+  ASSERT_EQ(result.arms.size(), 1u);
+  const std::vector<LabelsPair> pairs = pair_trials(result.arms.front());
+  ASSERT_EQ(pairs.size(), 3u);
+  int agree = 0;
+  for (const LabelsPair& pair : pairs) {
+    ASSERT_NE(pair.reference, nullptr);
+    EXPECT_EQ(pair.reference->candidate, pair.defaults->candidate);
+    EXPECT_EQ(pair.reference->seed, pair.defaults->seed);
+    agree += pair.defaults->status == pair.reference->status;
+  }
+  const std::vector<LabelsArmTally> tallies = labels_tallies(result);
+  ASSERT_EQ(tallies.size(), 1u);
+  const LabelsArmTally& t = tallies.front();
+  EXPECT_EQ(t.arm, "parallel-jaw x rigid");
+  EXPECT_EQ(t.trials, 3);
+  EXPECT_EQ(t.agree, agree);
+  EXPECT_EQ(t.forces.fingers, 6);
+  EXPECT_EQ(t.forces.within, 6);
+
+  std::ostringstream line;
+  write_labels_json_line(line, result, tallies);
+  const nlohmann::json json = nlohmann::json::parse(line.str());
+  EXPECT_EQ(json["benchmark"], "labels");
+  EXPECT_EQ(json["arms"][0]["candidates"], 3);
+  EXPECT_EQ(json["arms"][0]["same_verdict"], agree);
+  write_labels_files(options.out, result, tallies);
+  std::ifstream csv(options.out / "labels.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("arm,category,seed,candidate,verdict,verdict_reference,", 0), 0u);
+  int rows = 0;
+  for (std::string row; std::getline(csv, row);) ++rows;
+  EXPECT_EQ(rows, 3);
+}
+
+}  // namespace
+}  // namespace grip::bench
