@@ -1,9 +1,9 @@
 #pragma once
 // The grasp trial protocol for parallel grippers (GRIP, Sec. III-D), run for many candidates
-// of one object and gripper as one solver::Batch: gravity off, the jaws close until each
-// finger's contact force exceeds the stop force, the grasp settles, then gravity along +x, -x,
-// +y, -y, +z, -z (world) for one phase each; the verdict, D1/D2, closing forces, stress and
-// the recorded frames make each candidate's io::CandidateResult.
+// of one object and gripper as one solver::Batch: gravity off, the jaws close on the held object
+// until each finger's contact force is the grip force, the released grasp settles, then gravity
+// along +x, -x, +y, -y, +z, -z (world) for one phase each (run_protocol); the verdict, D1/D2,
+// closing forces, stress and the recorded frames make each candidate's io::CandidateResult.
 #include <vector>
 
 #include "src/trial/trial_outcome.hpp"

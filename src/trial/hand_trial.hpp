@@ -1,8 +1,9 @@
 #pragma once
 // The grasp trial protocol for a dexterous hand (GRIP, Sec. III-D), run for many candidates of
 // one object and hand as one solver::Batch: gravity off, each finger closes through its joints
-// until its contact force exceeds the stop force or its joints reach their limits, the grasp
-// settles, then gravity along +x, -x, +y, -y, +z, -z (world) for one phase each. Outcomes as
+// on the held object until its contact force is the grip force or its joints reach their
+// limits, the released grasp settles, then gravity along +x, -x, +y, -y, +z, -z (world) for one
+// phase each (run_protocol). Outcomes as
 // run_trials gives them for parallel grippers, with one closing force per finger and the
 // hand's joint values per frame.
 #include <vector>
