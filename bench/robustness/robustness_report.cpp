@@ -193,8 +193,8 @@ void write_robustness_files(const fs::path& out, const RobustnessResult& result,
      << result.trials.size() << " trials on " << result.threads << " thread(s), "
      << fixed(result.wall_seconds, 1)
      << " s wall. Candidates from the synthesizer (`grip synth` defaults, the seed of the "
-        "category's shape), trials through the default protocol (`grip trial` defaults; hands "
-        "approach at 1 cm/s), one solver::Batch per (object, gripper).\n\n"
+        "category's shape), trials through the default protocol (`grip trial` defaults), one "
+        "solver::Batch per (object, gripper).\n\n"
      << "| gripper | simulated as | rigid objects | soft objects (FEM) |\n"
      << "| --- | --- | --- | --- |\n";
   for (const std::string& gripper : gripper_order(result)) {
@@ -209,7 +209,8 @@ void write_robustness_files(const fs::path& out, const RobustnessResult& result,
   for (std::size_t k = 1; k < io::kFailureKindCount; ++k)
     md << " " << io::to_string(kind(k)) << " |";
   md << " retries | Newton it/step (median / p99 / max) |\n|";
-  for (std::size_t c = 0; c < io::kFailureKindCount + 5; ++c) md << " --- |";
+  // gripper, objects, trials, success, failure, the kinds but kNone, retries, Newton.
+  for (std::size_t c = 0; c < io::kFailureKindCount + 6; ++c) md << " --- |";
   md << "\n";
   for (const RobustnessTally& r : rows) {
     md << "| " << r.gripper << " | " << r.objects << " | " << r.trials << " | " << r.success

@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -107,7 +109,18 @@ TEST(RobustnessBench, RigidJawsEndWithoutSolverFailures) {
   EXPECT_GT(json["newton_iterations_per_step"]["steps"].get<long>(), 0);
   write_robustness_files(options.out, result, rows);
   EXPECT_TRUE(std::filesystem::exists(options.out / "robustness.csv"));
-  EXPECT_TRUE(std::filesystem::exists(options.out / "robustness.md"));
+  // Every row of each Markdown table has as many cells as its header.
+  std::ifstream md(options.out / "robustness.md");
+  long header_cells = -1;
+  for (std::string line; std::getline(md, line);) {
+    if (line.empty() || line[0] != '|') {
+      header_cells = -1;
+      continue;
+    }
+    const long cells = std::count(line.begin(), line.end(), '|');
+    if (header_cells < 0) header_cells = cells;
+    EXPECT_EQ(cells, header_cells) << line;
+  }
 }
 
 }  // namespace
