@@ -50,10 +50,7 @@ void check_labels_options(const LabelsOptions& options) {
     try {
       plan_robustness(arm_options(options, arm, {}));
     } catch (const std::invalid_argument& e) {
-      std::string what = e.what();
-      const std::string prefix = "grip bench robustness: ";
-      if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
-      throw std::invalid_argument("grip bench labels: " + what);
+      throw std::invalid_argument(std::string("grip bench labels: ") + e.what());
     }
   }
 }

@@ -5,12 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
+#include "bench/common/table_text.hpp"
 #include "src/json/json_text.hpp"
 
 namespace grip::bench {
@@ -25,15 +24,8 @@ std::string verdict(const RobustnessTrial& t) {
   return t.failure == io::FailureKind::kNone ? "success" : std::string(io::to_string(t.failure));
 }
 
-std::string fixed(double value, int decimals) {
-  if (std::isnan(value)) return "-";
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(decimals) << value;
-  return text.str();
-}
-
 std::string percent(int part, int whole) {
-  return whole == 0 ? "-" : fixed(100.0 * part / whole, 1) + " %";
+  return whole == 0 ? "-" : fixed_or_dash(100.0 * part / whole, 1) + " %";
 }
 
 auto key(const RobustnessTrial& t) { return std::make_tuple(t.category, t.seed, t.candidate); }
@@ -102,15 +94,17 @@ std::vector<LabelsArmTally> labels_tallies(const LabelsResult& result) {
 
 void write_labels_table(std::ostream& out, const std::vector<LabelsArmTally>& tallies) {
   out << "| arm | candidates | same verdict | same failure kind | held (defaults) | held "
-         "(reference) | fingers in contact at the end of closing | within 5 % of 50 N | "
+         "(reference) | fingers in contact at the end of closing | within tolerance of the grip "
+         "force | "
          "force min / median / max (N) |\n"
          "|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
   for (const LabelsArmTally& t : tallies) {
     out << "| " << t.arm << " | " << t.trials << " | " << t.agree << " ("
         << percent(t.agree, t.trials) << ") | " << t.same_kind << " | " << t.success_defaults
         << " | " << t.success_reference << " | " << t.forces.fingers << " | " << t.forces.within
-        << " (" << percent(t.forces.within, t.forces.fingers) << ") | " << fixed(t.forces.min, 1)
-        << " / " << fixed(t.forces.median, 1) << " / " << fixed(t.forces.max, 1) << " |\n";
+        << " (" << percent(t.forces.within, t.forces.fingers) << ") | "
+        << fixed_or_dash(t.forces.min, 1) << " / " << fixed_or_dash(t.forces.median, 1) << " / "
+        << fixed_or_dash(t.forces.max, 1) << " |\n";
   }
 }
 
@@ -125,7 +119,8 @@ void write_category_table(std::ostream& out, const std::vector<LabelsArmTally>& 
       for (const auto& [kind, n] : kinds) {
         total += n;
         if (kind == "success") continue;
-        failures += (failures.empty() ? "" : ", ") + std::to_string(n) + " " + kind;
+        if (!failures.empty()) failures += ", ";
+        failures += std::to_string(n) + " " + kind;
       }
       const auto held = kinds.find("success");
       const int success = held == kinds.end() ? 0 : held->second;
@@ -137,7 +132,10 @@ void write_category_table(std::ostream& out, const std::vector<LabelsArmTally>& 
 
 std::string forces_text(const std::vector<double>& forces) {
   std::string text;
-  for (const double f : forces) text += (text.empty() ? "" : " ") + fixed(f, 2);
+  for (const double f : forces) {
+    if (!text.empty()) text += ' ';
+    text += fixed_or_dash(f, 2);
+  }
   return text;
 }
 
@@ -154,7 +152,8 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
      << d.displacement_threshold() * 1e3 << " mm. Reference: dt " << r.sim.dt << " s, newton_tol "
      << r.sim.newton_tol << ", " << r.sim.friction_lag_iterations
      << " friction lag iterations, the same threshold (" << r.displacement_threshold() * 1e3
-     << " mm). " << result.threads << " thread(s), " << fixed(result.wall_seconds / 60, 1)
+     << " mm). Grip force " << d.grip_force << " N, tolerance " << d.force_tolerance * 100 << " %. "
+     << result.threads << " thread(s), " << fixed_or_dash(result.wall_seconds / 60, 1)
      << " min.\n\n";
   write_labels_table(md, tallies);
   md << "\nSuccess and failure kinds per category, at the defaults:\n\n";
@@ -173,9 +172,10 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
       csv << arm_name(arm.arm) << ',' << t.category << ',' << t.seed << ',' << t.candidate << ','
           << verdict(t) << ',' << (pair.reference ? verdict(*pair.reference) : "-") << ','
           << (t.closed ? 1 : 0) << ',' << forces_text(t.closing_forces) << ','
-          << fixed(t.settle_displacement * 1e3, 4) << ',' << fixed(t.largest_slip * 1e3, 4) << ','
-          << fixed(t.largest_center_displacement * 1e3, 4) << ','
-          << (pair.reference ? fixed(pair.reference->largest_slip * 1e3, 4) : "-") << '\n';
+          << fixed_or_dash(t.settle_displacement * 1e3, 4) << ','
+          << fixed_or_dash(t.largest_slip * 1e3, 4) << ','
+          << fixed_or_dash(t.largest_center_displacement * 1e3, 4) << ','
+          << (pair.reference ? fixed_or_dash(pair.reference->largest_slip * 1e3, 4) : "-") << '\n';
     }
   }
 }

@@ -4,6 +4,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -27,8 +28,9 @@ namespace {
 
 // How many seeds and candidates per (object, gripper) a gripper runs by default, for rigid and
 // for soft objects: at least 384 parallel-jaw trials and 48 each of fin-ray and hand trials.
-// One candidate per soft object: a soft cup or bowl (walls of 4-8 mm, tets of half that) costs
-// minutes per trial, and a soft batch's trials share one object, so more of them say little new.
+// One candidate per soft object: a soft cup or bowl (walls of 4-8 mm) costs minutes per trial
+// even at this benchmark's coarse mesh (below), and a soft batch's trials share one object, so
+// more of them say little new.
 struct GripperDefaults {
   std::string_view name;
   int rigid_seeds, rigid_candidates;
@@ -48,8 +50,7 @@ const GripperDefaults& defaults_of(const std::string& name) {
   std::string known;
   for (const GripperDefaults& d : kDefaults)
     known += (known.empty() ? "" : ", ") + std::string(d.name);
-  throw std::invalid_argument("grip bench robustness: unknown gripper '" + name + "' (" + known +
-                              ")");
+  throw std::invalid_argument("unknown gripper '" + name + "' (" + known + ")");
 }
 
 // The soft object's material is `grip trial --soft`'s default (rigid objects take the same
@@ -124,6 +125,15 @@ std::vector<trial::TrialOutcome> run_batch(const RobustnessSet& set,
   return trial::run_trials(scene, grasps, options);
 }
 
+// The largest of the values measured (NaN ones are phases never run); NaN if none was.
+double largest_measured(const std::array<double, 6>& values) {
+  double most = std::numeric_limits<double>::quiet_NaN();
+  for (const double d : values) {
+    if (!std::isnan(d)) most = std::isnan(most) ? d : std::max(most, d);
+  }
+  return most;
+}
+
 std::string describe(const RobustnessSet& set, std::uint64_t seed) {
   return set.gripper + " x " + set.category + " seed " + std::to_string(seed) +
          (set.soft ? " soft" : " rigid");
@@ -169,18 +179,12 @@ struct CategoryRun {
     std::map<io::FailureKind, int> counts;
     for (std::size_t k = 0; k < outcomes.size(); ++k) {
       const io::CandidateRecord& record = outcomes[k].result.record;
-      const auto largest = [](const auto& values) {
-        double most = std::numeric_limits<double>::quiet_NaN();
-        for (const double d : values) {
-          if (!std::isnan(d)) most = std::isnan(most) ? d : std::max(most, d);
-        }
-        return most;
-      };
-      result.trials.push_back(
-          {set.gripper, set.category, seed, set.soft, k, record.status, record.failure,
-           outcomes[k].failure_reason, record.newton, outcomes[k].steps_by_newton_iterations,
-           record.closing_forces, outcomes[k].closed, outcomes[k].settle_displacement,
-           largest(record.displacement), largest(outcomes[k].center_displacement)});
+      result.trials.push_back({set.gripper, set.category, seed, set.soft, k, record.status,
+                               record.failure, outcomes[k].failure_reason, record.newton,
+                               outcomes[k].steps_by_newton_iterations, record.closing_forces,
+                               outcomes[k].closed, outcomes[k].settle_displacement,
+                               largest_measured(record.displacement),
+                               largest_measured(outcomes[k].center_displacement)});
       ++counts[record.failure];
     }
     std::string summary;
@@ -252,11 +256,10 @@ std::string robustness_gripper_model(const std::string& gripper) {
 
 std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options) {
   if (options.seeds < 0 || options.candidates < 0) {
-    throw std::invalid_argument(
-        "grip bench robustness: --seeds and --candidates must not be negative");
+    throw std::invalid_argument("--seeds and --candidates must not be negative");
   }
   if (!options.rigid && !options.soft) {
-    throw std::invalid_argument("grip bench robustness: neither rigid nor soft objects asked for");
+    throw std::invalid_argument("neither rigid nor soft objects asked for");
   }
   std::vector<std::string> grippers = options.grippers;
   if (grippers.empty()) {
@@ -268,13 +271,7 @@ std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options) {
       categories.emplace_back(objects::category_name(c));
     }
   }
-  for (const std::string& category : categories) {
-    try {
-      objects::parse_object_category(category);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("grip bench robustness: ") + e.what());
-    }
-  }
+  for (const std::string& category : categories) objects::parse_object_category(category);
   std::vector<RobustnessSet> sets;
   for (const std::string& gripper : grippers) {
     const GripperDefaults& d = defaults_of(gripper);

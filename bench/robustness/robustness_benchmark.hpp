@@ -52,7 +52,7 @@ std::string robustness_gripper_model(const std::string& gripper);
 
 // The sets the options ask for: gripper by gripper, then category, rigid before soft. Throws
 // std::invalid_argument for an unknown gripper or category, seeds or candidates below 0, or
-// neither rigid nor soft objects.
+// neither rigid nor soft objects; the message leaves naming the command to its caller.
 std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options);
 
 struct RobustnessTrial {

@@ -8,9 +8,9 @@
 #include <iomanip>
 #include <limits>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 
+#include "bench/common/table_text.hpp"
 #include "src/json/json_text.hpp"
 
 namespace grip::bench {
@@ -18,13 +18,6 @@ namespace fs = std::filesystem;
 namespace {
 
 io::FailureKind kind(std::size_t k) { return static_cast<io::FailureKind>(k); }
-
-std::string fixed(double value, int decimals) {
-  if (std::isnan(value)) return "-";
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(decimals) << value;
-  return text.str();
-}
 
 // A CSV field: quoted, inner quotes doubled.
 std::string quoted(const std::string& text) {
@@ -35,8 +28,8 @@ std::string quoted(const std::string& text) {
 
 // "median / p99 / max" of integers and of iterations per step.
 std::string statistics_text(const RankStatistics& s, int decimals) {
-  return fixed(s.median, decimals) + " / " + fixed(s.p99, decimals) + " / " +
-         fixed(s.max, decimals);
+  return fixed_or_dash(s.median, decimals) + " / " + fixed_or_dash(s.p99, decimals) + " / " +
+         fixed_or_dash(s.max, decimals);
 }
 
 // The names of the grippers, in the order they ran.
@@ -191,7 +184,7 @@ void write_robustness_files(const fs::path& out, const RobustnessResult& result,
   std::ofstream md(out / "robustness.md");
   md << "# grip bench robustness\n\n"
      << result.trials.size() << " trials on " << result.threads << " thread(s), "
-     << fixed(result.wall_seconds, 1)
+     << fixed_or_dash(result.wall_seconds, 1)
      << " s wall. Candidates from the synthesizer (`grip synth` defaults, the seed of the "
         "category's shape), trials through the default protocol (`grip trial` defaults), one "
         "solver::Batch per (object, gripper).\n\n"

@@ -1,6 +1,7 @@
 #pragma once
 // One finger's squeeze: its travel along the closing path, servoed so that its normal contact
-// force with the object settles on the grip force (docs/trial.md, "Closing").
+// force with the object settles on the grip force, then held as a spring (docs/trial.md,
+// "Force control" and "Fingers on springs after closing").
 #include <cmath>
 #include <limits>
 
@@ -17,36 +18,30 @@ class FingerServo {
 
   // The travel change over the next step (m): the approach at `max_step` until the first
   // contact (and at a quarter of it after losing contact, doubling while it stays lost); none
-  // while the force is within a quarter of
-  // the tolerance of the target (so that it settles near the target, not at the edge of the
-  // tolerance); otherwise regula falsi between the latest travels whose forces fell below and
-  // rose above the target (the barrier's force grows by orders of magnitude within d_hat, so a
-  // bracket is what keeps the servo from hunting), or, while one side of the bracket is missing
-  // or stale (the object moves under the fingers, so a sample older than kBracketAge
-  // observations no longer says where the force is): half the secant step on the last two
-  // samples in contact, at most kFastSteps x max_step (a compliant finger needs centimetres of
-  // travel), or without a secant a quarter of max_step, doubled at each observation the force
-  // stays on one side of the target, up to max_step. Never past the end of the path, nor back
-  // past where the finger started.
+  // while the force is within a quarter of the tolerance of the target (so that it settles near
+  // the target, not at the edge of the tolerance); otherwise regula falsi between the latest
+  // travels whose forces fell below and rose above the target (the barrier's force grows by orders
+  // of magnitude within d_hat, so a bracket is what keeps the servo from hunting), or, while one
+  // side of the bracket is missing or stale (the object moves under the fingers, so a sample older
+  // than kBracketAge observations no longer says where the force is): half the secant step on the
+  // last two samples in contact, at most kFastSteps x max_step (a compliant finger needs
+  // centimetres of travel), or without a secant a quarter of max_step, doubled at each observation
+  // the force stays on one side of the target, up to max_step. Never past the end of the path, nor
+  // back past where the finger started. Held as a spring, spring_increment's instead.
   double next_increment(double max_step) const;
   // After closing: from now on the finger acts as a spring of `stiffness` (N/m) preloaded with
   // its force now, standing for its drive's compliance. next_increment then moves it (at most
   // max_step a step) so that its contact force matches the spring's.
   void hold_as_spring(double stiffness);
 
-  // `increment` cut to the finger's path (never past its end, nor back past its start).
-  double on_path(double increment) const;
-  // Commits an increment returned by next_increment or on_path.
+  // Commits an increment returned by next_increment.
   void advance(double increment);
 
   double travel() const { return travel_; }
   double force() const { return force_; }
   double previous_force() const { return previous_force_; }
-  bool touched() const { return touched_; }
   bool on_target() const { return std::abs(target_ - force_) <= tolerance_; }
   bool at_limit() const { return travel_ >= max_travel_; }
-  // In contact with the object now, or at the end of its path: nothing more to find.
-  bool resolved() const { return force_ > 0.0 || at_limit(); }
 
  private:
   struct Sample {
@@ -59,8 +54,10 @@ class FingerServo {
   static constexpr double kTouchedStepFraction = 0.25;
   static constexpr double kFastSteps = 4.0;  // a secant step's limit, in max_step
 
-  // The increment of a finger held as a spring.
+  // The increment of a finger held as a spring: towards contact force = spring force.
   double spring_increment(double max_step) const;
+  // `increment` cut to the finger's path (never past its end, nor back past its start).
+  double on_path(double increment) const;
 
   double start_;
   double travel_;

@@ -33,7 +33,7 @@ struct TrialOutcome {
   bool closed = false;
   // How far the object's centre of mass moved from the candidate's start to the settled grasp
   // (m); NaN for a trial that did not settle.
-  double settle_displacement = std::numeric_limits<double>::quiet_NaN();
+  double settle_displacement = nan;
   // The object's centre-of-mass displacement from the settled grasp after each gravity phase (m),
   // sag and slip together (the record's `displacement` is the slip alone); NaN for phases not run.
   std::array<double, 6> center_displacement = {nan, nan, nan, nan, nan, nan};

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -46,10 +45,13 @@ struct TrialState {
   Eigen::Vector3d start_center = Eigen::Vector3d::Zero();  // the object's, at the candidate's start
   Eigen::Vector3d settled_center = Eigen::Vector3d::Zero();
   // The gripper's contact patch at the settled grasp: collision vertices that bear a contact
-  // force, their positions and their weights (the force's magnitude).
-  std::vector<int> patch;
-  std::vector<Eigen::Vector3d> patch_start;
-  std::vector<double> patch_weight;
+  // force, where they were then, weighted by the force's magnitude.
+  struct PatchVertex {
+    int vertex = 0;
+    Eigen::Vector3d settled;
+    double weight = 0.0;
+  };
+  std::vector<PatchVertex> patch;
   bool metrics_done = false;
   FrameRecorder recorder;
   TrialOutcome outcome;
@@ -454,9 +456,7 @@ class ProtocolRunner {
     for (int v = 0; v < x.rows(); ++v) {
       const double force = forces.normal.row(v).norm();
       if (body[v] == gripper_.object_body() || !(force > 0.0)) continue;
-      state.patch.push_back(v);
-      state.patch_start.push_back(x.row(v).transpose());
-      state.patch_weight.push_back(force);
+      state.patch.push_back({v, x.row(v).transpose(), force});
     }
   }
 
@@ -472,10 +472,9 @@ class ProtocolRunner {
     const solver::Vertices x = env.collision_positions();
     Eigen::Vector3d patch_moved = Eigen::Vector3d::Zero();
     double weight = 0.0;
-    for (std::size_t k = 0; k < state.patch.size(); ++k) {
-      patch_moved +=
-          state.patch_weight[k] * (x.row(state.patch[k]).transpose() - state.patch_start[k]);
-      weight += state.patch_weight[k];
+    for (const TrialState::PatchVertex& p : state.patch) {
+      patch_moved += p.weight * (x.row(p.vertex).transpose() - p.settled);
+      weight += p.weight;
     }
     return (moved - patch_moved / weight).norm();
   }

@@ -28,7 +28,7 @@ int bench_robustness(const BenchRobustnessArgs& args) {
   try {
     bench::plan_robustness(options);
   } catch (const std::invalid_argument& e) {
-    spdlog::error("{}", e.what());
+    spdlog::error("grip bench robustness: {}", e.what());
     return 2;
   }
   const bench::RobustnessResult result = bench::run_robustness(options);
