@@ -13,7 +13,8 @@ struct StepDiagnostics {
   int newton_iterations = 0;  // over all its parts when the step was retried in halves
   int retries = 0;            // parts of the step rolled back and retried as two halves
   int line_search_steps = 0;  // Armijo halvings and inversion halvings
-  double min_distance = std::numeric_limits<double>::infinity();  // over pairs within d_hat
+  // Over the barrier's pairs within d_hat (not an FEM body's pairs within d_hat at rest).
+  double min_distance = std::numeric_limits<double>::infinity();
   double min_volume_ratio = 1.0;  // smallest det F over all tets (1 without FEM)
   double kappa = 0.0;
   int friction_contacts = 0;  // lagged friction contacts of the last lag

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "solver/body/body.hpp"
+#include "solver/contact/candidates.hpp"
 #include "solver/linear/block_ordering.hpp"
 
 namespace grip::solver {
@@ -60,6 +61,7 @@ std::shared_ptr<const Model> Model::build(const SceneDescription& scene) {
   model->ordering_ =
       std::make_shared<const std::vector<int>>(nested_dissection_ordering(block_graph(*model)));
   model->build_collision_mesh();
+  model->build_rest_proximity();
   return model;
 }
 
@@ -159,6 +161,20 @@ void Model::build_collision_mesh() {
       }
     }
   }
+}
+
+void Model::build_rest_proximity() {
+  const bool any_self_contact = std::any_of(
+      bodies_.begin(), bodies_.end(), [](const BodyModel& b) { return can_self_collide(b.type); });
+  if (!any_self_contact) return;
+  auto [point_triangle, edge_edge] = self_pairs_near_at_rest(*this);
+  collision_.point_triangle_near_at_rest = std::move(point_triangle);
+  collision_.edge_edge_near_at_rest = std::move(edge_edge);
+}
+
+bool CollisionMesh::near_at_rest(bool edge_edge, const std::array<int, 4>& pair) const {
+  const auto& pairs = edge_edge ? edge_edge_near_at_rest : point_triangle_near_at_rest;
+  return std::binary_search(pairs.begin(), pairs.end(), pair);
 }
 
 }  // namespace grip::solver

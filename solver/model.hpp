@@ -53,7 +53,14 @@ struct CollisionMesh {
   std::vector<int> vertex_local;          // its index among the body's rest vertices
   std::vector<std::array<int, 2>> edges;  // collision vertex indices
   std::vector<std::array<int, 3>> faces;
+  // An FEM body's own point-triangle and edge-edge pairs that lie within d_hat of each other
+  // at rest (fine surface triangles at a rim, say), as find_contact_candidates lists them,
+  // sorted. No barrier acts on them: it would push the surface apart at rest, against its own
+  // elasticity, from the first step. CCD still keeps them from crossing.
+  std::vector<std::array<int, 4>> point_triangle_near_at_rest;
+  std::vector<std::array<int, 4>> edge_edge_near_at_rest;
   int size() const { return static_cast<int>(vertex_body.size()); }
+  bool near_at_rest(bool edge_edge, const std::array<int, 4>& pair) const;
 };
 
 struct PinnedVertex {
@@ -97,6 +104,7 @@ class Model {
   void build_pair_friction();
   void build_pins();
   void build_collision_mesh();
+  void build_rest_proximity();
 
   SceneDescription scene_;
   SimParameters sim_;

@@ -1,8 +1,12 @@
 #include "solver/contact/candidates.hpp"
 
+#include <algorithm>
+
 #include "solver/body/body.hpp"
 #include "solver/contact/bvh.hpp"
+#include "solver/kernels/edge_edge_distance.hpp"
 #include "solver/kernels/edge_edge_mollifier.hpp"
+#include "solver/kernels/point_triangle_distance.hpp"
 
 namespace grip::solver {
 namespace {
@@ -101,7 +105,8 @@ void add_point_triangle_candidates(const Model& model, const Vertices& start, co
       if (t[0] == v || t[1] == v || t[2] == v) return;
       const double mu = model.pair_friction(body_v, mesh.vertex_body[t[0]]);
       if (mu < 0) return;
-      candidates.push_back({false, {v, t[0], t[1], t[2]}, mu, 0.0});
+      const std::array<int, 4> pair{v, t[0], t[1], t[2]};
+      candidates.push_back({false, pair, mu, 0.0, mesh.near_at_rest(false, pair)});
     });
   }
 }
@@ -127,7 +132,8 @@ void add_edge_edge_candidates(const Model& model, const Vertices& start, const V
       const double eps = kernels::edge_edge_mollifier_threshold(
           rest_position(model, ea[0]), rest_position(model, ea[1]), rest_position(model, eb[0]),
           rest_position(model, eb[1]));
-      candidates.push_back({true, {ea[0], ea[1], eb[0], eb[1]}, mu, eps});
+      const std::array<int, 4> pair{ea[0], ea[1], eb[0], eb[1]};
+      candidates.push_back({true, pair, mu, eps, mesh.near_at_rest(true, pair)});
     });
   }
 }
@@ -142,6 +148,32 @@ std::vector<ContactCandidate> find_contact_candidates(const Model& model, const 
   add_point_triangle_candidates(model, start, end, margin, candidates);
   add_edge_edge_candidates(model, start, end, margin, candidates);
   return candidates;
+}
+
+std::pair<std::vector<std::array<int, 4>>, std::vector<std::array<int, 4>>> self_pairs_near_at_rest(
+    const Model& model) {
+  const CollisionMesh& mesh = model.collision();
+  const double d_hat = model.sim().d_hat;
+  // Rest positions; only pairs of one FEM body are kept, and an FEM body's rest vertices are
+  // all in the world frame.
+  Vertices rest(mesh.size(), 3);
+  for (int v = 0; v < mesh.size(); ++v) rest.row(v) = rest_position(model, v);
+  std::vector<std::array<int, 4>> point_triangle, edge_edge;
+  for (const ContactCandidate& c : find_contact_candidates(model, rest, rest, d_hat)) {
+    const int body = mesh.vertex_body[c.vertex[0]];
+    if (model.bodies()[body].type != BodyType::kFem) continue;
+    if (std::any_of(c.vertex.begin(), c.vertex.end(),
+                    [&](int v) { return mesh.vertex_body[v] != body; })) {
+      continue;
+    }
+    const auto x = [&](int k) -> Eigen::Vector3d { return rest.row(c.vertex[k]).transpose(); };
+    const double d_sq = c.edge_edge ? kernels::edge_edge_distance_sq(x(0), x(1), x(2), x(3))
+                                    : kernels::point_triangle_distance_sq(x(0), x(1), x(2), x(3));
+    if (d_sq < d_hat * d_hat) (c.edge_edge ? edge_edge : point_triangle).push_back(c.vertex);
+  }
+  std::sort(point_triangle.begin(), point_triangle.end());
+  std::sort(edge_edge.begin(), edge_edge.end());
+  return {std::move(point_triangle), std::move(edge_edge)};
 }
 
 }  // namespace grip::solver

@@ -4,6 +4,7 @@
 // list holds every pair that can come within d_hat anywhere on the straight path between the
 // two configurations, so it serves CCD and every barrier evaluation along that path.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "solver/model.hpp"
@@ -16,6 +17,9 @@ struct ContactCandidate {
   std::array<int, 4> vertex;   // collision vertices: (p, t0, t1, t2) or (ea0, ea1, eb0, eb1)
   double friction = 0.0;       // mu of the two bodies
   double mollifier_eps = 0.0;  // edge-edge: eps_x of the parallel-edge mollifier (rest lengths)
+  // One FEM body's primitives within d_hat at rest (CollisionMesh::point_triangle_near_at_rest):
+  // CCD watches the pair, no barrier acts on it.
+  bool near_at_rest = false;
 };
 
 // Pairs near the path start -> end (both collision vertex positions, one row per vertex), in a
@@ -23,5 +27,10 @@ struct ContactCandidate {
 // out.
 std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
                                                       const Vertices& end, double d_hat);
+
+// The FEM bodies' own pairs within d_hat at rest, point-triangle then edge-edge, each sorted:
+// what Model keeps in CollisionMesh.
+std::pair<std::vector<std::array<int, 4>>, std::vector<std::array<int, 4>>> self_pairs_near_at_rest(
+    const Model& model);
 
 }  // namespace grip::solver

@@ -48,7 +48,8 @@ std::vector<PairForce> pair_forces(const Model& model, const IncrementalPotentia
   for (const ContactCandidate& c :
        find_contact_candidates(model, positions, positions, model.sim().d_hat)) {
     const ContactForce force = potential.barrier().contact_force(c, positions);
-    min_distance = std::min(min_distance, force.distance);
+    // Pairs near at rest have no barrier: their distance would drive kappa's adaptation.
+    if (!c.near_at_rest) min_distance = std::min(min_distance, force.distance);
     if (force.magnitude > 0.0) add(c.vertex, c.edge_edge, force.force, force.magnitude);
   }
   for (const FrictionContact& contact : potential.friction().contacts()) {

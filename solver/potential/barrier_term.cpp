@@ -63,6 +63,7 @@ void mollify(const Eigen::Vector3d x[4], double eps, double kappa, double b, con
 Barrier barrier_of(const ContactCandidate& c, const Eigen::Vector3d x[4], double d_hat,
                    double kappa, bool with_hessian) {
   Barrier result;
+  if (c.near_at_rest) return result;
   const double s = squared_distance(c, x);
   if (s >= d_hat * d_hat) return result;
   const double d = std::sqrt(s);
@@ -127,7 +128,7 @@ ContactForce BarrierTerm::contact_force(const ContactCandidate& c,
   force.force = -b.gradient;
   double m = 1.0;
   if (c.edge_edge) m = kernels::edge_edge_mollifier(x[0], x[1], x[2], x[3], c.mollifier_eps);
-  force.magnitude = force.distance < d_hat
+  force.magnitude = force.distance < d_hat && !c.near_at_rest
                         ? -kappa_ * m * kernels::barrier_first_derivative(force.distance, d_hat)
                         : 0.0;
   return force;
