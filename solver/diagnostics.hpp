@@ -1,6 +1,7 @@
 #pragma once
 // What an environment reports about its steps: the last step's diagnostics (Newton and line
 // search counts, closest contact, worst tet, contact forces per pair of bodies) and totals.
+#include <chrono>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -21,6 +22,42 @@ struct StepDiagnostics {
   // The infinity norm of the free DOFs' gradient at the end, scaled by 1/h^2 (N).
   double residual = 0.0;
   std::vector<PairForce> contact_forces;
+};
+
+// Where an environment's time went (wall seconds, summed over its steps), by stage of Newton's
+// iteration. The broad phase is the candidate search of assembly and of the line search's CCD;
+// the friction lag and the end-of-step diagnostics include their own candidate searches.
+struct StageSeconds {
+  double broad_phase = 0.0;
+  double derivatives = 0.0;    // energy derivatives of every term, PSD projection included
+  double assembly = 0.0;       // pinned DOFs eliminated, triplets summed into the matrix
+  double factorization = 0.0;  // numeric (and, when the pattern changes, symbolic)
+  double solve = 0.0;          // triangular solves
+  double ccd = 0.0;            // the collision-free fraction of the step
+  double line_search = 0.0;    // inversion halvings and Armijo's energy evaluations
+  double friction_lag = 0.0;
+  double diagnostics = 0.0;  // contact forces and closest distance at the end of a step
+
+  double total() const {
+    return broad_phase + derivatives + assembly + factorization + solve + ccd + line_search +
+           friction_lag + diagnostics;
+  }
+};
+
+// Adds the wall time from its construction to its destruction to `seconds`.
+class StageTimer {
+ public:
+  explicit StageTimer(double& seconds)
+      : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
+  ~StageTimer() {
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  StageTimer(const StageTimer&) = delete;
+  StageTimer& operator=(const StageTimer&) = delete;
+
+ private:
+  double& seconds_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 // Totals over every step an environment has taken.

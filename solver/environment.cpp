@@ -227,6 +227,7 @@ void Environment::finish_step() {
 }
 
 void Environment::record_diagnostics() {
+  const StageTimer timer(newton_.stages().diagnostics);
   const Vertices x = solver::collision_positions(*model_, state_.q, step_->targets, 1.0);
   diagnostics_.min_volume_ratio = min_volume_ratio();
   diagnostics_.friction_contacts =

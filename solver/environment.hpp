@@ -75,6 +75,8 @@ class Environment {
   const std::string& failure() const { return failure_; }
   const StepDiagnostics& last_step() const { return diagnostics_; }
   const EnvironmentStatistics& statistics() const { return statistics_; }
+  // Where the steps' time went, by stage of the Newton iteration.
+  const StageSeconds& stage_seconds() const { return newton_.stages(); }
 
   const State& state() const { return state_; }
   const Eigen::VectorXd& dofs() const { return state_.q; }

@@ -42,6 +42,7 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
     step.standard_weight += body_mass(body) * kStandardGravity;
   }
   potential_.begin_step(q_tilde, start, state.kappa, h);
+  const StageTimer timer(stages_.friction_lag);
   potential_.set_friction(
       solver::lag_friction(model_, potential_.barrier(), start, friction_at_zero_mu));
 }
@@ -49,6 +50,7 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
 void NewtonSolver::lag_friction(const State& state, NewtonStep& step, bool friction_at_zero_mu) {
   step.iteration = 0;
   step.first_residual = -1.0;
+  const StageTimer timer(stages_.friction_lag);
   const Vertices x = collision_positions(model_, state.q, step.targets, step.progress);
   potential_.set_friction(
       solver::lag_friction(model_, potential_.barrier(), x, friction_at_zero_mu));
@@ -89,18 +91,26 @@ bool NewtonSolver::assemble(const State& state, NewtonStep& step, System& system
                             bool project_contacts, FailureReport& failure) {
   const SimParameters& sim = model_.sim();
   system.x = collision_positions(model_, state.q, step.targets, step.progress);
-  system.near = find_contact_candidates(model_, system.x, system.x, sim.d_hat);
+  if (!step.near_found) {
+    const StageTimer timer(stages_.broad_phase);
+    step.near = find_contact_candidates(model_, system.x, system.x, sim.d_hat);
+    step.near_found = true;
+  }
   system.moving = step.progress < 1.0;
   const Vertices kinematic_motion =
       collision_positions(model_, state.q, step.targets, 1.0) - system.x;
   system.projected = project_contacts;
-  potential_.derivatives(state.q, system.x, system.near, step.gradient, step.triplets,
-                         system.moving ? &kinematic_motion : nullptr, &step.kinematic_force,
-                         project_contacts);
+  {
+    const StageTimer timer(stages_.derivatives);
+    potential_.derivatives(state.q, system.x, step.near, step.gradient, step.triplets,
+                           system.moving ? &kinematic_motion : nullptr, &step.kinematic_force,
+                           project_contacts);
+  }
   if (!step.gradient.allFinite()) {
     failure = {Failure::kNonFinite, "non-finite gradient in Newton iteration"};
     return false;
   }
+  const StageTimer timer(stages_.assembly);
   eliminate_prescribed(state, step, system);
   return true;
 }
@@ -145,12 +155,26 @@ bool NewtonSolver::solve(const State& state, NewtonStep& step, System& system, E
   const int n = model_.dof_count();
   LinearSystemSolver& solver = linear_solver();
   // Exact contact Hessians whose sum is not positive definite are projected one by one.
-  bool factorized = solver.factorize(assembly_.assemble(n, step.free_triplets));
+  const auto factorize = [&] {
+    const Eigen::SparseMatrix<double>* matrix = nullptr;
+    {
+      const StageTimer timer(stages_.assembly);
+      matrix = &assembly_.assemble(n, step.free_triplets);
+    }
+    const StageTimer timer(stages_.factorization);
+    return solver.factorize(*matrix);
+  };
+  bool factorized = factorize();
   if (!factorized && !system.projected) {
     if (!assemble(state, step, system, true, failure)) return false;
-    factorized = solver.factorize(assembly_.assemble(n, step.free_triplets));
+    factorized = factorize();
   }
-  if (!factorized || !solver.solve(system.rhs, p)) {
+  bool solved = false;
+  if (factorized) {
+    const StageTimer timer(stages_.solve);
+    solved = solver.solve(system.rhs, p);
+  }
+  if (!solved) {
     failure = {Failure::kLinearSolve, "Newton system not solved: " + solver.failure()};
     return false;
   }
@@ -174,30 +198,39 @@ bool NewtonSolver::converged(const NewtonStep& step, const System& system,
 }
 
 // CCD's safe fraction of the step, then positive volumes, then (once the prescribed motion is
-// done) Armijo on the incremental potential.
-bool NewtonSolver::filter_step(const State& state, const NewtonStep& step, const System& system,
+// done) Armijo on the incremental potential. On success the swept candidates become step.near.
+bool NewtonSolver::filter_step(const State& state, NewtonStep& step, const System& system,
                                const Eigen::VectorXd& p, double& alpha,
-                               StepDiagnostics& diagnostics, FailureReport& failure) const {
+                               StepDiagnostics& diagnostics, FailureReport& failure) {
   const SimParameters& sim = model_.sim();
   const Vertices x_end = collision_positions(model_, state.q + p, step.targets, 1.0);
-  const std::vector<ContactCandidate> swept =
-      find_contact_candidates(model_, system.x, x_end, sim.d_hat);
-  alpha = collision_free_fraction(swept, system.x, x_end, sim.ccd_rescaling);
+  std::vector<ContactCandidate> swept;
+  {
+    const StageTimer timer(stages_.broad_phase);
+    swept = find_contact_candidates(model_, system.x, x_end, sim.d_hat);
+  }
+  {
+    const StageTimer timer(stages_.ccd);
+    alpha = collision_free_fraction(swept, system.x, x_end, sim.ccd_rescaling);
+  }
   if (!(alpha > 0.0)) {
     failure = {Failure::kCcdNoMotion, "continuous collision detection allows no motion"};
     return false;
   }
+  const StageTimer timer(stages_.line_search);
   if (!halve_until_no_inversion(model_, state.q, p, alpha, diagnostics.line_search_steps)) {
     failure = {Failure::kInversion, "no step keeps every tetrahedron positively oriented"};
     return false;
   }
-  if (system.moving) return true;
-  const double energy = potential_.energy(state.q, system.x, swept);
-  if (!armijo(potential_, model_, step.targets, swept, state.q, p, energy, step.gradient.dot(p),
-              step.held, alpha, diagnostics.line_search_steps)) {
-    failure = {Failure::kLineSearch, "line search cannot decrease the incremental potential"};
-    return false;
+  if (!system.moving) {
+    const double energy = potential_.energy(state.q, system.x, swept);
+    if (!armijo(potential_, model_, step.targets, swept, state.q, p, energy, step.gradient.dot(p),
+                step.held, alpha, diagnostics.line_search_steps)) {
+      failure = {Failure::kLineSearch, "line search cannot decrease the incremental potential"};
+      return false;
+    }
   }
+  step.near = std::move(swept);  // the step is taken along this path
   return true;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/contact/candidates.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/failure.hpp"
 #include "solver/linear/linear_system_solver.hpp"
@@ -41,6 +42,11 @@ struct NewtonStep {
   Eigen::VectorXd kinematic_force;
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<Eigen::Triplet<double>> free_triplets;
+  // Every pair within d_hat of the current positions, once found: after a line search, its swept
+  // list, which holds every pair that comes within d_hat anywhere on the path the step was
+  // taken along, so at the accepted point too. It spares a broad phase per iteration.
+  std::vector<ContactCandidate> near;
+  bool near_found = false;
 };
 
 class NewtonSolver {
@@ -71,12 +77,15 @@ class NewtonSolver {
 
   const IncrementalPotential& potential() const { return potential_; }
 
+  // Where this solver's time went; callers may time their own stages into it.
+  StageSeconds& stages() { return stages_; }
+  const StageSeconds& stages() const { return stages_; }
+
  private:
   // The Newton system at the current iterate, pinned DOFs eliminated:
   // H_ff p_f = -(g_f + H_fp lift_p + H_fk dk), p_p = lift_p.
   struct System {
-    Vertices x;                          // collision vertices now
-    std::vector<ContactCandidate> near;  // within d_hat of them
+    Vertices x;  // collision vertices now
     Eigen::VectorXd rhs;
     double residual = 0.0;  // largest |g| over the free DOFs
     bool moving = false;    // prescribed motion still to come
@@ -89,9 +98,9 @@ class NewtonSolver {
   bool solve(const State& state, NewtonStep& step, System& system, Eigen::VectorXd& p,
              FailureReport& failure);
   bool converged(const NewtonStep& step, const System& system, const Eigen::VectorXd& p) const;
-  bool filter_step(const State& state, const NewtonStep& step, const System& system,
+  bool filter_step(const State& state, NewtonStep& step, const System& system,
                    const Eigen::VectorXd& p, double& alpha, StepDiagnostics& diagnostics,
-                   FailureReport& failure) const;
+                   FailureReport& failure);
   static void commit(State& state, NewtonStep& step, const Eigen::VectorXd& p, double alpha);
 
   const Model& model_;
@@ -100,6 +109,7 @@ class NewtonSolver {
   SparseCholesky cholesky_;
   std::shared_ptr<LinearSystemSolver> linear_solver_;  // null: cholesky_ solves every system
   int linear_solver_min_dofs_ = 0;
+  StageSeconds stages_;
 };
 
 }  // namespace grip::solver

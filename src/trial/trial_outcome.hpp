@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "io/candidate_record.hpp"
+#include "solver/diagnostics.hpp"
 #include "src/geometry/mesh.hpp"
 
 namespace grip::trial {
@@ -28,6 +29,8 @@ struct TrialOutcome {
   std::vector<BodyFrame> body_frames;  // closing then validation frames, when asked for
   // [n]: steps that took n Newton iterations (solver::EnvironmentStatistics); not in the dataset.
   std::vector<long> steps_by_newton_iterations;
+  // Where the solver's time went (solver::Environment::stage_seconds); not in the dataset.
+  solver::StageSeconds stage_seconds;
   // Closing ended with every finger within force_tolerance of grip_force or at the end of its
   // path (TrialParameters), and the object was released.
   bool closed = false;

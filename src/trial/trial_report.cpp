@@ -5,6 +5,21 @@
 #include "src/json/json_text.hpp"
 
 namespace grip::trial {
+namespace {
+
+nlohmann::ordered_json stage_json(const solver::StageSeconds& s) {
+  return {{"broad_phase", s.broad_phase},
+          {"derivatives", s.derivatives},
+          {"assembly", s.assembly},
+          {"factorization", s.factorization},
+          {"solve", s.solve},
+          {"ccd", s.ccd},
+          {"line_search", s.line_search},
+          {"friction_lag", s.friction_lag},
+          {"diagnostics", s.diagnostics}};
+}
+
+}  // namespace
 
 void write_report(std::ostream& out, const TrialReport& report,
                   const std::vector<TrialOutcome>& outcomes) {
@@ -36,7 +51,8 @@ void write_report(std::ostream& out, const TrialReport& report,
                                               {"iterations", r.newton.iterations},
                                               {"max_iterations", r.newton.max_iterations},
                                               {"retries", r.newton.retries}}},
-                                            {"wall_time", r.wall_time}});
+                                            {"wall_time", r.wall_time},
+                                            {"stage_seconds", stage_json(outcome.stage_seconds)}});
   }
   root["trials"] = std::move(trials);
   // One line per candidate, with every double exactly (17 digits).
