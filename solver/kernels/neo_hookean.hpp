@@ -10,8 +10,11 @@
 // (mu_L, lambda_L) needs the reparametrization mu = mu_L, lambda = lambda_L + mu_L.
 // Unlike classic Neo-Hookean there is no log(J): the energy stays finite for J <= 0 (inverted
 // elements get a restoring force), which IPC's line search filter still forbids.
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <cmath>
 
 #include "solver/kernels/hd.hpp"
@@ -152,6 +155,68 @@ GRIP_HD inline Matrix9d stable_neo_hookean_stress_derivative(const Eigen::Matrix
          (m.lambda * (j - 1.0) - m.mu) * determinant_hessian(f);
 }
 
+// dP/dF projected to the nearest PSD matrix from its analytic eigensystem (Smith et al. 2019,
+// "Analytic Eigensystems for Isotropic Distortion Energies"), not a numeric 9x9 decomposition.
+// With F = U diag(s) V^T (U, V rotations; s2 < 0 when the tet is inverted) and
+// c = lambda (J - 1) - mu, dP/dF = mu I + lambda g g^T + c d^2J/dF^2 has
+//   twists U [e_k]x V^T / sqrt(2):             eigenvalue mu + c s_k,
+//   flips (the same with symmetric [e_k]x):    eigenvalue mu - c s_k,
+//   scalings U diag(a) V^T, a an eigenvector of the 3x3 matrix
+//     mu I + lambda g_s g_s^T + c [[0, s2, s1], [s2, 0, s0], [s1, s0, 0]],  g_s = (s1 s2, s0 s2, s0
+//     s1).
+// The negative modes are removed from the exact dP/dF, so a PSD one is returned unchanged.
+// Host only, like project_to_psd (Eigen's SVD).
+inline Matrix9d stable_neo_hookean_stress_derivative_psd(const Eigen::Matrix3d& f,
+                                                         const StableNeoHookeanParameters& m) {
+  Matrix9d dpdf = stable_neo_hookean_stress_derivative(f, m);
+  // Most elements are not compressed enough to be indefinite: a Cholesky test says so cheaply.
+  if (Eigen::LLT<Matrix9d>(dpdf).info() == Eigen::Success) return dpdf;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d u = svd.matrixU(), v = svd.matrixV();
+  Eigen::Vector3d s = svd.singularValues();
+  // Rotations only: a reflection moves into the smallest singular value's sign.
+  if (u.determinant() < 0.0) {
+    u.col(2) *= -1.0;
+    s[2] *= -1.0;
+  }
+  if (v.determinant() < 0.0) {
+    v.col(2) *= -1.0;
+    s[2] *= -1.0;
+  }
+  const double c = m.lambda * (s.prod() - 1.0) - m.mu;
+  // Removes the mode U a V^T (a unit in the Frobenius norm) with eigenvalue `value` if negative.
+  const auto remove_if_negative = [&](double value, const Eigen::Matrix3d& a) {
+    if (value >= 0.0) return;
+    const Eigen::Matrix3d mode = u * a * v.transpose();
+    const Eigen::Map<const Vector9d> e(mode.data());
+    dpdf -= value * e * e.transpose();
+  };
+  const double half = std::sqrt(0.5);
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    Eigen::Matrix3d twist = Eigen::Matrix3d::Zero(), flip = Eigen::Matrix3d::Zero();
+    twist(i, j) = -half;
+    twist(j, i) = half;
+    flip(i, j) = flip(j, i) = half;
+    remove_if_negative(m.mu + c * s[k], twist);
+    remove_if_negative(m.mu - c * s[k], flip);
+  }
+  const Eigen::Vector3d g(s[1] * s[2], s[0] * s[2], s[0] * s[1]);
+  Eigen::Matrix3d scaling = m.mu * Eigen::Matrix3d::Identity() + m.lambda * g * g.transpose();
+  scaling(0, 1) += c * s[2];
+  scaling(0, 2) += c * s[1];
+  scaling(1, 2) += c * s[0];
+  scaling(1, 0) = scaling(0, 1);
+  scaling(2, 0) = scaling(0, 2);
+  scaling(2, 1) = scaling(1, 2);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> modes;
+  modes.computeDirect(scaling);
+  for (int k = 0; k < 3; ++k) {
+    remove_if_negative(modes.eigenvalues()[k], modes.eigenvectors().col(k).asDiagonal());
+  }
+  return dpdf;
+}
+
 // Elastic energy of a tet: rest volume times the energy density.
 GRIP_HD inline double tet_stable_neo_hookean_energy(const Vector12d& x,
                                                     const Eigen::Matrix3d& rest_shape_inverse,
@@ -183,9 +248,10 @@ GRIP_HD inline Matrix12d tet_stable_neo_hookean_hessian(const Vector12d& x,
                                                         const StableNeoHookeanParameters& m,
                                                         bool project_psd) {
   const Eigen::Matrix<double, 9, 12> b = deformation_gradient_jacobian(rest_shape_inverse);
-  const Matrix9d dpdf =
-      stable_neo_hookean_stress_derivative(deformation_gradient(x, rest_shape_inverse), m);
-  return rest_volume * b.transpose() * (project_psd ? project_to_psd<9>(dpdf) : dpdf) * b;
+  const Eigen::Matrix3d f = deformation_gradient(x, rest_shape_inverse);
+  const Matrix9d dpdf = project_psd ? stable_neo_hookean_stress_derivative_psd(f, m)
+                                    : stable_neo_hookean_stress_derivative(f, m);
+  return rest_volume * b.transpose() * dpdf * b;
 }
 
 // Cauchy stress sigma = P F^T / J = (mu F F^T + (lambda (J - 1) - mu) J I) / J (Pa, symmetric);

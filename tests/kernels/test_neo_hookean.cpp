@@ -262,6 +262,46 @@ TEST(NeoHookean, ProjectedHessianIsPsdAndUnchangedWhenAlreadyPsd) {
             1e-10 * h.norm());
 }
 
+// The analytic eigensystem's projection equals the numeric one (9x9 eigen-decomposition) for
+// stretched, compressed, nearly flat and inverted deformation gradients, and leaves a positive
+// definite dP/dF bit for bit as it is.
+TEST(NeoHookean, AnalyticProjectionMatchesTheNumericOne) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int indefinite = 0, inverted = 0;
+  for (const double poisson : {0.3, 0.45, 0.49}) {
+    const StableNeoHookeanParameters m = stable_neo_hookean_parameters(kYoungs, poisson);
+    for (int trial = 0; trial < 1000; ++trial) {
+      // A random rotation times stretches in (0.05, 2) times a random rotation; a quarter of
+      // them reflected (inverted tets), some with one stretch near zero (nearly flat).
+      const auto rotation = [&] {
+        return Eigen::Quaterniond(unit(rng), unit(rng), unit(rng), unit(rng))
+            .normalized()
+            .toRotationMatrix();
+      };
+      const Eigen::Matrix3d r1 = rotation(), r2 = rotation();
+      Eigen::Vector3d s(1.0 + 0.95 * unit(rng), 1.0 + 0.95 * unit(rng), 1.0 + 0.95 * unit(rng));
+      if (trial % 7 == 0) s[trial % 3] = 1e-4;
+      if (trial % 4 == 0) {
+        s[1] = -s[1];
+        ++inverted;
+      }
+      const Eigen::Matrix3d f = r1 * s.asDiagonal() * r2;
+      const Matrix9d exact = stable_neo_hookean_stress_derivative(f, m);
+      const Matrix9d analytic = stable_neo_hookean_stress_derivative_psd(f, m);
+      const Matrix9d numeric = project_to_psd<9>(exact);
+      EXPECT_LT((analytic - numeric).norm(), 1e-9 * exact.norm()) << "F =\n" << f;
+      if (Eigen::LLT<Matrix9d>(exact).info() == Eigen::Success) {
+        EXPECT_EQ(analytic, exact);
+      } else {
+        ++indefinite;
+      }
+    }
+  }
+  EXPECT_GT(indefinite, 1000);
+  EXPECT_GT(inverted, 500);
+}
+
 TEST(NeoHookean, VonMisesOfKnownStressStates) {
   // Uniaxial sigma: |sigma|; pure shear tau: sqrt(3) tau; hydrostatic: 0.
   const double s = 1.5e6;
