@@ -124,6 +124,10 @@ class Environment {
   StepPlan plan_;
   EnvironmentStatistics statistics_;
   std::unique_ptr<NewtonStep> step_;  // while a step is under way
+  // Between steps: every pair within d_hat of the state's positions when near_found_, handed
+  // on from the step that ended there to the next (NewtonStep::near).
+  std::vector<ContactCandidate> near_;
+  bool near_found_ = false;
   NewtonSolver newton_;
 };
 

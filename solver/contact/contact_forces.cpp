@@ -27,7 +27,9 @@ VertexContactForces vertex_contact_forces(const Model& model, const IncrementalP
 }
 
 std::vector<PairForce> pair_forces(const Model& model, const IncrementalPotential& potential,
-                                   const Vertices& positions, double& min_distance) {
+                                   const Vertices& positions,
+                                   const std::vector<ContactCandidate>& near,
+                                   double& min_distance) {
   const CollisionMesh& mesh = model.collision();
   std::map<std::pair<int, int>, PairForce> forces;
   // Adds the force on a stencil's vertices to the pair (side A's body, side B's body).
@@ -45,8 +47,7 @@ std::vector<PairForce> pair_forces(const Model& model, const IncrementalPotentia
       if (mesh.vertex_body[vertex[i]] == first) pf.force += f.segment<3>(3 * i);
     }
   };
-  for (const ContactCandidate& c :
-       find_contact_candidates(model, positions, positions, model.sim().d_hat)) {
+  for (const ContactCandidate& c : near) {
     const ContactForce force = potential.barrier().contact_force(c, positions);
     // Pairs near at rest have no barrier: their distance would drive kappa's adaptation.
     if (!c.near_at_rest) min_distance = std::min(min_distance, force.distance);

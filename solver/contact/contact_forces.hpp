@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "solver/contact/candidates.hpp"
 #include "solver/model.hpp"
 #include "solver/potential/incremental_potential.hpp"
 
@@ -30,8 +31,10 @@ VertexContactForces vertex_contact_forces(const Model& model, const IncrementalP
                                           const Vertices& positions);
 
 // Per pair of distinct bodies, the forces as above, in (body_a, body_b) order; also the
-// smallest distance over the contacts within d_hat (infinity without one).
+// smallest distance over the contacts within d_hat (infinity without one). `near` holds every
+// pair within d_hat of `positions` (find_contact_candidates).
 std::vector<PairForce> pair_forces(const Model& model, const IncrementalPotential& potential,
-                                   const Vertices& positions, double& min_distance);
+                                   const Vertices& positions,
+                                   const std::vector<ContactCandidate>& near, double& min_distance);
 
 }  // namespace grip::solver

@@ -1,15 +1,14 @@
 #include "solver/contact/friction_lag.hpp"
 
-#include "solver/contact/candidates.hpp"
 #include "solver/contact/contact_frame.hpp"
 
 namespace grip::solver {
 
-std::vector<FrictionContact> lag_friction(const Model& model, const BarrierTerm& barrier,
-                                          const Vertices& positions, bool at_zero_mu) {
+std::vector<FrictionContact> lag_friction(const BarrierTerm& barrier, const Vertices& positions,
+                                          const std::vector<ContactCandidate>& near,
+                                          bool at_zero_mu) {
   std::vector<FrictionContact> contacts;
-  const double d_hat = model.sim().d_hat;
-  for (const ContactCandidate& c : find_contact_candidates(model, positions, positions, d_hat)) {
+  for (const ContactCandidate& c : near) {
     if (c.friction <= 0.0 && !at_zero_mu) continue;  // none where mu = 0
     const ContactForce force = barrier.contact_force(c, positions);
     if (force.magnitude <= 0.0) continue;

@@ -42,18 +42,29 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
     step.standard_weight += body_mass(body) * kStandardGravity;
   }
   potential_.begin_step(q_tilde, start, state.kappa, h);
+  const std::vector<ContactCandidate>& candidates = near(step, start);
   const StageTimer timer(stages_.friction_lag);
   potential_.set_friction(
-      solver::lag_friction(model_, potential_.barrier(), start, friction_at_zero_mu));
+      solver::lag_friction(potential_.barrier(), start, candidates, friction_at_zero_mu));
+}
+
+const std::vector<ContactCandidate>& NewtonSolver::near(NewtonStep& step, const Vertices& x) {
+  if (!step.near_found) {
+    const StageTimer timer(stages_.broad_phase);
+    step.near = find_contact_candidates(model_, x, x, model_.sim().d_hat);
+    step.near_found = true;
+  }
+  return step.near;
 }
 
 void NewtonSolver::lag_friction(const State& state, NewtonStep& step, bool friction_at_zero_mu) {
   step.iteration = 0;
   step.first_residual = -1.0;
-  const StageTimer timer(stages_.friction_lag);
   const Vertices x = collision_positions(model_, state.q, step.targets, step.progress);
+  const std::vector<ContactCandidate>& candidates = near(step, x);
+  const StageTimer timer(stages_.friction_lag);
   potential_.set_friction(
-      solver::lag_friction(model_, potential_.barrier(), x, friction_at_zero_mu));
+      solver::lag_friction(potential_.barrier(), x, candidates, friction_at_zero_mu));
 }
 
 NewtonSolver::Outcome NewtonSolver::iterate(State& state, NewtonStep& step,
@@ -89,20 +100,15 @@ LinearSystemSolver& NewtonSolver::linear_solver() {
 
 bool NewtonSolver::assemble(const State& state, NewtonStep& step, System& system,
                             bool project_contacts, FailureReport& failure) {
-  const SimParameters& sim = model_.sim();
   system.x = collision_positions(model_, state.q, step.targets, step.progress);
-  if (!step.near_found) {
-    const StageTimer timer(stages_.broad_phase);
-    step.near = find_contact_candidates(model_, system.x, system.x, sim.d_hat);
-    step.near_found = true;
-  }
+  const std::vector<ContactCandidate>& candidates = near(step, system.x);
   system.moving = step.progress < 1.0;
   const Vertices kinematic_motion =
       collision_positions(model_, state.q, step.targets, 1.0) - system.x;
   system.projected = project_contacts;
   {
     const StageTimer timer(stages_.derivatives);
-    potential_.derivatives(state.q, system.x, step.near, step.gradient, step.triplets,
+    potential_.derivatives(state.q, system.x, candidates, step.gradient, step.triplets,
                            system.moving ? &kinematic_motion : nullptr, &step.kinematic_force,
                            project_contacts);
   }

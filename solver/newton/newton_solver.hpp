@@ -44,7 +44,8 @@ struct NewtonStep {
   std::vector<Eigen::Triplet<double>> free_triplets;
   // Every pair within d_hat of the current positions, once found: after a line search, its swept
   // list, which holds every pair that comes within d_hat anywhere on the path the step was
-  // taken along, so at the accepted point too. It spares a broad phase per iteration.
+  // taken along, so at the accepted point too. It spares a broad phase per iteration; the
+  // environment hands it on to the next step, which starts where this one ends.
   std::vector<ContactCandidate> near;
   bool near_found = false;
 };
@@ -76,6 +77,9 @@ class NewtonSolver {
                   FailureReport& failure);
 
   const IncrementalPotential& potential() const { return potential_; }
+
+  // step.near, found first if need be; `x` are the current collision positions.
+  const std::vector<ContactCandidate>& near(NewtonStep& step, const Vertices& x);
 
   // Where this solver's time went; callers may time their own stages into it.
   StageSeconds& stages() { return stages_; }
