@@ -8,6 +8,19 @@
 
 namespace grip::bench {
 
+LabelsArm parse_labels_arm(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  const std::string model = colon == std::string::npos ? "" : text.substr(colon + 1);
+  if (model != "rigid" && model != "soft") {
+    throw std::invalid_argument("--arms '" + text + "': write gripper:rigid or gripper:soft");
+  }
+  return {text.substr(0, colon), model == "soft"};
+}
+
+std::string labels_arm_name(const LabelsArm& arm) {
+  return arm.gripper + " x " + (arm.soft ? "soft" : "rigid");
+}
+
 trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults) {
   trial::TrialParameters p = defaults;
   p.sim.dt = defaults.sim.dt / 2;

@@ -20,6 +20,13 @@ struct LabelsArm {
   bool soft = false;
 };
 
+// "fin-ray:soft" -> {"fin-ray", true}. Throws std::invalid_argument without the object model;
+// the message leaves naming the command to its caller.
+LabelsArm parse_labels_arm(const std::string& text);
+
+// "fin-ray x soft".
+std::string labels_arm_name(const LabelsArm& arm);
+
 struct LabelsOptions {
   // Empty: parallel-jaw x rigid, fin-ray x rigid, fin-ray x soft, leap x rigid.
   std::vector<LabelsArm> arms;

@@ -16,14 +16,6 @@ namespace grip::bench {
 namespace fs = std::filesystem;
 namespace {
 
-std::string arm_name(const LabelsArm& arm) {
-  return arm.gripper + " x " + (arm.soft ? "soft" : "rigid");
-}
-
-std::string verdict(const RobustnessTrial& t) {
-  return t.failure == io::FailureKind::kNone ? "success" : std::string(io::to_string(t.failure));
-}
-
 std::string percent(int part, int whole) {
   return whole == 0 ? "-" : fixed_or_dash(100.0 * part / whole, 1) + " %";
 }
@@ -74,11 +66,11 @@ std::vector<LabelsArmTally> labels_tallies(const LabelsResult& result) {
   const double tolerance = result.defaults.force_tolerance * target;
   for (const LabelsArmResult& arm : result.arms) {
     LabelsArmTally t;
-    t.arm = arm_name(arm.arm);
+    t.arm = labels_arm_name(arm.arm);
     std::vector<const RobustnessTrial*> defaults;
     for (const LabelsPair& pair : pair_trials(arm)) {
       defaults.push_back(pair.defaults);
-      ++t.by_category[pair.defaults->category][verdict(*pair.defaults)];
+      ++t.by_category[pair.defaults->category][verdict_of(*pair.defaults)];
       t.success_defaults += pair.defaults->failure == io::FailureKind::kNone;
       if (!pair.reference) continue;
       ++t.trials;
@@ -160,7 +152,7 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
   write_category_table(md, tallies);
   for (const LabelsArmResult& arm : result.arms) {
     for (const std::string& s : arm.defaults.shortfalls) {
-      md << "\nShortfall (" << arm_name(arm.arm) << "): " << s << "\n";
+      md << "\nShortfall (" << labels_arm_name(arm.arm) << "): " << s << "\n";
     }
   }
   std::ofstream csv(out / "labels.csv");
@@ -169,9 +161,9 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
   for (const LabelsArmResult& arm : result.arms) {
     for (const LabelsPair& pair : pair_trials(arm)) {
       const RobustnessTrial& t = *pair.defaults;
-      csv << arm_name(arm.arm) << ',' << t.category << ',' << t.seed << ',' << t.candidate << ','
-          << verdict(t) << ',' << (pair.reference ? verdict(*pair.reference) : "-") << ','
-          << (t.closed ? 1 : 0) << ',' << forces_text(t.closing_forces) << ','
+      csv << labels_arm_name(arm.arm) << ',' << t.category << ',' << t.seed << ',' << t.candidate
+          << ',' << verdict_of(t) << ',' << (pair.reference ? verdict_of(*pair.reference) : "-")
+          << ',' << (t.closed ? 1 : 0) << ',' << forces_text(t.closing_forces) << ','
           << fixed_or_dash(t.settle_displacement * 1e3, 4) << ','
           << fixed_or_dash(t.largest_slip * 1e3, 4) << ','
           << fixed_or_dash(t.largest_center_displacement * 1e3, 4) << ','

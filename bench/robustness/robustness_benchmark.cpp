@@ -4,24 +4,13 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
-#include <cmath>
-#include <limits>
 #include <map>
 #include <span>
 #include <stdexcept>
 
-#include "src/geometry/boundary_surface.hpp"
-#include "src/geometry/tetrahedralize.hpp"
-#include "src/grippers/coarse_leap_hand.hpp"
-#include "src/grippers/gripper_registry.hpp"
+#include "bench/robustness/robustness_trials.hpp"
 #include "src/objects/object_library.hpp"
-#include "src/synth/object_spec.hpp"
-#include "src/synth/prepared_object.hpp"
-#include "src/synth/synthesize.hpp"
-#include "src/trial/grasp_trial.hpp"
-#include "src/trial/hand_trial.hpp"
 
 namespace grip::bench {
 namespace {
@@ -29,8 +18,8 @@ namespace {
 // How many seeds and candidates per (object, gripper) a gripper runs by default, for rigid and
 // for soft objects: at least 384 parallel-jaw trials and 48 each of fin-ray and hand trials.
 // One candidate per soft object: a soft cup or bowl (walls of 4-8 mm) costs minutes per trial
-// even at this benchmark's coarse mesh (below), and a soft batch's trials share one object, so
-// more of them say little new.
+// even at this benchmark's coarse mesh (robustness_object_model), and a soft batch's trials share
+// one object, so more of them say little new.
 struct GripperDefaults {
   std::string_view name;
   int rigid_seeds, rigid_candidates;
@@ -53,87 +42,6 @@ const GripperDefaults& defaults_of(const std::string& name) {
   throw std::invalid_argument("unknown gripper '" + name + "' (" + known + ")");
 }
 
-// The soft object's material is `grip trial --soft`'s default (rigid objects take the same
-// density and friction). Its tets are coarser than `grip trial --soft`'s (8 mm, and two across
-// the thinnest wall): at most kTetEdge, and one across the thinnest wall. A soft cup meshed
-// as the trial meshes it costs 15 minutes per fin-ray trial; the solver's failures are what is
-// counted here, not the stress field.
-constexpr solver::Material kObjectMaterial{1000.0, 1e6, 0.4, 3.5};
-constexpr double kTetEdge = 0.016;
-
-trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed) {
-  trial::TrialObject object;
-  object.name = set.category;
-  object.surface = synth::load_object(set.category, seed);
-  object.material = kObjectMaterial;
-  if (set.soft) {
-    geometry::TetOptions options;
-    const objects::ObjectShape shape =
-        objects::sample_shape(objects::parse_object_category(set.category), seed);
-    options.edge_length = std::min(kTetEdge, objects::thinnest_feature(shape));
-    object.tets = geometry::tetrahedralize(object.surface, options, set.category);
-    object.surface = geometry::boundary_surface(*object.tets);
-  }
-  return object;
-}
-
-// The grippers as simulated here, built once on first use.
-const grippers::ParallelGripper& rigid_jaws() {
-  static const grippers::ParallelGripper gripper =
-      grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw);
-  return gripper;
-}
-
-// The fin-ray finger with one tet layer across its depth (8 in production), same profile.
-const grippers::ParallelGripper& coarse_fin_ray() {
-  static const grippers::ParallelGripper gripper = [] {
-    grippers::FinRayOptions options;
-    options.layers = 1;
-    return grippers::make_umi_soft_gripper(options);
-  }();
-  return gripper;
-}
-
-const grippers::HandModel& coarse_hand() {
-  static const grippers::HandModel hand = grippers::coarse_leap_hand();
-  return hand;
-}
-
-// The trials of one batch's candidates as one solver::Batch.
-std::vector<trial::TrialOutcome> run_batch(const RobustnessSet& set,
-                                           const trial::TrialObject& object,
-                                           const std::vector<synth::Candidate>& candidates,
-                                           const trial::TrialParameters& parameters, int threads) {
-  trial::TrialRunOptions options;
-  options.threads = threads;
-  options.trajectory = false;
-  if (set.gripper == "leap") {
-    std::vector<trial::HandTrialGrasp> grasps;
-    for (const synth::Candidate& c : candidates) {
-      const synth::HandGrasp& h = c.hands.front();
-      grasps.push_back({h.pose, h.joints, h.contacts, h.contact_normals});
-    }
-    const trial::HandTrialScene scene(object, coarse_hand(), "leap", parameters);
-    return trial::run_hand_trials(scene, grasps, options);
-  }
-  std::vector<trial::ParallelGrasp> grasps;
-  for (const synth::Candidate& c : candidates) {
-    grasps.push_back({c.hands.front().pose, c.hands.front().joints[0]});
-  }
-  const trial::TrialScene scene(object, set.gripper == "fin-ray" ? coarse_fin_ray() : rigid_jaws(),
-                                parameters);
-  return trial::run_trials(scene, grasps, options);
-}
-
-// The largest of the values measured (NaN ones are phases never run); NaN if none was.
-double largest_measured(const std::array<double, 6>& values) {
-  double most = std::numeric_limits<double>::quiet_NaN();
-  for (const double d : values) {
-    if (!std::isnan(d)) most = std::isnan(most) ? d : std::max(most, d);
-  }
-  return most;
-}
-
 std::string describe(const RobustnessSet& set, std::uint64_t seed) {
   return set.gripper + " x " + set.category + " seed " + std::to_string(seed) +
          (set.soft ? " soft" : " rigid");
@@ -149,12 +57,7 @@ struct CategoryRun {
   std::vector<synth::Candidate> synthesize(const RobustnessSet& set, std::uint64_t seed,
                                            int count) {
     std::vector<synth::Candidate> candidates;
-    arena.execute([&] {
-      const synth::PreparedObject prepared(synth::load_object(set.category, seed));
-      candidates = synth::synthesize(prepared, grippers::gripper_type(set.gripper).kind,
-                                     /*bimanual=*/false, synth::SynthesisParams{}, seed, count)
-                       .candidates;
-    });
+    arena.execute([&] { candidates = synthesize_candidates(set, seed, count); });
     return candidates;
   }
 
@@ -166,7 +69,7 @@ struct CategoryRun {
     try {
       trial::TrialObject object;
       arena.execute([&] { object = make_object(set, seed); });
-      outcomes = run_batch(set, object, candidates, parameters, result.threads);
+      outcomes = RobustnessScene(set, object, parameters).run(candidates, result.threads);
     } catch (const std::exception& e) {
       // An object that cannot be meshed or a candidate the gripper cannot take: reported, and
       // the other batches still run.
@@ -178,14 +81,8 @@ struct CategoryRun {
         {set.gripper, set.category, seed, set.soft, static_cast<int>(outcomes.size())});
     std::map<io::FailureKind, int> counts;
     for (std::size_t k = 0; k < outcomes.size(); ++k) {
-      const io::CandidateRecord& record = outcomes[k].result.record;
-      result.trials.push_back({set.gripper, set.category, seed, set.soft, k, record.status,
-                               record.failure, outcomes[k].failure_reason, record.newton,
-                               outcomes[k].steps_by_newton_iterations, record.closing_forces,
-                               outcomes[k].closed, outcomes[k].settle_displacement,
-                               largest_measured(record.displacement),
-                               largest_measured(outcomes[k].center_displacement)});
-      ++counts[record.failure];
+      result.trials.push_back(robustness_trial(set, seed, k, outcomes[k]));
+      ++counts[result.trials.back().failure];
     }
     std::string summary;
     for (const auto& [kind, n] : counts) {
@@ -245,6 +142,11 @@ struct CategoryRun {
 };
 
 }  // namespace
+
+std::string verdict_of(const RobustnessTrial& trial) {
+  return trial.failure == io::FailureKind::kNone ? "success"
+                                                 : std::string(io::to_string(trial.failure));
+}
 
 std::string robustness_gripper_model(const std::string& gripper) {
   if (gripper == "parallel-jaw") return "rigid box jaws (the registry's parallel-jaw)";

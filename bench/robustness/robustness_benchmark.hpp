@@ -73,6 +73,9 @@ struct RobustnessTrial {
   double largest_center_displacement = 0.0;  // m, the centre of mass's (sag and slip); NaN if none
 };
 
+// "success" or the trial's failure kind.
+std::string verdict_of(const RobustnessTrial& trial);
+
 struct RobustnessResult {
   std::vector<RobustnessSet> sets;       // the plan
   std::vector<RobustnessBatch> batches;  // what ran, in order

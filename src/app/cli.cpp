@@ -309,6 +309,30 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_labels->callback(
       [&] { run = [&] { return grip::commands::bench_labels(bench_labels_args); }; });
+  grip::commands::BenchTrialArgs bench_trial_args;
+  CLI::App* bench_trial = bench->add_subcommand(
+      "trial", "What one grasp trial costs per gripper x object model, by solver stage");
+  bench_trial
+      ->add_option("--arms", bench_trial_args.arms,
+                   "Gripper and object model, e.g. fin-ray:soft,leap:rigid (default: "
+                   "parallel-jaw:rigid,fin-ray:rigid,fin-ray:soft,leap:rigid,leap:soft)")
+      ->delimiter(',');
+  bench_trial
+      ->add_option("--categories", bench_trial_args.categories,
+                   "Object categories (default: box,cylinder,capsule,bottle)")
+      ->delimiter(',');
+  bench_trial->add_option("--candidates", bench_trial_args.candidates,
+                          "Candidates per arm (default: 8 parallel-jaw:rigid, 4 leap:rigid, 2 "
+                          "others)");
+  bench_trial
+      ->add_option("--repeats", bench_trial_args.repeats, "Runs per candidate at the defaults")
+      ->capture_default_str();
+  bench_trial->add_flag("--no-reference", bench_trial_args.no_reference,
+                        "Skip the runs at the reference (dt/2, newton_tol/10, two lag iterations)");
+  bench_trial->add_option("--out", bench_trial_args.out, "Folder for trial.md and trial.csv")
+      ->capture_default_str();
+  bench_trial->callback(
+      [&] { run = [&] { return grip::commands::bench_trial(bench_trial_args); }; });
   grip::commands::BenchLinearArgs bench_linear_args;
   CLI::App* bench_linear = bench->add_subcommand(
       "linear",

@@ -196,4 +196,17 @@ struct BenchLabelsArgs {
 };
 int bench_labels(const BenchLabelsArgs& args);
 
+// grip bench trial [--arms ...] [--categories ...] [--candidates N] [--repeats N]
+// [--no-reference] [--out DIR]: what one grasp trial costs per gripper x object model, by solver
+// stage, one trial at a time on one thread (bench/trial/, docs/results.md).
+struct BenchTrialArgs {
+  std::vector<std::string> arms;        // "gripper:rigid|soft"; empty: the benchmark's five
+  std::vector<std::string> categories;  // empty: box, cylinder, capsule, bottle
+  int candidates = 0;                   // per arm; 0: the arm's default
+  int repeats = 3;                      // runs of each candidate at the defaults (median)
+  bool no_reference = false;            // skip the runs at the reference
+  std::string out = "out/bench-trial";
+};
+int bench_trial(const BenchTrialArgs& args);
+
 }  // namespace grip::commands

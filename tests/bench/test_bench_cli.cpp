@@ -2,7 +2,7 @@
 // table, CSV and plot and exits 0 when every case holds; an unknown case, a bimanual accuracy
 // scene (there is none) or an unknown sweep is one message and exit status 1; `grip bench
 // labels` refuses an arm without its object model or an unknown category in one line, exit 2,
-// writing nothing.
+// writing nothing, and `grip bench trial` an unknown gripper or no repeats.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -59,6 +59,21 @@ TEST(BenchCli, LabelsRefusesBadArmsAndCategoriesInOneLine) {
   const auto category = run_grip("bench labels --categories teacup --out " + out.string());
   EXPECT_EQ(category.exit_code, 2);
   EXPECT_NE(category.err.find("teacup"), std::string::npos) << category.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(BenchCli, TrialRefusesAnUnknownGripperAndNoRepeatsInOneLine) {
+  const fs::path out = scratch("trial");
+  const auto gripper = run_grip("bench trial --arms gripper-x:rigid --out " + out.string());
+  EXPECT_EQ(gripper.exit_code, 2);
+  EXPECT_NE(gripper.err.find("grip bench trial: unknown gripper 'gripper-x'"), std::string::npos)
+      << gripper.err;
+  EXPECT_EQ(gripper.err.find('\n'), gripper.err.size() - 1) << gripper.err;
+  const auto repeats = run_grip("bench trial --repeats 0 --out " + out.string());
+  EXPECT_EQ(repeats.exit_code, 2);
+  EXPECT_NE(repeats.err.find("grip bench trial: --repeats must be at least 1"), std::string::npos)
+      << repeats.err;
+  EXPECT_EQ(repeats.err.find('\n'), repeats.err.size() - 1) << repeats.err;
   EXPECT_FALSE(fs::exists(out));
 }
 

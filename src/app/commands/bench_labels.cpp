@@ -12,21 +12,6 @@
 
 namespace grip::commands {
 
-namespace {
-
-// "fin-ray:soft" -> {"fin-ray", true}.
-bench::LabelsArm parse_arm(const std::string& text) {
-  const std::size_t colon = text.find(':');
-  const std::string model = colon == std::string::npos ? "" : text.substr(colon + 1);
-  if (model != "rigid" && model != "soft") {
-    throw std::invalid_argument("grip bench labels: --arms '" + text +
-                                "': write gripper:rigid or gripper:soft");
-  }
-  return {text.substr(0, colon), model == "soft"};
-}
-
-}  // namespace
-
 int bench_labels(const BenchLabelsArgs& args) {
   bench::LabelsOptions options;
   options.categories = args.categories;
@@ -35,7 +20,12 @@ int bench_labels(const BenchLabelsArgs& args) {
   options.threads = args.threads;
   options.out = args.out;
   try {
-    for (const std::string& arm : args.arms) options.arms.push_back(parse_arm(arm));
+    for (const std::string& arm : args.arms) options.arms.push_back(bench::parse_labels_arm(arm));
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("grip bench labels: {}", e.what());
+    return 2;
+  }
+  try {
     bench::check_labels_options(options);
   } catch (const std::invalid_argument& e) {
     spdlog::error("{}", e.what());

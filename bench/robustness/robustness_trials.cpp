@@ -1,0 +1,149 @@
+#include "bench/robustness/robustness_trials.hpp"
+
+#include <spdlog/fmt/fmt.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "src/geometry/boundary_surface.hpp"
+#include "src/geometry/tetrahedralize.hpp"
+#include "src/grippers/coarse_leap_hand.hpp"
+#include "src/grippers/gripper_registry.hpp"
+#include "src/objects/object_library.hpp"
+#include "src/synth/object_spec.hpp"
+#include "src/synth/prepared_object.hpp"
+#include "src/synth/synthesize.hpp"
+#include "src/trial/grasp_trial.hpp"
+#include "src/trial/hand_trial.hpp"
+
+namespace grip::bench {
+namespace {
+
+// The soft object's material is `grip trial --soft`'s default (rigid objects take the same
+// density and friction). Its tets are coarser than `grip trial --soft`'s (8 mm, and two across
+// the thinnest wall): at most kTetEdge, and one across the thinnest wall. A soft cup meshed
+// as the trial meshes it costs 15 minutes per fin-ray trial; the solver's failures are what is
+// counted here, not the stress field.
+constexpr solver::Material kObjectMaterial{1000.0, 1e6, 0.4, 3.5};
+constexpr double kTetEdge = 0.016;
+
+// The grippers as simulated here, built once on first use.
+const grippers::ParallelGripper& rigid_jaws() {
+  static const grippers::ParallelGripper gripper =
+      grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw);
+  return gripper;
+}
+
+// The fin-ray finger with one tet layer across its depth (8 in production), same profile.
+const grippers::ParallelGripper& coarse_fin_ray() {
+  static const grippers::ParallelGripper gripper = [] {
+    grippers::FinRayOptions options;
+    options.layers = 1;
+    return grippers::make_umi_soft_gripper(options);
+  }();
+  return gripper;
+}
+
+const grippers::HandModel& coarse_hand() {
+  static const grippers::HandModel hand = grippers::coarse_leap_hand();
+  return hand;
+}
+
+// The largest of the values measured (NaN ones are phases never run); NaN if none was.
+double largest_measured(const std::array<double, 6>& values) {
+  double most = std::numeric_limits<double>::quiet_NaN();
+  for (const double d : values) {
+    if (!std::isnan(d)) most = std::isnan(most) ? d : std::max(most, d);
+  }
+  return most;
+}
+
+}  // namespace
+
+std::string robustness_object_model(bool soft) {
+  if (!soft) return "rigid: one affine body";
+  return fmt::format(
+      "soft: FEM, E {:g} MPa, nu {:g}, tets of at most {:g} mm, one across the "
+      "thinnest wall",
+      kObjectMaterial.youngs / 1e6, kObjectMaterial.poisson, kTetEdge * 1e3);
+}
+
+std::vector<synth::Candidate> synthesize_candidates(const RobustnessSet& set, std::uint64_t seed,
+                                                    int count) {
+  const synth::PreparedObject prepared(synth::load_object(set.category, seed));
+  return synth::synthesize(prepared, grippers::gripper_type(set.gripper).kind,
+                           /*bimanual=*/false, synth::SynthesisParams{}, seed, count)
+      .candidates;
+}
+
+trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed) {
+  trial::TrialObject object;
+  object.name = set.category;
+  object.surface = synth::load_object(set.category, seed);
+  object.material = kObjectMaterial;
+  if (set.soft) {
+    geometry::TetOptions options;
+    const objects::ObjectShape shape =
+        objects::sample_shape(objects::parse_object_category(set.category), seed);
+    options.edge_length = std::min(kTetEdge, objects::thinnest_feature(shape));
+    object.tets = geometry::tetrahedralize(object.surface, options, set.category);
+    object.surface = geometry::boundary_surface(*object.tets);
+  }
+  return object;
+}
+
+RobustnessScene::RobustnessScene(const RobustnessSet& set, const trial::TrialObject& object,
+                                 const trial::TrialParameters& parameters) {
+  if (set.gripper == "leap") {
+    hand_ = std::make_unique<trial::HandTrialScene>(object, coarse_hand(), "leap", parameters);
+  } else {
+    parallel_ = std::make_unique<trial::TrialScene>(
+        object, set.gripper == "fin-ray" ? coarse_fin_ray() : rigid_jaws(), parameters);
+  }
+}
+
+RobustnessScene::~RobustnessScene() = default;
+
+std::vector<trial::TrialOutcome> RobustnessScene::run(
+    const std::vector<synth::Candidate>& candidates, int threads) const {
+  trial::TrialRunOptions options;
+  options.threads = threads;
+  options.trajectory = false;
+  if (hand_) {
+    std::vector<trial::HandTrialGrasp> grasps;
+    for (const synth::Candidate& c : candidates) {
+      const synth::HandGrasp& h = c.hands.front();
+      grasps.push_back({h.pose, h.joints, h.contacts, h.contact_normals});
+    }
+    return trial::run_hand_trials(*hand_, grasps, options);
+  }
+  std::vector<trial::ParallelGrasp> grasps;
+  for (const synth::Candidate& c : candidates) {
+    grasps.push_back({c.hands.front().pose, c.hands.front().joints[0]});
+  }
+  return trial::run_trials(*parallel_, grasps, options);
+}
+
+RobustnessTrial robustness_trial(const RobustnessSet& set, std::uint64_t seed, std::uint64_t k,
+                                 const trial::TrialOutcome& outcome) {
+  const io::CandidateRecord& record = outcome.result.record;
+  return {set.gripper,
+          set.category,
+          seed,
+          set.soft,
+          k,
+          record.status,
+          record.failure,
+          outcome.failure_reason,
+          record.newton,
+          outcome.steps_by_newton_iterations,
+          record.closing_forces,
+          outcome.closed,
+          outcome.settle_displacement,
+          largest_measured(record.displacement),
+          largest_measured(outcome.center_displacement)};
+}
+
+}  // namespace grip::bench
