@@ -1,7 +1,10 @@
 #include "src/metrics/distance_metrics.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace grip::metrics {
 
@@ -13,9 +16,32 @@ DistanceMetrics distance_metrics(const Eigen::VectorXd& signed_distances) {
   return {std::max(0.0, deepest), std::abs(deepest)};
 }
 
+// Only the deepest point counts, so the points are visited from the one that could lie deepest,
+// judged by the object's bounding box: a point outside it by b lies at least b from the object
+// (signed distance <= -b); a point inside it may lie anywhere. Once no remaining point can beat
+// the deepest so far, the rest are skipped: the result is the full evaluation's, exactly.
 DistanceMetrics distance_metrics(const geometry::SignedDistance& object,
                                  const geometry::Vertices& gripper_points) {
-  return distance_metrics(object.evaluate(gripper_points));
+  const Eigen::Index n = gripper_points.rows();
+  if (n == 0) return distance_metrics(Eigen::VectorXd());
+  const Eigen::Matrix<double, 2, 3> box = object.bounds();
+  std::vector<std::pair<double, Eigen::Index>> bound(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::RowVector3d p = gripper_points.row(i);
+    const Eigen::RowVector3d outside = (box.row(0) - p).cwiseMax(p - box.row(1)).cwiseMax(0.0);
+    const double b = outside.norm();
+    bound[static_cast<std::size_t>(i)] = {b > 0.0 ? -b : std::numeric_limits<double>::infinity(),
+                                          i};
+  }
+  std::sort(bound.begin(), bound.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (const auto& [upper, i] : bound) {
+    if (upper <= deepest) break;
+    deepest = std::max(deepest, object(gripper_points.row(i).transpose()));
+  }
+  return {std::max(0.0, deepest), std::abs(deepest)};
 }
 
 }  // namespace grip::metrics

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <stdexcept>
 
 #include "src/geometry/primitives.hpp"
@@ -34,6 +35,26 @@ TEST(DistanceMetrics, PenetratingGripper) {
   const DistanceMetrics d = distance_metrics(cube(), points);
   EXPECT_NEAR(d.d1, 0.003, 1e-12);
   EXPECT_NEAR(d.d2, 0.003, 1e-12);
+}
+
+// The metrics skip points that cannot be the deepest; the result must be the full evaluation's,
+// bit for bit, for points all outside, some inside, and far and near mixed.
+TEST(DistanceMetrics, SkippingPointsGivesTheFullEvaluationsResult) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const geometry::SignedDistance object(geometry::make_cylinder(0.02, 0.05, 24));
+  for (const double spread : {0.021, 0.03, 0.2}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      geometry::Vertices points(500, 3);
+      for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        points.row(i) = spread * Eigen::RowVector3d(unit(rng), unit(rng), unit(rng));
+      }
+      const DistanceMetrics fast = distance_metrics(object, points);
+      const DistanceMetrics full = distance_metrics(object.evaluate(points));
+      EXPECT_EQ(fast.d1, full.d1) << "spread " << spread << " trial " << trial;
+      EXPECT_EQ(fast.d2, full.d2) << "spread " << spread << " trial " << trial;
+    }
+  }
 }
 
 TEST(DistanceMetrics, FromSignedDistances) {
