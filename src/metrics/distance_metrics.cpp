@@ -24,21 +24,27 @@ DistanceMetrics distance_metrics(const geometry::SignedDistance& object,
                                  const geometry::Vertices& gripper_points) {
   const Eigen::Index n = gripper_points.rows();
   if (n == 0) return distance_metrics(Eigen::VectorXd());
+  // upper[i]: the most point i's signed distance can be.
   const Eigen::Matrix<double, 2, 3> box = object.bounds();
-  std::vector<std::pair<double, Eigen::Index>> bound(static_cast<std::size_t>(n));
+  Eigen::VectorXd upper(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::RowVector3d p = gripper_points.row(i);
-    const Eigen::RowVector3d outside = (box.row(0) - p).cwiseMax(p - box.row(1)).cwiseMax(0.0);
-    const double b = outside.norm();
-    bound[static_cast<std::size_t>(i)] = {b > 0.0 ? -b : std::numeric_limits<double>::infinity(),
-                                          i};
+    const double outside = (box.row(0) - p).cwiseMax(p - box.row(1)).cwiseMax(0.0).norm();
+    upper[i] = outside > 0.0 ? -outside : std::numeric_limits<double>::infinity();
   }
-  std::sort(bound.begin(), bound.end(), [](const auto& a, const auto& b) {
+  Eigen::Index first = 0;
+  upper.maxCoeff(&first);
+  double deepest = object(gripper_points.row(first).transpose());
+  // The points that could still lie deeper, most promising first.
+  std::vector<std::pair<double, Eigen::Index>> rest;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (i != first && upper[i] > deepest) rest.emplace_back(upper[i], i);
+  }
+  std::sort(rest.begin(), rest.end(), [](const auto& a, const auto& b) {
     return a.first != b.first ? a.first > b.first : a.second < b.second;
   });
-  double deepest = -std::numeric_limits<double>::infinity();
-  for (const auto& [upper, i] : bound) {
-    if (upper <= deepest) break;
+  for (const auto& [bound, i] : rest) {
+    if (bound <= deepest) break;
     deepest = std::max(deepest, object(gripper_points.row(i).transpose()));
   }
   return {std::max(0.0, deepest), std::abs(deepest)};
