@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <iostream>
@@ -23,6 +25,41 @@ std::string command_names(const CLI::App& app) {
   }
   return names;
 }
+
+// Range checks that say in words what an option takes (CLI11's PositiveNumber and
+// NonNegativeNumber print their bound as a 309-digit number); CLI11 puts the option first.
+CLI::Validator whole_number(std::int64_t minimum) {
+  const std::string rule = "a whole number >= " + std::to_string(minimum);
+  return CLI::Validator(
+      [minimum, rule](std::string& input) {
+        std::int64_t value = 0;
+        if (CLI::detail::lexical_cast(input, value) && value >= minimum) return std::string();
+        return "must be " + rule + ", not '" + input + "'";
+      },
+      minimum > 0 ? "POSITIVE" : "NONNEGATIVE");
+}
+
+CLI::Validator finite_number(const std::string& rule, const std::string& name,
+                             std::function<bool(double)> ok) {
+  return CLI::Validator(
+      [rule, ok](std::string& input) {
+        double value = 0;
+        if (CLI::detail::lexical_cast(input, value) && std::isfinite(value) && ok(value)) {
+          return std::string();
+        }
+        return "must be a finite number " + rule + ", not '" + input + "'";
+      },
+      name);
+}
+
+const CLI::Validator kCount = whole_number(0);
+const CLI::Validator kPositiveCount = whole_number(1);
+const CLI::Validator kPositive = finite_number("> 0", "POSITIVE", [](double x) { return x > 0; });
+const CLI::Validator kNonNegative =
+    finite_number(">= 0", "NONNEGATIVE", [](double x) { return x >= 0; });
+// Stable Neo-Hookean elasticity needs -1 < nu < 0.5.
+const CLI::Validator kPoisson =
+    finite_number("in (-1, 0.5)", "(-1, 0.5)", [](double x) { return x > -1 && x < 0.5; });
 
 }  // namespace
 
@@ -58,10 +95,10 @@ int main(int argc, char** argv) {
   farm->add_flag("--resume", farm_args.resume, "Continue an interrupted dataset of the same job");
   farm->add_option("--threads", farm_args.threads,
                    "Threads per rank (default: this node's cores shared by its ranks)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   farm->add_option("--batch", farm_args.batch,
                    "Candidates per batch (default: the job's, else 4 per thread)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   farm->add_option("--report", farm_args.report, "Write a JSON summary of the run here");
   farm->callback([&] { run = [&] { return grip::commands::farm(farm_args); }; });
 
@@ -71,21 +108,30 @@ int main(int argc, char** argv) {
       "Grasp trials of candidates as one batch: close, settle, six-axis gravity (docs/trial.md)");
   trial->add_option("--object", trial_args.object,
                     "Object category or mesh file (default: the candidate file's; must agree)");
-  trial->add_option("--seed", trial_args.seed,
-                    "The seed the candidates were synthesized with (default: the file's)");
-  trial->add_option("--scale", trial_args.scale,
-                    "A mesh file's scale (default: the candidate file's; must agree)");
+  trial
+      ->add_option("--seed", trial_args.seed,
+                   "The seed the candidates were synthesized with (default: the file's)")
+      ->check(kCount);
+  trial
+      ->add_option("--scale", trial_args.scale,
+                   "A mesh file's scale (default: the candidate file's; must agree)")
+      ->check(kPositive);
   trial->add_flag("--soft", trial_args.soft, "Simulate the object as FEM (tetrahedralized)");
   trial->add_option("--tet-edge", trial_args.tet_edge, "Soft object: target tet edge length (m)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   trial->add_option("--density", trial_args.density, "Object density (kg/m^3)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   trial->add_option("--youngs", trial_args.youngs, "Soft object: Young's modulus (Pa)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   trial->add_option("--poisson", trial_args.poisson, "Soft object: Poisson's ratio")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPoisson);
   trial->add_option("--friction", trial_args.friction, "Object friction coefficient")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kNonNegative);
   trial
       ->add_option("--gripper", trial_args.gripper,
                    "Gripper: " + grip::grippers::gripper_name_list() +
@@ -97,17 +143,25 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   trial->add_option("--report", trial_args.report, "Write the JSON report here (default: stdout)");
   trial->add_option("--vtk", trial_args.vtk, "Write each candidate's frames as a VTK series here");
-  trial->add_option("--threads", trial_args.threads, "Threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+  trial->add_option("--threads", trial_args.threads, "Threads (default: all cores)")->check(kCount);
   trial
       ->add_option("--squeeze-speed", trial_args.squeeze_speed,
                    "Fastest finger speed while closing and servoing its force (m/s)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   trial->add_option("--grip-force", trial_args.grip_force, "Force each finger servos to (N)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   trial->add_flag("--compare-solo", trial_args.compare_solo,
                   "Also run each candidate alone: batch speedup and bit-identity");
-  trial->callback([&] { run = [&] { return grip::commands::trial(trial_args); }; });
+  trial->callback([&] {
+    for (const char* soft_only : {"--tet-edge", "--youngs", "--poisson"}) {
+      if (trial->count(soft_only) > 0 && !trial_args.soft) {
+        throw CLI::ValidationError(soft_only, "applies to soft objects only: add --soft");
+      }
+    }
+    run = [&] { return grip::commands::trial(trial_args); };
+  });
 
   grip::commands::SynthArgs synth_args;
   CLI::App* synth = app.add_subcommand(
@@ -117,7 +171,8 @@ int main(int argc, char** argv) {
                    "Object category name (shape drawn from --seed) or surface mesh file")
       ->required();
   synth->add_option("--scale", synth_args.scale, "Multiply a mesh file's coordinates by this")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   synth
       ->add_option("--gripper", synth_args.gripper,
                    "Gripper: " + grip::grippers::gripper_name_list())
@@ -126,7 +181,7 @@ int main(int argc, char** argv) {
   synth->add_flag("--bimanual", synth_args.bimanual,
                   "Two hands: compose right and left candidates");
   synth->add_option("--count", synth_args.count, "Number of candidates")->required();
-  synth->add_option("--seed", synth_args.seed, "Random seed")->required();
+  synth->add_option("--seed", synth_args.seed, "Random seed")->required()->check(kCount);
   synth->add_option("--out", synth_args.out, "Candidate file to write")->required();
   synth->add_option("--steps", synth_args.steps, "Annealing steps per hand attempt (leap)")
       ->capture_default_str();
@@ -142,7 +197,7 @@ int main(int argc, char** argv) {
   simulate->add_option("scenes", simulate_args.scenes, "Scene files (docs/scene-format.md)")
       ->required();
   simulate->add_option("--threads", simulate_args.threads, "Threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   simulate->add_option("--report", simulate_args.report,
                        "Write the JSON report here (default: stdout)");
   simulate->add_flag("--trace", simulate_args.trace, "Add per-step centres of mass to the report");
@@ -174,13 +229,13 @@ int main(int argc, char** argv) {
       ->required();
   bench_batch->add_option("--envs", bench_batch_args.envs, "Environment counts, e.g. 1,2,4,8")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
   bench_batch->add_option("--threads", bench_batch_args.threads, "Threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   bench_batch
       ->add_option("--jitter", bench_batch_args.jitter,
                    "Seed: move each copy's free bodies by up to d_hat/4 per axis")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   bench_batch->callback(
       [&] { run = [&] { return grip::commands::bench_batch(bench_batch_args); }; });
   grip::commands::BenchScalingArgs bench_scaling_args;
@@ -191,19 +246,19 @@ int main(int argc, char** argv) {
       ->required();
   bench_scaling->add_option("--ranks", bench_scaling_args.ranks, "MPI rank counts, e.g. 1,2,4")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
   bench_scaling
       ->add_option("--envs", bench_scaling_args.envs,
                    "Candidates per batch (environments at once), e.g. 2,8; 0: default")
       ->delimiter(',')
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   bench_scaling
       ->add_option("--threads", bench_scaling_args.threads,
                    "Threads per rank (default: the node's cores shared by its ranks)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   bench_scaling->add_option("--repeats", bench_scaling_args.repeats, "Runs per setting (median)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
   bench_scaling
       ->add_option("--out", bench_scaling_args.out,
                    "Folder for the datasets, table (scaling.md, scaling.csv) and plot")
@@ -224,10 +279,10 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   bench_accuracy
       ->add_option("--threads", bench_accuracy_args.threads, "Threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   bench_accuracy->add_option("--repeats", bench_accuracy_args.repeats, "Runs per setting (median)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
   bench_accuracy->add_option("--out", bench_accuracy_args.out, "Folder for tables and plots")
       ->capture_default_str();
   bench_accuracy->callback(
@@ -237,7 +292,7 @@ int main(int argc, char** argv) {
       "hard", "Hard cases: a pass/fail per invariant (no intersection, no inversion)");
   bench_hard->add_option("--cases", bench_hard_args.cases, "Cases (default: all)")->delimiter(',');
   bench_hard->add_option("--threads", bench_hard_args.threads, "Threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   bench_hard->add_option("--out", bench_hard_args.out, "Folder for the tables and plot")
       ->capture_default_str();
   bench_hard->callback([&] { run = [&] { return grip::commands::bench_hard(bench_hard_args); }; });
@@ -246,10 +301,10 @@ int main(int argc, char** argv) {
       "model", "What modelling only what a scene needs saves: time and error per choice");
   bench_model->add_option("--repeats", bench_model_args.repeats, "Runs per variant (median)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
   bench_model->add_option("--threads", bench_model_args.threads, "Threads")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
   bench_model->add_option("--out", bench_model_args.out, "Folder for tables and plots")
       ->capture_default_str();
   bench_model->callback(
@@ -269,16 +324,16 @@ int main(int argc, char** argv) {
       ->add_option("--seeds", bench_robustness_args.seeds,
                    "Shapes per category: the first N seeds the gripper gets a candidate on "
                    "(default: per gripper)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
   bench_robustness
       ->add_option("--candidates", bench_robustness_args.candidates,
                    "Candidates per object and gripper (default: per gripper)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
   bench_robustness->add_flag("--rigid", bench_robustness_args.rigid, "Rigid objects only");
   bench_robustness->add_flag("--soft", bench_robustness_args.soft, "Soft (FEM) objects only");
   bench_robustness
       ->add_option("--threads", bench_robustness_args.threads, "Threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   bench_robustness
       ->add_option("--out", bench_robustness_args.out,
                    "Folder for robustness.md and robustness.csv")
@@ -298,13 +353,13 @@ int main(int argc, char** argv) {
                    "Object categories (default: box,cylinder,capsule,bottle)")
       ->delimiter(',');
   bench_labels->add_option("--seeds", bench_labels_args.seeds, "Shapes per category")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositiveCount)
       ->capture_default_str();
   bench_labels->add_option("--candidates", bench_labels_args.candidates, "Candidates per shape")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositiveCount)
       ->capture_default_str();
   bench_labels->add_option("--threads", bench_labels_args.threads, "Threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   bench_labels->add_option("--out", bench_labels_args.out, "Folder for labels.md and labels.csv")
       ->capture_default_str();
   bench_labels->callback(
@@ -342,7 +397,7 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->capture_default_str();
   bench_linear->add_option("--repeats", bench_linear_args.repeats, "Timed solves per size (median)")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositiveCount)
       ->capture_default_str();
   bench_linear->callback([&] {
     uses_petsc = true;

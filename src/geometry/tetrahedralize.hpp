@@ -1,6 +1,7 @@
 #pragma once
 // Tetrahedralization of a closed surface with CGAL Mesh_3 (polyhedral domain with sharp
 // features protected), to a target edge length with quality bounds.
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -27,6 +28,17 @@ struct TetOptions {
   // different seed gives a different but equally valid mesh; the same seed, the same mesh.
   std::uint32_t seed = 0;
 };
+
+// The most tets grip builds a mesh of (`grip asset prepare --edge`, a scene's FEM `resolution`,
+// `grip trial --soft --tet-edge`), checked on an estimate before meshing: more would take hours
+// to mesh and to simulate.
+inline constexpr double kMaxEstimatedTets = 5e6;
+
+// About how many tets of edge `edge_length` fill `volume`: a regular tet of edge h has volume
+// h^3 / (6 sqrt 2).
+inline double estimated_tet_count(double volume, double edge_length) {
+  return volume / (std::pow(edge_length, 3) / (6.0 * std::sqrt(2.0)));
+}
 
 // Tetrahedralizes the volume bounded by `closed_surface`, which must be closed, manifold and
 // free of self-intersections (repair_surface in repair.hpp makes it so). The tets are

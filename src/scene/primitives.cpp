@@ -5,6 +5,14 @@
 #include "src/geometry/boundary_surface.hpp"
 
 namespace grip::scene {
+namespace {
+
+// Cells per axis of box_tets: about size / cell, at least one.
+Eigen::Vector3d box_cells(const Eigen::Vector3d& size, double cell) {
+  return (size / cell).array().round().max(1.0).matrix();
+}
+
+}  // namespace
 
 solver::BodyDescription surface_body(const std::string& name, solver::BodyType type,
                                      const geometry::SurfaceMesh& mesh,
@@ -27,7 +35,7 @@ void set_fem_mesh(solver::BodyDescription& body, const geometry::TetMesh& tets) 
 }
 
 geometry::TetMesh box_tets(const Eigen::Vector3d& size, double cell) {
-  const Eigen::Vector3i n = (size / cell).array().round().max(1.0).cast<int>();
+  const Eigen::Vector3i n = box_cells(size, cell).cast<int>();
   auto index = [&](int i, int j, int k) { return (k * (n.y() + 1) + j) * (n.x() + 1) + i; };
   geometry::TetMesh mesh;
   mesh.vertices.resize((n.x() + 1) * (n.y() + 1) * (n.z() + 1), 3);
@@ -58,6 +66,10 @@ geometry::TetMesh box_tets(const Eigen::Vector3d& size, double cell) {
           mesh.tets.row(t++) << tet[0], tet[1], tet[2], tet[3];
         }
   return mesh;
+}
+
+double box_tet_count(const Eigen::Vector3d& size, double cell) {
+  return 6.0 * box_cells(size, cell).prod();
 }
 
 }  // namespace grip::scene

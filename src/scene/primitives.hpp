@@ -23,4 +23,8 @@ void set_fem_mesh(solver::BodyDescription& body, const geometry::TetMesh& tets);
 // positively oriented tets per cell (Kuhn's split, conforming across cells).
 geometry::TetMesh box_tets(const Eigen::Vector3d& size, double cell);
 
+// How many tets box_tets(size, cell) makes, counted in floating point so that a fine cell gives
+// a large number rather than an overflow: check it before building.
+double box_tet_count(const Eigen::Vector3d& size, double cell);
+
 }  // namespace grip::scene

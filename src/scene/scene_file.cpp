@@ -1,12 +1,14 @@
 #include "src/scene/scene_file.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 
 #include "solver/model.hpp"
 #include "src/config/config.hpp"
 #include "src/geometry/mesh_io.hpp"
+#include "src/geometry/mesh_measures.hpp"
 #include "src/geometry/primitives.hpp"
 #include "src/geometry/tetrahedralize.hpp"
 #include "src/scene/primitives.hpp"
@@ -18,6 +20,12 @@ namespace {
 using config::Table;
 
 Eigen::Vector3d vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+std::string number_text(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
 
 // Extrinsic XYZ Euler angles in degrees: about world x, then world y, then world z.
 Eigen::Quaterniond rotation_from_degrees(const Eigen::Vector3d& degrees) {
@@ -41,6 +49,29 @@ void read_sim(const Table& sim, SceneFile& out) {
   read_sim_parameters(sim, p);
   out.duration = positive(sim, "duration", out.duration);
   p.gravity = vec(sim.vec3_or("gravity", {p.gravity.x(), p.gravity.y(), p.gravity.z()}));
+  // Checked in floating point: a tiny dt or a huge duration must not overflow the count.
+  const double steps = std::round(out.duration / p.dt);
+  const std::string_view key = sim.has("duration") ? "duration" : "dt";
+  const std::string given =
+      "(duration " + number_text("%g", out.duration) + " s, dt " + number_text("%g", p.dt) + " s)";
+  if (!(steps >= 1)) {
+    sim.fail(key, "makes no step " + given + "; make duration at least dt");
+  }
+  if (!(steps <= static_cast<double>(kMaxSceneSteps))) {
+    sim.fail(key, "makes " + number_text("%.3g", steps) + " steps " + given + ", more than the " +
+                      std::to_string(kMaxSceneSteps) +
+                      " a scene may run; shorten duration or raise dt");
+  }
+}
+
+// Refuses an FEM resolution that would make more than geometry::kMaxEstimatedTets tets (the
+// limit of `grip asset prepare`), before the mesh is built.
+void check_tet_count(const Table& body, double resolution, double tets) {
+  if (tets <= geometry::kMaxEstimatedTets) return;
+  body.fail("resolution", "= " + number_text("%g", resolution) + " m would make about " +
+                              number_text("%.3g", tets) + " tets, more than the " +
+                              number_text("%.0f", geometry::kMaxEstimatedTets) +
+                              " allowed; use a larger resolution (a coarser mesh)");
 }
 
 // The body's surface (and tets, for FEM) from its shape keys.
@@ -64,6 +95,7 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir,
     if ((size.array() <= 0).any()) body.fail("size", "must hold three positive extents (m)");
     if (soft) {
       // A structured grid: exact volume, no CGAL meshing needed for boxes.
+      check_tet_count(body, resolution, box_tet_count(size, resolution));
       set_fem_mesh(out, box_tets(size, resolution));
       return;
     }
@@ -91,6 +123,9 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir,
     surface.vertices *= scale;
   }
   if (soft) {
+    check_tet_count(
+        body, resolution,
+        geometry::estimated_tet_count(std::abs(geometry::surface_volume(surface)), resolution));
     geometry::TetOptions options;
     options.edge_length = resolution;
     geometry::TetMesh tets;

@@ -1,7 +1,7 @@
 #include "src/scene/scene_run.hpp"
 
 #include <chrono>
-#include <cmath>
+#include <cstdint>
 #include <utility>
 
 #include <tbb/parallel_for.h>
@@ -21,12 +21,12 @@ BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<st
   BatchReport report;
   report.threads = batch.threads();
   report.scenes.resize(files.size());
-  std::vector<int> steps(files.size());
+  std::vector<std::int64_t> steps(files.size());
   for (std::size_t i = 0; i < files.size(); ++i) {
     batch.add(solver::Model::build(files[i].scene));
     report.scenes[i].scene = names.at(i);
-    steps[i] = static_cast<int>(std::llround(files[i].duration / files[i].scene.sim.dt));
-    if (steps[i] == 0) batch.retire(static_cast<int>(i));
+    steps[i] = files[i].steps();
+    if (steps[i] <= 0) batch.retire(static_cast<int>(i));
   }
   tbb::task_arena checks(batch.threads());
   std::vector<int> stepped;

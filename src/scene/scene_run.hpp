@@ -2,6 +2,7 @@
 // Runs scene files' scenes for their durations as one batch, checking the exact invariants
 // after every step, and the JSON report `grip simulate` writes (docs/scene-format.md describes
 // its fields).
+#include <cstdint>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -26,12 +27,12 @@ struct SceneReport {
   std::string scene;  // the scene file
   bool ok = true;
   std::string failure;  // empty when ok
-  int steps = 0;
+  std::int64_t steps = 0;
   std::vector<BodyReport> bodies;
   double min_distance = std::numeric_limits<double>::infinity();  // over the run
   double min_volume_ratio = 1.0;
   bool intersection_free = true;
-  int newton_total = 0;
+  std::int64_t newton_total = 0;
   int newton_max_per_step = 0;
   std::vector<TraceRow> trace;  // filled when asked for
 };

@@ -55,6 +55,15 @@ class LineReader {
     }
   }
 
+  // A point of the candidate's field `what`, in the object's frame, within the bound.
+  void near_object(const Eigen::Vector3d& point, const std::string& what) {
+    if (point.stableNorm() <= kMaxCandidateDistance) return;
+    char distance[32];
+    std::snprintf(distance, sizeof distance, "%.3g m", point.stableNorm());
+    fail(what + " lies " + distance + " from the object's origin; a candidate must lie within " +
+         std::to_string(static_cast<int>(kMaxCandidateDistance)) + " m of it");
+  }
+
   int count(const std::string& what) {
     const double value = real(what);
     if (value < 0 || value != std::floor(value) || value > 1e9) {
@@ -253,6 +262,7 @@ CandidateFile read_candidates(const std::filesystem::path& file) {
       reader.expect("position");
       Eigen::Vector3d position;
       for (int k = 0; k < 3; ++k) position(k) = reader.real("position");
+      reader.near_object(position, "position");
       reader.expect("quaternion");
       Eigen::Vector4d wxyz;
       for (int k = 0; k < 4; ++k) wxyz(k) = reader.real("quaternion");
@@ -278,6 +288,7 @@ CandidateFile read_candidates(const std::filesystem::path& file) {
       hand.contact_normals.resize(contacts, 3);
       for (int r = 0; r < contacts; ++r) {
         for (int k = 0; k < 3; ++k) hand.contacts(r, k) = reader.real("contact point");
+        reader.near_object(hand.contacts.row(r).transpose(), "contact point");
         for (int k = 0; k < 3; ++k) hand.contact_normals(r, k) = reader.real("contact normal");
       }
       reader.end();

@@ -149,5 +149,44 @@ TEST(SceneFile, MistakesAreOneLineErrorsNamingFileLineAndKey) {
             std::string::npos);
 }
 
+TEST(SceneFile, StepCountsAndTetCountsPastTheLimitsAreRefusedBeforeAnythingIsBuilt) {
+  const std::string body =
+      "[[body]]\nname = \"b\"\ntype = \"affine\"\nshape = \"box\"\n"
+      "size = [0.1, 0.1, 0.1]\n";
+  // 2^32 and 2^31 steps: once wrapped to 0 steps, once to a run that never ended.
+  for (const char* duration : {"4294967296", "2147483648"}) {
+    const std::string error =
+        error_of("[sim]\ndt = 1\nduration = " + std::string(duration) + "\n" + body);
+    EXPECT_NE(error.find("grip_scene_bad.toml:3: key 'sim.duration' makes"), std::string::npos)
+        << error;
+    EXPECT_NE(error.find("more than the 10000000 a scene may run; shorten duration or raise dt"),
+              std::string::npos)
+        << error;
+  }
+  EXPECT_NE(error_of("[sim]\ndt = 1e-300\n" + body)
+                .find("grip_scene_bad.toml:2: key 'sim.dt' makes 1e+300 steps"),
+            std::string::npos);
+  EXPECT_NE(error_of("[sim]\ndt = 0.01\nduration = 0.004\n" + body)
+                .find("key 'sim.duration' makes no step (duration 0.004 s, dt 0.01 s)"),
+            std::string::npos);
+  const std::string cube =
+      "[[body]]\nname = \"j\"\ntype = \"fem\"\nshape = \"box\"\nsize = [0.04, 0.04, 0.04]\n";
+  EXPECT_NE(error_of(cube + "resolution = 1e-5\n")
+                .find("grip_scene_bad.toml:6: key 'body[0].resolution' = 1e-05 m would make "
+                      "about 3.84e+11 tets, more than the 5000000 allowed"),
+            std::string::npos);
+  EXPECT_NE(error_of(cube + "resolution = 2e-4\n").find("about 4.8e+07 tets"), std::string::npos);
+  // Shapes meshed by CGAL are estimated from their volume.
+  EXPECT_NE(error_of("[[body]]\nname = \"s\"\ntype = \"fem\"\nshape = \"sphere\"\n"
+                     "radius = 0.02\nresolution = 1e-4\n")
+                .find("key 'body[0].resolution' = 0.0001 m would make about 2.8e+08 tets"),
+            std::string::npos);
+  // Within the limits nothing changes.
+  const SceneFile ok = load_scene_file(write_scene(
+      "grip_scene_ok.toml", "[sim]\ndt = 0.01\nduration = 0.05\n" + cube + "resolution = 0.01\n"));
+  EXPECT_EQ(ok.steps(), 5);
+  EXPECT_EQ(ok.scene.bodies[0].tets.rows(), 6 * 4 * 4 * 4);
+}
+
 }  // namespace
 }  // namespace grip::scene

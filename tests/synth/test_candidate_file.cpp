@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "src/synth/candidate_file.hpp"
 
@@ -111,6 +112,32 @@ TEST(SynthCandidateFileTest, ErrorsNameFileAndLine) {
   broken.replace(position, text.find(' ', position) - position, "nan");
   std::ofstream(file) << broken;
   EXPECT_NE(read_error(file).find(":10: position 'nan' is not a finite number"), std::string::npos)
+      << read_error(file);
+
+  // A quaternion that is not finite or not of unit norm, a hand or a contact point far from the
+  // object: refused on their line, naming the field.
+  const std::size_t quaternion = text.find(" quaternion ") + 12;
+  const std::size_t matrix = text.find(" matrix ", quaternion);
+  for (const auto& [replacement, expected] :
+       {std::pair<std::string, std::string>{"nan 0 0 0", ":10: quaternion 'nan' is not a finite"},
+        {"0 0 0 0", ":10: the quaternion is not a unit quaternion"}}) {
+    broken = text;
+    broken.replace(quaternion, matrix - quaternion, replacement);
+    std::ofstream(file) << broken;
+    EXPECT_NE(read_error(file).find(expected), std::string::npos) << read_error(file);
+  }
+  broken = text;
+  broken.replace(position, text.find(' ', position) - position, "1e300");
+  std::ofstream(file) << broken;
+  EXPECT_NE(read_error(file).find(":10: position lies 1e+300 m from the object's origin; a "
+                                  "candidate must lie within 10 m of it"),
+            std::string::npos)
+      << read_error(file);
+  const std::size_t contact = text.find(' ', text.find(" contacts ", position) + 10) + 1;
+  broken = text;
+  broken.replace(contact, text.find(' ', contact) - contact, "-11");
+  std::ofstream(file) << broken;
+  EXPECT_NE(read_error(file).find(":10: contact point lies 11"), std::string::npos)
       << read_error(file);
 
   std::ofstream(file) << "grip-candidates 2\nobject seed 1 scale 1 hash - spec box\ngripper claw\n";

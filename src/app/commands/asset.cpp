@@ -1,9 +1,9 @@
 // grip asset prepare: read a surface mesh, repair it into a closed solid, tetrahedralize it
 // and write the tet mesh (.msh, .vtu) and the repaired surface (.obj), with a report.
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -22,9 +22,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-// Refuse runs that would take hours: a regular tet of edge h has volume h^3 / (6 sqrt 2).
-constexpr double kMaxEstimatedTets = 5e6;
 
 }  // namespace
 
@@ -67,13 +64,12 @@ int asset_prepare(const AssetPrepareArgs& args) {
               static_cast<long>(repaired.mesh.vertices.rows()),
               static_cast<long>(repaired.mesh.triangles.rows()), surface_volume);
 
-  const double estimated_tets =
-      surface_volume / (std::pow(args.edge_length, 3) / (6.0 * std::sqrt(2.0)));
-  if (estimated_tets > kMaxEstimatedTets) {
-    throw std::invalid_argument("--edge " + std::to_string(args.edge_length) +
-                                " m would make about " +
-                                std::to_string(static_cast<long>(estimated_tets)) + " tets for " +
-                                source + "; use a larger --edge");
+  const double estimated_tets = geo::estimated_tet_count(surface_volume, args.edge_length);
+  if (estimated_tets > geo::kMaxEstimatedTets) {
+    throw std::invalid_argument(
+        fmt::format("--edge {:g} m would make about {:.3g} tets for {}, more than the {:.0f} "
+                    "allowed; use a larger --edge",
+                    args.edge_length, estimated_tets, source, geo::kMaxEstimatedTets));
   }
 
   const auto tet_start = Clock::now();

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "solver/batch/batch.hpp"
 #include "src/app/commands.hpp"
 #include "src/geometry/boundary_surface.hpp"
+#include "src/geometry/mesh_measures.hpp"
 #include "src/geometry/tetrahedralize.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/synth/candidate_file.hpp"
@@ -176,6 +178,14 @@ int trial(const TrialArgs& given) {
     options.edge_length = synth::object_tet_edge(*args.object, *args.seed, 1.0, args.tet_edge);
     if (options.edge_length < args.tet_edge) {
       spdlog::info("tet edge {:.4f} m: half the object's thinnest part", options.edge_length);
+    }
+    const double tets = geometry::estimated_tet_count(
+        std::abs(geometry::surface_volume(object.surface)), options.edge_length);
+    if (tets > geometry::kMaxEstimatedTets) {
+      throw std::invalid_argument(
+          fmt::format("--tet-edge: a tet edge of {:g} m would make about {:.3g} tets for '{}', "
+                      "more than the {:.0f} allowed; use a larger --tet-edge",
+                      options.edge_length, tets, *args.object, geometry::kMaxEstimatedTets));
     }
     object.tets = geometry::tetrahedralize(object.surface, options, *args.object);
     object.surface = geometry::boundary_surface(*object.tets);

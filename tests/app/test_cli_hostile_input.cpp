@@ -1,0 +1,233 @@
+// Hostile input as a user may give it: scene durations and FEM resolutions past the limits,
+// candidate files with numbers that are not finite or far away, trial options out of their range,
+// paths with quotes and backslashes. Each is refused in one line naming the file and key or the
+// option, with a non-zero exit, before anything runs; a path round-trips through the reports.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/app/run_grip.hpp"
+
+namespace grip::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Per process: ctest runs each test case as its own process, possibly in parallel.
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("grip_hostile_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Quoted for the shell that run_grip starts (the paths here hold no single quote).
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+const std::string kBox =
+    "[[body]]\nname = \"b\"\ntype = \"affine\"\nshape = \"box\"\nsize = [0.1, 0.1, 0.1]\n";
+
+// `grip simulate` on a scene with this text: refused in one line holding `expected`, exit 1.
+void expect_scene_refused(const fs::path& dir, const std::string& text,
+                          const std::string& expected) {
+  const fs::path scene = dir / "scene.toml";
+  std::ofstream(scene) << text;
+  const GripRun run = run_grip("simulate " + quoted(scene));
+  EXPECT_EQ(run.exit_code, 1) << text << run.err;
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+  EXPECT_TRUE(run.out.empty()) << run.out;
+}
+
+TEST(HostileInput, SceneDurationsOfNoStepOrTooManyStepsAreRefused) {
+  const fs::path dir = scratch("steps");
+  // 2^32 steps once wrapped to 0 steps and "ok"; 2^31 to a run that never ended.
+  expect_scene_refused(dir, "[sim]\ndt = 1\nduration = 4294967296\n" + kBox,
+                       "scene.toml:3: key 'sim.duration' makes 4.29e+09 steps (duration "
+                       "4.29497e+09 s, dt 1 s), more than the 10000000 a scene may run; shorten "
+                       "duration or raise dt");
+  expect_scene_refused(dir, "[sim]\ndt = 1\nduration = 2147483648\n" + kBox,
+                       "key 'sim.duration' makes 2.15e+09 steps");
+  expect_scene_refused(dir, "[sim]\ndt = 1e-300\n" + kBox,
+                       "scene.toml:2: key 'sim.dt' makes 1e+300 steps");
+  expect_scene_refused(dir, "[sim]\ndt = 0.01\nduration = 0.001\n" + kBox,
+                       "key 'sim.duration' makes no step (duration 0.001 s, dt 0.01 s); make "
+                       "duration at least dt");
+  fs::remove_all(dir);
+}
+
+TEST(HostileInput, FemResolutionsPastTheTetLimitAreRefused) {
+  const fs::path dir = scratch("resolution");
+  const std::string cube =
+      "[[body]]\nname = \"j\"\ntype = \"fem\"\nshape = \"box\"\nsize = [0.04, 0.04, 0.04]\n";
+  // 1e-5 m on a 4 cm box overflowed the grid's indices (a segmentation fault).
+  expect_scene_refused(dir, cube + "resolution = 1e-5\n",
+                       "scene.toml:6: key 'body[0].resolution' = 1e-05 m would make about "
+                       "3.84e+11 tets, more than the 5000000 allowed; use a larger resolution");
+  expect_scene_refused(dir, cube + "resolution = 2e-4\n",
+                       "key 'body[0].resolution' = 0.0002 m would make about 4.8e+07 tets");
+  fs::remove_all(dir);
+}
+
+// A candidate file of one parallel-jaw grasp of the plate, and its hand line.
+struct CandidateText {
+  fs::path file;
+  std::string text;
+  std::size_t hand = 0;  // where "hand position" starts
+};
+
+CandidateText plate_candidates(const fs::path& dir) {
+  CandidateText c{dir / "c.txt", "", 0};
+  const GripRun synth = run_grip(
+      "synth --object plate --gripper parallel-jaw --count 1 --seed 1 "
+      "--out " +
+      quoted(c.file));
+  EXPECT_EQ(synth.exit_code, 0) << synth.err;
+  c.text = slurp(c.file);
+  c.hand = c.text.find("hand position ");
+  return c;
+}
+
+// The candidate file with the `index`-th number after `field` on the hand line set to `value`.
+std::string with_number(const CandidateText& c, const std::string& field, int index,
+                        const std::string& value) {
+  std::size_t start = c.text.find(" " + field + " ", c.hand) + field.size() + 2;
+  for (int i = 0; i < index; ++i) start = c.text.find(' ', start) + 1;
+  std::string text = c.text;
+  text.replace(start, c.text.find(' ', start) - start, value);
+  return text;
+}
+
+TEST(HostileInput, CandidateFilesWithNumbersNotFiniteOrFarAwayAreRefused) {
+  const fs::path dir = scratch("candidates");
+  const CandidateText c = plate_candidates(dir);
+  ASSERT_NE(c.hand, std::string::npos) << c.text;
+  const fs::path bad = dir / "bad.txt";
+  const struct {
+    std::string field;
+    int index;
+    std::string value;
+    std::string expected;
+  } cases[] = {
+      // Once a division by zero inside CGAL.
+      {"position", 0, "nan", "bad.txt:10: position 'nan' is not a finite number"},
+      {"quaternion", 1, "nan", "bad.txt:10: quaternion 'nan' is not a finite number"},
+      {"quaternion", 0, "0", "bad.txt:10: the quaternion is not a unit quaternion"},
+      // Once a trial that never ended.
+      {"position", 2, "1e300",
+       "bad.txt:10: position lies 1e+300 m from the object's origin; a candidate must lie within "
+       "10 m of it"},
+  };
+  for (const auto& k : cases) {
+    std::ofstream(bad) << with_number(c, k.field, k.index, k.value);
+    const GripRun run = run_grip("trial --candidates " + quoted(bad) + " --threads 1 --report " +
+                                 quoted(dir / "r.json"));
+    EXPECT_EQ(run.exit_code, 1) << k.value << run.err;
+    EXPECT_EQ(count_lines(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find(k.expected), std::string::npos) << run.err;
+    EXPECT_FALSE(fs::exists(dir / "r.json"));
+  }
+  fs::remove_all(dir);
+}
+
+TEST(HostileInput, TrialOptionsOutOfTheirRangeAreUsageErrors) {
+  const fs::path dir = scratch("options");
+  const CandidateText c = plate_candidates(dir);
+  const struct {
+    std::string options;
+    std::string expected;
+  } cases[] = {
+      {"--friction nan", "grip: --friction: must be a finite number >= 0, not 'nan'"},
+      {"--friction -1", "--friction: must be a finite number >= 0, not '-1'"},
+      {"--density inf", "--density: must be a finite number > 0, not 'inf'"},
+      {"--seed -1", "--seed: must be a whole number >= 0, not '-1'"},
+      {"--grip-force nan", "--grip-force: must be a finite number > 0, not 'nan'"},
+      {"--grip-force -50", "--grip-force: must be a finite number > 0, not '-50'"},
+      {"--squeeze-speed -0.01", "--squeeze-speed: must be a finite number > 0, not '-0.01'"},
+      {"--soft --poisson 0.5", "--poisson: must be a finite number in (-1, 0.5), not '0.5'"},
+      {"--soft --youngs 0", "--youngs: must be a finite number > 0, not '0'"},
+      {"--soft --tet-edge nan", "--tet-edge: must be a finite number > 0, not 'nan'"},
+      {"--youngs 2e5", "--youngs: applies to soft objects only: add --soft"},
+      {"--poisson 0.3", "--poisson: applies to soft objects only: add --soft"},
+      {"--tet-edge 0.01", "--tet-edge: applies to soft objects only: add --soft"},
+  };
+  for (const auto& k : cases) {
+    const GripRun run = run_grip("trial --candidates " + quoted(c.file) + " " + k.options +
+                                 " --threads 1 --report " + quoted(dir / "r.json"));
+    EXPECT_EQ(run.exit_code, 2) << k.options << run.err;
+    EXPECT_EQ(count_lines(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find(k.expected), std::string::npos) << run.err;
+    EXPECT_FALSE(fs::exists(dir / "r.json"));
+  }
+  // A soft object's tet edge past the tet limit: refused before meshing.
+  const GripRun fine =
+      run_grip("trial --candidates " + quoted(c.file) +
+               " --soft --tet-edge 1e-5 --threads 1 --report " + quoted(dir / "r.json"));
+  EXPECT_EQ(fine.exit_code, 1) << fine.err;
+  EXPECT_NE(fine.err.find("--tet-edge: a tet edge of 1e-05 m would make about"), std::string::npos)
+      << fine.err;
+  EXPECT_NE(fine.err.find("more than the 5000000 allowed; use a larger --tet-edge"),
+            std::string::npos)
+      << fine.err;
+  fs::remove_all(dir);
+}
+
+TEST(HostileInput, RangeErrorsSayTheRangeInWords) {
+  // CLI11's own checks printed their bound as a 309-digit number.
+  for (const auto& [options, expected] :
+       {std::pair<std::string, std::string>{"simulate s.toml --threads -1",
+                                            "grip: --threads: must be a whole number >= 0, not "
+                                            "'-1'"},
+        {"bench batch --scene s.toml --envs 1,0", "--envs: must be a whole number >= 1, not '0'"},
+        {"bench model --repeats 0", "--repeats: must be a whole number >= 1, not '0'"},
+        {"farm job.toml --batch 1.5", "--batch: must be a whole number >= 0, not '1.5'"},
+        {"synth --object box --gripper fin-ray --count 1 --seed -1 --out c.txt",
+         "--seed: must be a whole number >= 0, not '-1'"}}) {
+    const GripRun run = run_grip(options);
+    EXPECT_EQ(run.exit_code, 2) << options << run.err;
+    EXPECT_EQ(count_lines(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+    EXPECT_LT(run.err.size(), 200u) << run.err;
+  }
+}
+
+TEST(HostileInput, PathsWithQuotesAndBackslashesRoundTripThroughTheReports) {
+  const fs::path dir = scratch("q\"uote\\d");
+  // grip simulate names the scene file in its report.
+  const fs::path scene = dir / "sc\"ene\\1.toml";
+  std::ofstream(scene) << "[sim]\nduration = 0.02\n" << kBox;
+  const fs::path report = dir / "re\"port\\.json";
+  const GripRun simulate = run_grip("simulate " + quoted(scene) + " --report " + quoted(report));
+  ASSERT_EQ(simulate.exit_code, 0) << simulate.err;
+  const nlohmann::json scenes = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(scenes["scenes"][0]["scene"], scene.string());
+
+  // grip trial names the mesh file its object came from: a 4 cm cube.
+  const fs::path mesh = dir / "cu\"be\\1.obj";
+  std::ofstream obj(mesh);
+  for (const double x : {-0.02, 0.02})
+    for (const double y : {-0.02, 0.02})
+      for (const double z : {-0.02, 0.02}) obj << "v " << x << ' ' << y << ' ' << z << '\n';
+  obj << "f 1 2 4\nf 1 4 3\nf 5 7 8\nf 5 8 6\nf 1 5 6\nf 1 6 2\n"
+         "f 3 4 8\nf 3 8 7\nf 1 3 7\nf 1 7 5\nf 2 6 8\nf 2 8 4\n";
+  obj.close();
+  const fs::path candidates = dir / "c.txt";
+  const GripRun synth =
+      run_grip("synth --object " + quoted(mesh) +
+               " --gripper parallel-jaw --count 1 --seed 1 --out " + quoted(candidates));
+  ASSERT_EQ(synth.exit_code, 0) << synth.err;
+  const GripRun trial = run_grip("trial --candidates " + quoted(candidates) +
+                                 " --threads 1 --report " + quoted(report));
+  ASSERT_EQ(trial.exit_code, 0) << trial.err;
+  const nlohmann::json trials = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(trials["object"], mesh.string());
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace grip::testing
