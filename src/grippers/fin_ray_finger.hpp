@@ -23,7 +23,10 @@ struct FinRayOptions {
   double rib_angle_deg = 12.0;  // ribs rise by this angle from the contact wall to the back wall
   double top_cavity_width = 0.005;  // the cavity ends (under a solid tip) where it is this narrow
   double edge_length = 0.0036;      // largest triangle edge of the profile mesh
-  int layers = 8;                   // tet layers across the depth
+  // Tet layers across the depth. Four: within 0.07 mm (pose) of eight at 40 % of the cost
+  // (grip bench accuracy, mesh sweep: docs/results.md). Fewer stretch the tets along the depth
+  // (two: 366 slivers) or move the grasp (one: 2.4 mm).
+  int layers = 4;
 };
 
 // TPU/TPE as printed for UMI fingers. E and mu are GRIP's (paper, Sec. III-D); density is that

@@ -12,8 +12,9 @@
 namespace grip::grippers {
 namespace {
 
-// The bounds this finger promises at every resolution the tests use.
-constexpr double kMinDihedralBoundDeg = 15.0;
+// The bounds this finger promises at every resolution the tests use. Four layers across the
+// 22 mm depth stretch the tets 1.5:1 along it: their smallest dihedral angle is 11.8 degrees.
+constexpr double kMinDihedralBoundDeg = 11.0;
 constexpr double kSliverBoundDeg = 10.0;
 
 class GrippersDefaultFinRay : public ::testing::Test {
@@ -24,11 +25,11 @@ class GrippersDefaultFinRay : public ::testing::Test {
 };
 FinRayFinger* GrippersDefaultFinRay::finger_ = nullptr;
 
-TEST_F(GrippersDefaultFinRay, HasAbout2000VerticesAnd6000Tets) {
-  EXPECT_GT(finger_->mesh.vertices.rows(), 1800);
-  EXPECT_LT(finger_->mesh.vertices.rows(), 2300);
-  EXPECT_GT(finger_->mesh.tets.rows(), 5400);
-  EXPECT_LT(finger_->mesh.tets.rows(), 6900);
+TEST_F(GrippersDefaultFinRay, HasAbout1100VerticesAnd3100Tets) {
+  EXPECT_GT(finger_->mesh.vertices.rows(), 1000);
+  EXPECT_LT(finger_->mesh.vertices.rows(), 1250);
+  EXPECT_GT(finger_->mesh.tets.rows(), 2800);
+  EXPECT_LT(finger_->mesh.tets.rows(), 3400);
 }
 
 TEST_F(GrippersDefaultFinRay, HasNoInvertedOrSliverTets) {
