@@ -151,7 +151,7 @@ std::string verdict_of(const RobustnessTrial& trial) {
 std::string robustness_gripper_model(const std::string& gripper) {
   if (gripper == "parallel-jaw") return "rigid box jaws (the registry's parallel-jaw)";
   if (gripper == "fin-ray")
-    return "fin-ray fingers with 1 tet layer across the depth (8 in production)";
+    return "fin-ray fingers with 1 tet layer across the depth (4 in production)";
   if (gripper == "leap") return "LEAP hand with 8-sided capsule links (coarse_leap_hand)";
   return gripper;
 }

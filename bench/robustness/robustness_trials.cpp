@@ -36,7 +36,7 @@ const grippers::ParallelGripper& rigid_jaws() {
   return gripper;
 }
 
-// The fin-ray finger with one tet layer across its depth (8 in production), same profile.
+// The fin-ray finger with one tet layer across its depth (4 in production), same profile.
 const grippers::ParallelGripper& coarse_fin_ray() {
   static const grippers::ParallelGripper gripper = [] {
     grippers::FinRayOptions options;
