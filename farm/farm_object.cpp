@@ -1,9 +1,12 @@
 #include "farm/farm_object.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 
 #include "src/geometry/boundary_surface.hpp"
+#include "src/geometry/mesh_measures.hpp"
 #include "src/geometry/tetrahedralize.hpp"
 #include "src/objects/object_library.hpp"
 #include "src/synth/object_spec.hpp"
@@ -95,6 +98,17 @@ io::ObjectRecord prepare_object(const FarmObject& object) {
     geometry::TetOptions options;
     options.edge_length = synth::object_tet_edge(object.category, object.shape_seed,
                                                  object.material.scale, object.tet_edge);
+    const double estimate = geometry::estimated_tet_count(
+        std::abs(geometry::surface_volume(surface)), options.edge_length);
+    if (estimate > geometry::kMaxEstimatedTets) {
+      char message[256];
+      std::snprintf(message, sizeof message,
+                    "[[objects]] tet_edge: an edge of %g m would make about %.3g tets for '%s', "
+                    "more than the %.0f allowed; use a larger tet_edge",
+                    options.edge_length, estimate, object.name.c_str(),
+                    geometry::kMaxEstimatedTets);
+      throw std::invalid_argument(message);
+    }
     const geometry::TetMesh tets = geometry::tetrahedralize(surface, options, object.name);
     Eigen::VectorXi surface_to_tet;
     const geometry::SurfaceMesh boundary = geometry::boundary_surface(tets, &surface_to_tet);

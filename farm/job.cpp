@@ -3,7 +3,9 @@
 #include <glob.h>
 
 #include <charconv>
+#include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "src/config/config.hpp"
@@ -163,6 +165,25 @@ void read_trial(const Table& t, trial::TrialParameters& p) {
   if (!(p.rigid_finger_friction >= 0)) t.fail("finger_friction", "must be non-negative");
 }
 
+// A tiny dt (or long phases) would make a trial of more steps than an int counts, or run for
+// days: refused on the key that set it.
+void check_trial_steps(const trial::TrialParameters& p, const std::optional<Table>& physics,
+                       const std::optional<Table>& trial_table) {
+  const double steps = trial::max_trial_steps(p);
+  if (steps <= static_cast<double>(trial::kMaxTrialSteps)) return;
+  char message[256];
+  std::snprintf(message, sizeof message,
+                "makes a trial of up to %.3g steps (settle_max_steps + 6 x phase_duration / dt), "
+                "more than the %lld allowed; use a larger [physics] dt or a shorter [trial] "
+                "phase_duration",
+                steps, static_cast<long long>(trial::kMaxTrialSteps));
+  if (physics && physics->has("dt")) physics->fail("dt", message);
+  if (trial_table && trial_table->has("phase_duration")) {
+    trial_table->fail("phase_duration", message);
+  }
+  if (trial_table) trial_table->fail("settle_max_steps", message);
+}
+
 void read_outputs(const Table& t, Job& job) {
   t.allow({"frames", "stress", "closing_frames", "validation_frames"});
   job.record_frames = t.boolean_or("frames", job.record_frames);
@@ -172,6 +193,16 @@ void read_outputs(const Table& t, Job& job) {
       positive_integer(t, "validation_frames", job.trial.validation_frames);
   if (job.trial.validation_frames % 6 != 0) {
     t.fail("validation_frames", "must be a multiple of 6 (one share per gravity axis)");
+  }
+  if (job.trial.closing_frames + static_cast<double>(job.trial.validation_frames) >
+      trial::kMaxTrialFrames) {
+    const bool closing =
+        t.has("closing_frames") &&
+        (!t.has("validation_frames") || job.trial.closing_frames > job.trial.validation_frames);
+    t.fail(closing ? "closing_frames" : "validation_frames",
+           "makes closing_frames + validation_frames more than the " +
+               std::to_string(trial::kMaxTrialFrames) +
+               " frames a trial may record; record fewer frames");
   }
 }
 
@@ -206,11 +237,14 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
   if (job.grippers.empty()) root.fail("grippers", "the job needs at least one [[grippers]] entry");
 
   if (auto t = root.optional_table("randomization")) read_randomization(*t, job.randomization);
-  if (auto t = root.optional_table("physics")) {
-    t->allow(scene::kSimParameterKeys);
-    scene::read_sim_parameters(*t, job.trial.sim);
+  const auto physics = root.optional_table("physics");
+  if (physics) {
+    physics->allow(scene::kSimParameterKeys);
+    scene::read_sim_parameters(*physics, job.trial.sim);
   }
-  if (auto t = root.optional_table("trial")) read_trial(*t, job.trial);
+  const auto trial_table = root.optional_table("trial");
+  if (trial_table) read_trial(*trial_table, job.trial);
+  check_trial_steps(job.trial, physics, trial_table);
   if (auto t = root.optional_table("synthesis")) {
     t->allow({"steps", "margin"});
     job.synthesis_steps = positive_integer(*t, "steps", job.synthesis_steps);

@@ -9,12 +9,14 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
+#include <limits>
 
 #include "src/app/commands.hpp"
 #include "src/app/logging.hpp"
 #include "src/app/petsc_args.hpp"
 #include "src/app/version.hpp"
 #include "src/grippers/gripper_registry.hpp"
+#include "src/synth/candidate_file.hpp"
 
 namespace {
 
@@ -28,12 +30,18 @@ std::string command_names(const CLI::App& app) {
 
 // Range checks that say in words what an option takes (CLI11's PositiveNumber and
 // NonNegativeNumber print their bound as a 309-digit number); CLI11 puts the option first.
-CLI::Validator whole_number(std::int64_t minimum) {
-  const std::string rule = "a whole number >= " + std::to_string(minimum);
+CLI::Validator whole_number(std::int64_t minimum,
+                            std::int64_t maximum = std::numeric_limits<std::int64_t>::max()) {
+  const std::string rule =
+      maximum == std::numeric_limits<std::int64_t>::max()
+          ? "a whole number >= " + std::to_string(minimum)
+          : "a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum);
   return CLI::Validator(
-      [minimum, rule](std::string& input) {
+      [minimum, maximum, rule](std::string& input) {
         std::int64_t value = 0;
-        if (CLI::detail::lexical_cast(input, value) && value >= minimum) return std::string();
+        if (CLI::detail::lexical_cast(input, value) && value >= minimum && value <= maximum) {
+          return std::string();
+        }
         return "must be " + rule + ", not '" + input + "'";
       },
       minimum > 0 ? "POSITIVE" : "NONNEGATIVE");
@@ -180,15 +188,20 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(grip::grippers::gripper_names()));
   synth->add_flag("--bimanual", synth_args.bimanual,
                   "Two hands: compose right and left candidates");
-  synth->add_option("--count", synth_args.count, "Number of candidates")->required();
+  synth->add_option("--count", synth_args.count, "Number of candidates")
+      ->required()
+      ->check(whole_number(1, grip::synth::kMaxCandidates));
   synth->add_option("--seed", synth_args.seed, "Random seed")->required()->check(kCount);
   synth->add_option("--out", synth_args.out, "Candidate file to write")->required();
   synth->add_option("--steps", synth_args.steps, "Annealing steps per hand attempt (leap)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositiveCount);
   synth->add_option("--d-hat", synth_args.d_hat, "IPC barrier activation distance (m)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   synth->add_option("--margin", synth_args.margin, "Clearance kept beyond d-hat (m)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kNonNegative);
   synth->callback([&] { run = [&] { return grip::commands::synth(synth_args); }; });
 
   grip::commands::SimulateArgs simulate_args;

@@ -72,6 +72,22 @@ class LineReader {
     return static_cast<int>(value);
   }
 
+  // A count of `per_item` numbers or words each that the rest of the line must hold: checked
+  // before anything is allocated for them.
+  int count_on_line(const std::string& what, int per_item) {
+    const int value = count(what);
+    const std::streampos here = tokens_.tellg();
+    std::int64_t left = 0;
+    for (std::string token; tokens_ >> token;) ++left;
+    tokens_.clear();
+    tokens_.seekg(here);
+    if (static_cast<std::int64_t>(value) * per_item > left) {
+      fail(what + " is " + std::to_string(value) + " but the line holds only " +
+           std::to_string(left) + " values after it");
+    }
+    return value;
+  }
+
   // The rest of the line, without its leading blank (a path may hold spaces).
   std::string rest(const std::string& what) {
     std::string text;
@@ -235,17 +251,21 @@ CandidateFile read_candidates(const std::filesystem::path& file) {
   }
   reader.end();
   reader.next("energies");
-  std::vector<std::string> names(static_cast<std::size_t>(reader.count("energy count")));
+  std::vector<std::string> names(static_cast<std::size_t>(reader.count_on_line("energy count", 1)));
   for (std::string& name : names) name = reader.word("energy name");
   reader.end();
   reader.next("count");
   const int count = reader.count("candidate count");
+  if (count > kMaxCandidates) {
+    reader.fail("candidate count " + std::to_string(count) + " is more than the " +
+                std::to_string(kMaxCandidates) + " a candidate file may hold");
+  }
   reader.end();
 
+  // Grown as candidates are read, so that a count the lines do not back allocates nothing.
   std::vector<Candidate>& candidates = result.candidates;
-  candidates.resize(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
-    Candidate& c = candidates[static_cast<std::size_t>(i)];
+    Candidate& c = candidates.emplace_back();
     c.gripper = gripper->kind;
     reader.next("candidate");
     if (reader.count("candidate index") != i)
@@ -283,7 +303,7 @@ CandidateFile read_candidates(const std::filesystem::path& file) {
       hand.joints.resize(gripper->joints);
       for (int k = 0; k < hand.joints.size(); ++k) hand.joints(k) = reader.real("joint value");
       reader.expect("contacts");
-      const int contacts = reader.count("contact count");
+      const int contacts = reader.count_on_line("contact count", 6);
       hand.contacts.resize(contacts, 3);
       hand.contact_normals.resize(contacts, 3);
       for (int r = 0; r < contacts; ++r) {

@@ -32,13 +32,17 @@ struct CandidateFile {
 void write_candidates(const std::filesystem::path& file, const CandidateObject& object,
                       const std::vector<Candidate>& candidates);
 
+// The most candidates a candidate file holds and `grip synth --count` makes.
+inline constexpr int kMaxCandidates = 1'000'000;
+
 // How far from the object's origin a hand position or a contact point may lie (m): farther, a
 // candidate grasps nothing and its trial would waste the solver's time.
 inline constexpr double kMaxCandidateDistance = 10.0;
 
 // Throws std::runtime_error naming the file, the line and the field for anything but what
 // write_candidates writes: a number that is not finite, a quaternion that is not of unit norm,
-// a hand position or contact point farther than kMaxCandidateDistance from the object's origin.
+// a hand position or contact point farther than kMaxCandidateDistance from the object's origin,
+// more than kMaxCandidates candidates, more energies or contacts than their line holds.
 CandidateFile read_candidates(const std::filesystem::path& file);
 
 }  // namespace grip::synth

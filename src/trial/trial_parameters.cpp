@@ -1,5 +1,6 @@
 #include "src/trial/trial_parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,10 @@ void require(bool ok, const std::string& name, const std::string& what) {
 }
 
 }  // namespace
+
+double max_trial_steps(const TrialParameters& p) {
+  return p.settle_max_steps + 6.0 * std::max(1.0, std::round(p.phase_duration / p.sim.dt));
+}
 
 void validate(const TrialParameters& p) {
   require(p.sim.dt > 0.0 && std::isfinite(p.sim.dt), "sim.dt", "a positive time step (s)");
@@ -37,6 +42,11 @@ void validate(const TrialParameters& p) {
   require(p.closing_frames >= 2, "closing_frames", "at least 2");
   require(p.validation_frames >= 6 && p.validation_frames % 6 == 0, "validation_frames",
           "a positive multiple of 6 (equal parts per gravity phase)");
+  require(p.closing_frames + static_cast<double>(p.validation_frames) <= kMaxTrialFrames,
+          "closing_frames + validation_frames", "at most " + std::to_string(kMaxTrialFrames));
+  require(max_trial_steps(p) <= static_cast<double>(kMaxTrialSteps),
+          "settle_max_steps + 6 phase_duration / sim.dt",
+          "at most " + std::to_string(kMaxTrialSteps) + " steps");
   require(p.metric_samples >= 1, "metric_samples", "at least 1");
   require(p.rigid_finger_friction >= 0.0, "rigid_finger_friction", ">= 0");
 }

@@ -61,6 +61,15 @@ struct TrialParameters {
   double rigid_finger_friction = 1.0;
 };
 
+// The most steps one trial may take, and the most frames it may record (closing + validation;
+// every frame holds every vertex of the scene): job files and validate() refuse more.
+inline constexpr std::int64_t kMaxTrialSteps = 10'000'000;
+inline constexpr int kMaxTrialFrames = 10'000;
+
+// The most steps a trial takes: settle_max_steps of closing and settling, then six gravity
+// phases of round(phase_duration / dt) steps each; in double, so that no setting overflows it.
+double max_trial_steps(const TrialParameters& parameters);
+
 // Throws std::invalid_argument naming the first setting that is out of range.
 void validate(const TrialParameters& parameters);
 

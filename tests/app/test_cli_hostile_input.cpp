@@ -1,6 +1,7 @@
 // Hostile input as a user may give it: scene durations and FEM resolutions past the limits,
-// candidate files with numbers that are not finite or far away, trial options out of their range,
-// paths with quotes and backslashes. Each is refused in one line naming the file and key or the
+// candidate files with numbers that are not finite or far away or counts they do not hold, trial
+// and synth options out of their range, job files past the trial's limits, paths with quotes and
+// backslashes. Each is refused in one line naming the file and key or the
 // option, with a non-zero exit, before anything runs; a path round-trips through the reports.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -132,6 +133,109 @@ TEST(HostileInput, CandidateFilesWithNumbersNotFiniteOrFarAwayAreRefused) {
     EXPECT_NE(run.err.find(k.expected), std::string::npos) << run.err;
     EXPECT_FALSE(fs::exists(dir / "r.json"));
   }
+  fs::remove_all(dir);
+}
+
+TEST(HostileInput, CandidateCountsTheFileDoesNotHoldAreRefusedBeforeAllocating) {
+  const fs::path dir = scratch("counts");
+  const CandidateText c = plate_candidates(dir);
+  const fs::path bad = dir / "bad.txt";
+  // `what` replaced by `by` in the file: each count once reserved its memory up front and ended
+  // in an out-of-memory error.
+  const struct {
+    std::string what, by, expected;
+  } cases[] = {
+      {"\ncount 1\n", "\ncount 1000000000\n",
+       "bad.txt:8: candidate count 1000000000 is more than the 1000000 a candidate file may hold"},
+      {"\ncount 1\n", "\ncount 1000000\n", "bad.txt:"},
+      {"\nenergies ", "\nenergies 1000000000 ",
+       "bad.txt:7: energy count is 1000000000 but the line holds only"},
+      {" contacts ", " contacts 1000000000 ",
+       "bad.txt:10: contact count is 1000000000 but the line holds only"},
+  };
+  for (const auto& k : cases) {
+    std::string text = c.text;
+    const std::size_t at = text.find(k.what);
+    ASSERT_NE(at, std::string::npos) << k.what << text;
+    std::string by = k.by;
+    if (k.what != "\ncount 1\n") {
+      // Drop the old count after the keyword.
+      const std::size_t number = at + k.what.size();
+      text.erase(number, text.find(' ', number) + 1 - number);
+    }
+    text.replace(at, k.what.size(), by);
+    std::ofstream(bad) << text;
+    const GripRun run = run_grip("trial --candidates " + quoted(bad) + " --threads 1 --report " +
+                                 quoted(dir / "r.json"));
+    EXPECT_EQ(run.exit_code, 1) << k.by << run.err;
+    EXPECT_EQ(count_lines(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find(k.expected), std::string::npos) << run.err;
+    EXPECT_FALSE(fs::exists(dir / "r.json"));
+  }
+  fs::remove_all(dir);
+}
+
+TEST(HostileInput, SynthOptionsOutOfTheirRangeAreUsageErrors) {
+  const fs::path dir = scratch("synth");
+  const std::string base =
+      "synth --object plate --gripper parallel-jaw --seed 1 --out " + quoted(dir / "c.txt") + " ";
+  const struct {
+    std::string options, expected;
+  } cases[] = {
+      {"--count 0", "--count: must be a whole number from 1 to 1000000, not '0'"},
+      {"--count 1000001", "--count: must be a whole number from 1 to 1000000, not '1000001'"},
+      {"--count 1 --steps 0", "--steps: must be a whole number >= 1, not '0'"},
+      {"--count 1 --d-hat 0", "--d-hat: must be a finite number > 0, not '0'"},
+      {"--count 1 --d-hat nan", "--d-hat: must be a finite number > 0, not 'nan'"},
+      {"--count 1 --margin -1e-3", "--margin: must be a finite number >= 0, not '-1e-3'"},
+      {"--count 1 --margin inf", "--margin: must be a finite number >= 0, not 'inf'"},
+  };
+  for (const auto& k : cases) {
+    const GripRun run = run_grip(base + k.options);
+    EXPECT_EQ(run.exit_code, 2) << k.options << run.err;
+    EXPECT_EQ(count_lines(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find(k.expected), std::string::npos) << run.err;
+    EXPECT_FALSE(fs::exists(dir / "c.txt"));
+  }
+  fs::remove_all(dir);
+}
+
+// `grip farm` on a small job with `extra` appended (it may reopen a table): refused in one line
+// holding `expected`, exit 1, and no dataset nor its folder created.
+void expect_job_refused(const fs::path& dir, const std::string& extra,
+                        const std::string& expected) {
+  const fs::path job = dir / "job.toml";
+  const fs::path out = dir / "out";
+  std::ofstream(job) << "[job]\nname = \"h\"\noutput = \"" << (out / "dataset.h5").string()
+                     << "\"\n\n[[grippers]]\nname = \"parallel-jaw\"\ncandidates = 1\n"
+                     << extra;
+  const GripRun run = run_grip("farm " + quoted(job) + " --threads 1");
+  EXPECT_EQ(run.exit_code, 1) << extra << run.err;
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(out)) << extra;
+}
+
+TEST(HostileInput, JobFilesPastTheTrialLimitsAreRefusedBeforeAnyFile) {
+  const fs::path dir = scratch("job");
+  const std::string rigid = "[[objects]]\ncategory = \"cylinder\"\n";
+  // A tiny dt overflowed the trial's step count.
+  expect_job_refused(dir, rigid + "[physics]\ndt = 1e-12\n",
+                     "job.toml:11: key 'physics.dt' makes a trial of up to 6e+11 steps "
+                     "(settle_max_steps + 6 x phase_duration / dt), more than the 10000000 "
+                     "allowed; use a larger [physics] dt or a shorter [trial] phase_duration");
+  expect_job_refused(dir, rigid + "[trial]\nphase_duration = 1e300\n",
+                     "key 'trial.phase_duration' makes a trial of up to");
+  expect_job_refused(dir, rigid + "[physics]\ndt = 0\n", "key 'physics.dt' must be positive");
+  // 1e8 frames once created a 1.18 TB dataset, then ran out of memory.
+  expect_job_refused(dir, rigid + "[outputs]\nclosing_frames = 100000000\n",
+                     "job.toml:11: key 'outputs.closing_frames' makes closing_frames + "
+                     "validation_frames more than the 10000 frames a trial may record");
+  expect_job_refused(dir, rigid + "[outputs]\nvalidation_frames = 99999996\n",
+                     "key 'outputs.validation_frames' makes closing_frames + validation_frames");
+  // A soft object's tet edge past the tet limit: refused before meshing.
+  expect_job_refused(dir, "[[objects]]\ncategory = \"capsule\"\nsoft = true\ntet_edge = 1e-5\n",
+                     "[[objects]] tet_edge: an edge of 1e-05 m would make about");
   fs::remove_all(dir);
 }
 
