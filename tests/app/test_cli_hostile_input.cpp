@@ -28,7 +28,13 @@ fs::path scratch(const std::string& name) {
 }
 
 // Quoted for the shell that run_grip starts (the paths here hold no single quote).
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+// Built by appending: "'" + string + "'" draws a false -Wrestrict warning from GCC 12.
+std::string quoted(const fs::path& path) {
+  std::string text = "'";
+  text += path.string();
+  text += '\'';
+  return text;
+}
 
 const std::string kBox =
     "[[body]]\nname = \"b\"\ntype = \"affine\"\nshape = \"box\"\nsize = [0.1, 0.1, 0.1]\n";
