@@ -5,6 +5,7 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
+#include <utility>
 
 #include "solver/body/body.hpp"
 #include "solver/contact/candidates.hpp"
@@ -40,7 +41,7 @@ void Environment::place(int index, const Eigen::Isometry3d& motion) {
     throw std::logic_error("Environment::place after the first step");
   }
   place_body(model_->bodies().at(static_cast<std::size_t>(index)), index, motion, state_);
-  near_found_ = false;
+  near_.reset();
 }
 
 void Environment::set_script(int body, const Script& script) {
@@ -118,8 +119,7 @@ Environment::Progress Environment::begin_step() {
     const StepTargets now = targets_at_rest(*model_, state_);
     const Vertices start = solver::collision_positions(*model_, state_.q, now, 0.0);
     near_ = find_contact_candidates(*model_, start, start, model_->sim().d_hat);
-    near_found_ = true;
-    for (const ContactCandidate& c : near_) {
+    for (const ContactCandidate& c : *near_) {
       if (!(newton_.potential().barrier().contact_force(c, start).distance > 0.0)) {
         return fail(Failure::kIntersectingStart,
                     "intersecting start: two surfaces touch or cross before the first step");
@@ -134,11 +134,7 @@ Environment::Progress Environment::begin_part() {
   step_ = std::make_unique<NewtonStep>();
   step_->h = std::ldexp(model_->sim().dt, -plan_.halvings);
   step_->targets = step_targets(*model_, state_, step_->h);
-  if (near_found_) {
-    step_->near = std::move(near_);
-    step_->near_found = true;
-    near_found_ = false;
-  }
+  step_->near = std::exchange(near_, std::nullopt);
   const Vertices start = solver::collision_positions(*model_, state_.q, step_->targets, 0.0);
   newton_.begin_step(state_, start, *step_, policy_.friction_terms_at_zero_mu);
   return Progress::kIterating;
@@ -183,7 +179,7 @@ Environment::Progress Environment::retry_or_fail(const NewtonSolver::FailureRepo
     return fail(failure.code, failure.message + depth);
   }
   state_ = plan_.part_start;
-  near_found_ = false;
+  near_.reset();
   ++plan_.halvings;
   ++diagnostics_.retries;
   ++statistics_.retries;
@@ -211,10 +207,7 @@ Environment::Progress Environment::finish_held_step() {
 }
 
 void Environment::finish_part() {
-  if (step_->near_found) {
-    near_ = std::move(step_->near);
-    near_found_ = true;
-  }
+  if (step_->near) near_ = std::exchange(step_->near, std::nullopt);
   const StepTargets& targets = step_->targets;
   const double h = step_->h;
   state_.v = (state_.q - targets.q_start) / h;
@@ -241,15 +234,12 @@ void Environment::finish_step() {
 void Environment::record_diagnostics() {
   const StageTimer timer(newton_.stages().diagnostics);
   const Vertices x = solver::collision_positions(*model_, state_.q, step_->targets, 1.0);
-  if (!near_found_) {
-    near_ = find_contact_candidates(*model_, x, x, model_->sim().d_hat);
-    near_found_ = true;
-  }
+  if (!near_) near_ = find_contact_candidates(*model_, x, x, model_->sim().d_hat);
   diagnostics_.min_volume_ratio = min_volume_ratio();
   diagnostics_.friction_contacts =
       static_cast<int>(newton_.potential().friction().contacts().size());
   diagnostics_.contact_forces =
-      pair_forces(*model_, newton_.potential(), x, near_, diagnostics_.min_distance);
+      pair_forces(*model_, newton_.potential(), x, *near_, diagnostics_.min_distance);
 }
 
 }  // namespace grip::solver

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "solver/contact/contact_forces.hpp"
@@ -124,10 +125,9 @@ class Environment {
   StepPlan plan_;
   EnvironmentStatistics statistics_;
   std::unique_ptr<NewtonStep> step_;  // while a step is under way
-  // Between steps: every pair within d_hat of the state's positions when near_found_, handed
-  // on from the step that ended there to the next (NewtonStep::near).
-  std::vector<ContactCandidate> near_;
-  bool near_found_ = false;
+  // Between steps: every pair within d_hat of the state's positions, once found, handed on
+  // from the step that ended there to the next (NewtonStep::near).
+  std::optional<std::vector<ContactCandidate>> near_;
   NewtonSolver newton_;
 };
 

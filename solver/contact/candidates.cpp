@@ -106,7 +106,8 @@ void add_point_triangle_candidates(const Model& model, const Vertices& start, co
       const double mu = model.pair_friction(body_v, mesh.vertex_body[t[0]]);
       if (mu < 0) return;
       const std::array<int, 4> pair{v, t[0], t[1], t[2]};
-      candidates.push_back({false, pair, mu, 0.0, mesh.near_at_rest(false, pair)});
+      const bool self = body_v == mesh.vertex_body[t[0]];
+      candidates.push_back({false, pair, mu, 0.0, self && mesh.near_at_rest(false, pair)});
     });
   }
 }
@@ -133,7 +134,8 @@ void add_edge_edge_candidates(const Model& model, const Vertices& start, const V
           rest_position(model, ea[0]), rest_position(model, ea[1]), rest_position(model, eb[0]),
           rest_position(model, eb[1]));
       const std::array<int, 4> pair{ea[0], ea[1], eb[0], eb[1]};
-      candidates.push_back({true, pair, mu, eps, mesh.near_at_rest(true, pair)});
+      const bool self = body_a == mesh.vertex_body[eb[0]];
+      candidates.push_back({true, pair, mu, eps, self && mesh.near_at_rest(true, pair)});
     });
   }
 }

@@ -49,12 +49,11 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
 }
 
 const std::vector<ContactCandidate>& NewtonSolver::near(NewtonStep& step, const Vertices& x) {
-  if (!step.near_found) {
+  if (!step.near) {
     const StageTimer timer(stages_.broad_phase);
     step.near = find_contact_candidates(model_, x, x, model_.sim().d_hat);
-    step.near_found = true;
   }
-  return step.near;
+  return *step.near;
 }
 
 void NewtonSolver::lag_friction(const State& state, NewtonStep& step, bool friction_at_zero_mu) {

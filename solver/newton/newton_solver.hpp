@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,8 +47,7 @@ struct NewtonStep {
   // list, which holds every pair that comes within d_hat anywhere on the path the step was
   // taken along, so at the accepted point too. It spares a broad phase per iteration; the
   // environment hands it on to the next step, which starts where this one ends.
-  std::vector<ContactCandidate> near;
-  bool near_found = false;
+  std::optional<std::vector<ContactCandidate>> near;
 };
 
 class NewtonSolver {
