@@ -81,8 +81,9 @@ SynthesisResult optimize_hand_grasps(const PreparedObject& object, const Prepare
     Eigen::VectorXd gradient;
     HandEnergyTerms terms = energy.evaluate(state, &gradient);
     Eigen::VectorXd mean_square = Eigen::VectorXd::Zero(6 + dofs);
+    const int period = std::max(1, params.steps / params.annealing_periods);
     for (int step = 0; step < params.steps; ++step) {
-      const double decay = std::pow(params.temperature_decay, step / params.annealing_period);
+      const double decay = std::pow(params.temperature_decay, step / period);
       mean_square = params.rms_decay * mean_square +
                     (1.0 - params.rms_decay) * gradient.cwiseProduct(gradient);
       const Eigen::VectorXd move =
@@ -113,6 +114,10 @@ SynthesisResult optimize_hand_grasps(const PreparedObject& object, const Prepare
     const std::vector<Eigen::Isometry3d> poses =
         tree.link_poses(fixed->state.base, fixed->state.joints);
     if (hand.self_intersections(poses) > 0) return {std::nullopt, "hand intersects itself"};
+    const HandEnergyTerms fixed_terms = energy.evaluate(fixed->state, nullptr);
+    if (fixed_terms.fc > params.max_force_closure_error) {
+      return {std::nullopt, "not a force closure"};
+    }
 
     HandGrasp grasp;
     grasp.pose = fixed->state.base;
@@ -131,9 +136,10 @@ SynthesisResult optimize_hand_grasps(const PreparedObject& object, const Prepare
     Candidate candidate;
     candidate.gripper = grippers::GripperKind::kLeap;
     candidate.hands.push_back(std::move(grasp));
-    candidate.energies = {{"fc", terms.fc},      {"dis", terms.dis},       {"pen", terms.pen},
-                          {"spen", terms.spen},  {"joints", terms.joints}, {"normal", terms.normal},
-                          {"total", terms.total}};
+    candidate.energies = {{"fc", fixed_terms.fc},         {"dis", fixed_terms.dis},
+                          {"pen", fixed_terms.pen},       {"spen", fixed_terms.spen},
+                          {"joints", fixed_terms.joints}, {"normal", fixed_terms.normal},
+                          {"total", fixed_terms.total}};
     candidate.min_distance = fixed->min_distance;
     return {std::move(candidate), ""};
   };

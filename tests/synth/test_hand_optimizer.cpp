@@ -3,6 +3,8 @@
 // candidates do not depend on the thread count.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <tbb/global_control.h>
 
 #include "src/synth/hand_clearance_fix.hpp"
@@ -18,6 +20,7 @@ HandOptimizerParams small_params() {
   params.steps = 60;
   params.penetration_points = 300;
   params.block = 4;
+  params.max_force_closure_error = std::numeric_limits<double>::infinity();  // tested below
   return params;
 }
 
@@ -62,6 +65,27 @@ TEST(SynthHandOptimizerTest, CandidatesAreClearSelfFreeAndThreadIndependent) {
     EXPECT_EQ(c.hands[0].contacts.rows(), params.contacts);
     EXPECT_GE(c.min_distance, params.clearance.d_hat + params.clearance.margin);
     expect_clear_and_self_free(c.hands[0], params.clearance.d_hat + params.clearance.margin);
+  }
+}
+
+// The energies written are those of the grasp returned (after the clearance fix), and none of
+// its grasps is further from force closure than the gate allows.
+TEST(SynthHandOptimizerTest, CandidatesPassTheForceClosureGateOnTheirOwnContacts) {
+  HandOptimizerParams params = small_params();
+  params.steps = 300;
+  params.max_force_closure_error = 0.5;
+  const PreparedObject& object = testing::sphere_object();
+  const SynthesisResult result = optimize_hand_grasps(object, testing::right_hand(), params, 7, 2);
+  ASSERT_EQ(result.candidates.size(), 2u);
+  EXPECT_GT(result.rejections.at("not a force closure"), 0);
+  for (const Candidate& c : result.candidates) {
+    const HandGrasp& grasp = c.hands[0];
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> points = grasp.contacts;
+    points.rowwise() -= object.centroid().transpose();
+    const double fc = force_closure_error(points, grasp.contact_normals);
+    ASSERT_EQ(c.energies[0].name, "fc");
+    EXPECT_NEAR(c.energies[0].value, fc, 1e-12);
+    EXPECT_LE(fc, params.max_force_closure_error);
   }
 }
 
