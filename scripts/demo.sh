@@ -18,3 +18,5 @@ cd "$root"
 echo
 echo "The dataset is $dataset; 'build/grip inspect $dataset' summarizes it again and"
 echo "examples/read_dataset.py shows how to read it from Python (h5py)."
+# One trial drawn to a PNG beside the dataset (docs/dataset-format.md#a-picture-of-a-trial).
+/usr/bin/python3 examples/render_grasp.py "$dataset" --out "$(dirname "$dataset")/grasp.png"

@@ -40,6 +40,14 @@ inline GripRun run_grip(const std::string& arguments) {
   return run;
 }
 
+// The same with GRIP_CHECK_ARGS=1: grip only parses and validates its command line.
+inline GripRun run_grip_checking_args(const std::string& arguments) {
+  ::setenv("GRIP_CHECK_ARGS", "1", 1);
+  GripRun run = run_grip(arguments);
+  ::unsetenv("GRIP_CHECK_ARGS");
+  return run;
+}
+
 inline int count_lines(const std::string& text) {
   int lines = 0;
   for (char c : text) lines += c == '\n';

@@ -88,5 +88,22 @@ TEST(GripCli, SimulateWritesAReportAndFailsClearlyOnBadScenes) {
   std::filesystem::remove(scene);
 }
 
+// GRIP_CHECK_ARGS=1 (docs/command-line.md): the command line is parsed and validated, nothing
+// runs, so a job file that does not exist is not read; a refused command line still exits 2.
+TEST(GripCli, CheckArgsStopsAfterParsingAndValidation) {
+  const std::string missing_job = "/nonexistent/grip_check_args_job.toml";
+  const GripRun checked = run_grip_checking_args("farm " + missing_job + " --threads 1");
+  EXPECT_EQ(checked.exit_code, 0) << checked.err;
+  EXPECT_TRUE(checked.out.empty()) << checked.out;
+  EXPECT_TRUE(checked.err.empty()) << checked.err;
+  EXPECT_EQ(run_grip("farm " + missing_job).exit_code, 1);
+
+  EXPECT_EQ(run_grip_checking_args("farm " + missing_job + " --threads -1").exit_code, 2);
+  const GripRun petsc = run_grip_checking_args("farm " + missing_job + " -- -ksp_type cg");
+  EXPECT_EQ(petsc.exit_code, 2);
+  EXPECT_NE(petsc.err.find("'farm' uses no PETSc"), std::string::npos) << petsc.err;
+  EXPECT_EQ(run_grip_checking_args("bench linear --repeats 1 -- -ksp_type cg").exit_code, 0);
+}
+
 }  // namespace
 }  // namespace grip::testing
