@@ -154,6 +154,13 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
   }
   std::optional<io::DatasetWriter> writer;
   if (options.resume) writer = io::DatasetWriter::resume(report.dataset, provenance, comm);
+  if (writer && !writer->damaged().empty()) {  // rank 0 only
+    const io::Damage& first = writer->damaged().front();
+    spdlog::warn(
+        "{}: {} committed rows do not match their checksums; their candidates are redone "
+        "(first: candidate {}, {})",
+        report.dataset.string(), writer->damaged().size(), first.candidate, first.dataset);
+  }
 
   const Clock::time_point plan_start = Clock::now();
   const FarmPlan plan = make_plan(job, comm, report.threads);

@@ -6,6 +6,7 @@
 #include <string>
 #include <type_traits>
 
+#include "io/dataset_error.hpp"
 #include "io/enum_types.hpp"
 
 namespace grip::io {
@@ -66,26 +67,47 @@ Values read_values(hid_t dataset, Element element) {
 }
 
 Values read_row_values(hid_t dataset, const std::string& path, std::uint64_t row, Element element) {
+  return read_rows_values(dataset, path, row, 1, element);
+}
+
+Values read_rows_values(hid_t dataset, const std::string& path, std::uint64_t first,
+                        std::uint64_t rows, Element element) {
   std::vector<hsize_t> count = h5::dims(dataset);
+  if (count.empty() || first > count[0] || rows > count[0] - first) {
+    throw DatasetError(path + " has no rows " + std::to_string(first) + " to " +
+                       std::to_string(first + rows - 1));
+  }
   std::vector<hsize_t> start(count.size(), 0);
-  start[0] = row;
-  count[0] = 1;
+  start[0] = first;
+  count[0] = rows;
   hsize_t size = 1;
   for (const hsize_t d : count) size *= d;
   Values values = empty_values(value_index(element));
   std::visit([&](auto& v) { v.resize(size); }, values);
   if (size == 0) return values;
+  const std::string which =
+      rows == 1 ? "row " + std::to_string(first)
+                : "rows " + std::to_string(first) + " to " + std::to_string(first + rows - 1);
   const h5::Handle file_space = h5::space_handle(H5Dget_space(dataset), "selecting a row");
   h5::check(
       H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
-      "selecting row " + std::to_string(row) + " of " + path);
+      "selecting " + which + " of " + path);
   const h5::Handle memory_space =
       h5::space_handle(H5Screate_simple(1, &size, nullptr), "shaping a row");
   const h5::Handle memory_type = element_type(element, false);
   h5::check(
       H5Dread(dataset, memory_type, memory_space, file_space, H5P_DEFAULT, number_data(values)),
-      "reading row " + std::to_string(row) + " of " + path);
+      "reading " + which + " of " + path);
   return values;
+}
+
+std::size_t element_bytes(Element element) {
+  return std::visit(
+      [](const auto& v) -> std::size_t {
+        using T = typename std::remove_cvref_t<decltype(v)>::value_type;
+        return std::is_arithmetic_v<T> ? sizeof(T) : 0;
+      },
+      empty_values(value_index(element)));
 }
 
 Sizes Sizes::of(const DatasetLayout& layout) {

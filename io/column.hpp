@@ -30,6 +30,7 @@ enum class Place : std::uint8_t {
   kPlan,        // /candidates/NAME: one row per candidate, from the DatasetLayout, at creation
   kResult,      // /candidates/NAME: one row per candidate, from its CandidateResult, per batch
   kDone,        // /candidates/NAME: one row per candidate, set once its batch is committed
+  kChecksum,    // /candidates/NAME: one row per candidate, its rows' checksums, per batch
 };
 
 // Element types. Files store them little-endian; status and failure are HDF5 enumerations.
@@ -118,7 +119,7 @@ struct Column {
   // The extents of one row, or of the whole dataset for a column that holds a record whole.
   Dims (*extents)(const Sizes&);
   // Per place: Provenance, ObjectRecord, CandidateResult (stress), TrajectoryRecord,
-  // GripperRecord, DatasetLayout, CandidateResult, none (done).
+  // GripperRecord, DatasetLayout, CandidateResult, none (done, checksum).
   std::variant<std::monostate, Access<Provenance>, Access<ObjectRecord>, Access<GripperRecord>,
                Access<TrajectoryRecord>, Access<DatasetLayout>, Access<CandidateResult>>
       access;
@@ -136,6 +137,12 @@ struct Column {
 // (`path` names it in errors), in the memory type of `element`.
 Values read_values(hid_t dataset, Element element);
 Values read_row_values(hid_t dataset, const std::string& path, std::uint64_t row, Element element);
+// Rows [first, first + rows) of such a dataset; DatasetError if it has not that many.
+Values read_rows_values(hid_t dataset, const std::string& path, std::uint64_t first,
+                        std::uint64_t rows, Element element);
+
+// Bytes of one number of `element` in memory (0 for strings).
+std::size_t element_bytes(Element element);
 
 // Values in one row of a row place's column.
 std::size_t row_size(const Column& column, const Sizes& sizes);

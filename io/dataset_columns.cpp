@@ -35,6 +35,8 @@ Dims gravity_phases(const Sizes&) { return {6}; }
 Dims table_hand_poses(const Sizes& s) { return {s.max_hands, 3, 4}; }
 Dims table_joints(const Sizes& s) { return {s.max_hands, s.max_joints}; }
 Dims table_fingers(const Sizes& s) { return {s.max_hands, s.max_fingers}; }
+// A candidate's checksums: one per checksummed column.
+Dims checksum_row(const Sizes&) { return {checksum_entries()}; }
 
 // Values per hand of a gripper's candidate.
 std::uint32_t pose_values(const DatasetLayout::Gripper&) { return 12; }
@@ -126,6 +128,7 @@ constexpr std::array kColumns = {
     Column{"stress_slot", P::kPlan, E::kInt64, F::kNever, one_value,
            field<&DatasetLayout::stress_slot>()},
     Column{"done", P::kDone, E::kUint8, F::kZero, one_value, std::monostate{}},
+    Column{"checksum", P::kChecksum, E::kUint32, F::kZero, checksum_row, std::monostate{}},
     Column{"status", P::kResult, E::kStatus, F::kZero, one_value,
            record_field<&CandidateRecord::status>()},
     Column{"failure", P::kResult, E::kFailureKind, F::kZero, one_value,
@@ -175,6 +178,7 @@ constexpr std::size_t access_index(Place place) {
     case Place::kResult:
       return 6;
     case Place::kDone:
+    case Place::kChecksum:
       return 0;
   }
   return 0;
@@ -204,6 +208,7 @@ constexpr int group_of(Place place) {
     case Place::kPlan:
     case Place::kResult:
     case Place::kDone:
+    case Place::kChecksum:
       return 2;
     default:
       return 3 + static_cast<int>(place);
@@ -230,5 +235,24 @@ static_assert(names_unique_per_group(), "a column name appears twice in one grou
 }  // namespace
 
 std::span<const Column> dataset_columns() { return kColumns; }
+
+bool checksummed(const Column& column) {
+  return column.place == Place::kStress || column.place == Place::kTrajectory ||
+         column.place == Place::kResult;
+}
+
+std::size_t checksum_entries() {
+  return static_cast<std::size_t>(std::count_if(kColumns.begin(), kColumns.end(),
+                                                [](const Column& c) { return checksummed(c); }));
+}
+
+std::size_t checksum_entry(const Column& column) {
+  std::size_t entry = 0;
+  for (const Column& c : kColumns) {
+    if (&c == &column) return entry;
+    entry += checksummed(c) ? 1 : 0;
+  }
+  return entry;
+}
 
 }  // namespace grip::io

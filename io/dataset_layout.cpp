@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
+#include <optional>
+#include <utility>
 
+#include "io/checksum.hpp"
 #include "io/dataset_columns.hpp"
 #include "io/dataset_error.hpp"
 #include "io/hdf5.hpp"
@@ -100,6 +104,201 @@ DatasetLayout DatasetLayout::from_plan(const DatasetPlan& plan) {
   return layout;
 }
 
+namespace {
+
+std::string shape_text(const Dims& dims) {
+  std::string text = "(";
+  for (std::size_t i = 0; i < dims.size(); ++i) {
+    text += (i > 0 ? ", " : "") + std::to_string(dims[i]);
+  }
+  return text + ")";
+}
+
+h5::Handle open_dataset(hid_t file, const std::string& path) {
+  return h5::dataset_handle(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "opening " + path);
+}
+
+// The dataset at `path`, which must have the shape `expected`.
+h5::Handle open_shaped(hid_t file, const std::string& path, const Dims& expected) {
+  h5::Handle dataset = open_dataset(file, path);
+  const Dims found = h5::dims(dataset);
+  if (found != expected) {
+    throw DatasetError(path + " has shape " + shape_text(found) + ", expected " +
+                       shape_text(expected));
+  }
+  return dataset;
+}
+
+// The rows of the dataset at `path`, whose other extents must be `row`.
+std::uint64_t rows_of(hid_t file, const std::string& path, const Dims& row) {
+  const Dims found = h5::dims(open_dataset(file, path));
+  if (found.size() != row.size() + 1 || !std::equal(row.begin(), row.end(), found.begin() + 1)) {
+    std::string expected = "(rows";
+    for (const hsize_t extent : row) expected += ", " + std::to_string(extent);
+    throw DatasetError(path + " has shape " + shape_text(found) + ", expected " + expected + ")");
+  }
+  return found[0];
+}
+
+// An attribute holding a count from `low` to `high`.
+std::uint32_t count_attribute(hid_t object, const std::string& where, const std::string& name,
+                              std::uint64_t low, std::uint64_t high) {
+  const std::uint64_t value = h5::read_uint_attribute(object, name);
+  if (value < low || value > high) {
+    throw DatasetError("attribute '" + name + "' of " + where + " is " + std::to_string(value) +
+                       " (valid: " + std::to_string(low) + " to " + std::to_string(high) + ")");
+  }
+  return static_cast<std::uint32_t>(value);
+}
+
+// "1 object", "3 objects".
+std::string counted(std::uint64_t count, const std::string& noun) {
+  return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
+// "valid: 0 to 2", "valid: -1, or 0 to 2" where -1 (none) is allowed, "valid: -1" or "valid:
+// none" for an empty range.
+std::string valid_range(std::uint64_t count, bool none_allowed) {
+  std::string text = none_allowed ? "-1" : "";
+  if (count > 0) text += (none_allowed ? ", or 0 to " : "0 to ") + std::to_string(count - 1);
+  return "valid: " + (text.empty() ? std::string("none") : text);
+}
+
+// Every stored index is checked against the sizes it indexes before anything uses it.
+void check_plan_indices(const DatasetLayout& layout) {
+  const std::size_t objects = layout.objects.size();
+  const std::size_t grippers = layout.grippers.size();
+  for (std::uint64_t id = 0; id < layout.candidate_count; ++id) {
+    const auto bad = [id](const char* column, std::int64_t value, const std::string& why) {
+      throw DatasetError(std::string("/candidates/") + column + " row " + std::to_string(id) +
+                         " is " + std::to_string(value) + ", " + why);
+    };
+    const std::uint32_t o = layout.object[id];
+    const std::uint32_t g = layout.gripper[id];
+    if (o >= objects) {
+      bad("object", o,
+          "outside the " + counted(objects, "object") + " (" + valid_range(objects, false) + ")");
+    }
+    if (g >= grippers) {
+      bad("gripper", g,
+          "outside the " + counted(grippers, "gripper") + " (" + valid_range(grippers, false) +
+              ")");
+    }
+    const std::uint64_t frame_slots = layout.trajectory_slots[layout.pair(o, g)];
+    const std::int64_t frame = layout.frame_slot[id];
+    if (frame < -1 || (frame >= 0 && static_cast<std::uint64_t>(frame) >= frame_slots)) {
+      bad("frame_slot", frame,
+          "outside the " + counted(frame_slots, "row") + " of " + trajectory_group(o, g) + " (" +
+              valid_range(frame_slots, true) + ")");
+    }
+    const std::uint64_t stress_slots = layout.objects[o].stress_slots;
+    const std::int64_t stress = layout.stress_slot[id];
+    if (stress < -1 || (stress >= 0 && static_cast<std::uint64_t>(stress) >= stress_slots)) {
+      bad("stress_slot", stress,
+          "outside the " + counted(stress_slots, "row") + " of " + stress_dataset(o) + " (" +
+              valid_range(stress_slots, true) + ")");
+    }
+  }
+}
+
+// Each object's sizes, from its meshes' and stress dataset's shapes.
+void read_objects(hid_t file, std::uint32_t count, DatasetLayout& layout) {
+  for (std::uint32_t o = 0; o < count; ++o) {
+    const std::string group = object_group(o);
+    DatasetLayout::Object object;
+    object.vertices = rows_of(file, group + "/vertices", {3});
+    rows_of(file, group + "/triangles", {3});
+    object.tets = rows_of(file, group + "/tets", {4});
+    if (h5::exists(file, stress_dataset(o))) {
+      object.stress_slots = rows_of(file, stress_dataset(o), {object.tets});
+    }
+    layout.objects.push_back(object);
+  }
+}
+
+// Each gripper's sizes, within the table's widths.
+void read_grippers(hid_t file, std::uint32_t count, DatasetLayout& layout) {
+  for (std::uint32_t g = 0; g < count; ++g) {
+    const std::string path = gripper_group(g);
+    const h5::Handle group =
+        h5::group_handle(H5Gopen2(file, path.c_str(), H5P_DEFAULT), "opening " + path);
+    DatasetLayout::Gripper gripper;
+    gripper.hands = count_attribute(group, path, "hands", 1, layout.max_hands);
+    gripper.joints = static_cast<std::uint32_t>(rows_of(file, path + "/joint_names", {}));
+    gripper.fingers = static_cast<std::uint32_t>(rows_of(file, path + "/finger_names", {}));
+    gripper.vertices = rows_of(file, path + "/vertices", {3});
+    rows_of(file, path + "/triangles", {3});
+    if (gripper.joints > layout.max_joints || gripper.fingers > layout.max_fingers) {
+      throw DatasetError(path + " has " + std::to_string(gripper.joints) + " joints and " +
+                         std::to_string(gripper.fingers) + " fingers, more than the table's " +
+                         std::to_string(layout.max_joints) + " and " +
+                         std::to_string(layout.max_fingers));
+    }
+    layout.grippers.push_back(gripper);
+  }
+}
+
+// The trajectory slots of each (object, gripper) pair: the rows of its trajectory datasets,
+// each shaped for the pair.
+void read_trajectory_slots(hid_t file, DatasetLayout& layout) {
+  const auto objects = static_cast<std::uint32_t>(layout.objects.size());
+  const auto grippers = static_cast<std::uint32_t>(layout.grippers.size());
+  layout.trajectory_slots.assign(std::size_t{objects} * grippers, 0);
+  for (std::uint32_t o = 0; o < objects; ++o) {
+    if (!h5::exists(file, object_group(o) + "/trajectories")) continue;
+    for (std::uint32_t g = 0; g < grippers; ++g) {
+      const std::string group = trajectory_group(o, g);
+      if (!h5::exists(file, group)) continue;
+      const Sizes sizes = Sizes::of(layout, o, g);
+      // The first column's rows are the slots; the others must have as many.
+      std::optional<std::uint64_t> slots;
+      std::string first;
+      for (const Column& column : dataset_columns()) {
+        if (column.place != Place::kTrajectory) continue;
+        const std::string path = group + "/" + column.name;
+        const std::uint64_t rows = rows_of(file, path, column.extents(sizes));
+        if (slots && rows != *slots) {
+          throw DatasetError(path + " has " + std::to_string(rows) + " rows, but " + first +
+                             " has " + std::to_string(*slots));
+        }
+        if (!slots) first = path;
+        slots = rows;
+      }
+      layout.trajectory_slots[layout.pair(o, g)] = slots.value_or(0);
+    }
+  }
+}
+
+// The candidate table: every column's shape, then the plan's values, their ranges and the
+// checksums written with them.
+void read_candidate_table(hid_t file, DatasetLayout& layout) {
+  const Sizes table = Sizes::of(layout);
+  std::vector<std::pair<h5::Handle, Values>> plan;
+  for (const Column& column : dataset_columns()) {
+    if (column.place != Place::kPlan && column.place != Place::kDone &&
+        column.place != Place::kChecksum && column.place != Place::kResult) {
+      continue;
+    }
+    Dims dims{layout.candidate_count};
+    const Dims row = column.extents(table);
+    dims.insert(dims.end(), row.begin(), row.end());
+    h5::Handle dataset = open_shaped(file, std::string("/candidates/") + column.name, dims);
+    if (column.place != Place::kPlan) continue;
+    Values values = read_values(dataset, column.element);
+    column.access_to<DatasetLayout>().put(values, layout);
+    plan.emplace_back(std::move(dataset), std::move(values));
+  }
+  check_plan_indices(layout);
+  auto next = plan.begin();
+  for (const Column& column : dataset_columns()) {
+    if (column.place != Place::kPlan) continue;
+    verify_whole_checksum(next->first, std::string("/candidates/") + column.name, next->second);
+    ++next;
+  }
+}
+
+}  // namespace
+
 DatasetLayout DatasetLayout::read(hid_t file) {
   DatasetLayout layout;
   if (H5Aexists(file, "format") <= 0) {
@@ -112,64 +311,25 @@ DatasetLayout DatasetLayout::read(hid_t file) {
   const std::uint64_t version = h5::read_uint_attribute(file, "format_version");
   if (version != kFormatVersion) {
     throw DatasetError("it is grip dataset format version " + std::to_string(version) +
-                       ", this grip reads version " + std::to_string(kFormatVersion));
+                       ", this grip reads version " + std::to_string(kFormatVersion) +
+                       " (read it with the grip that made it, or run its job again into a new "
+                       "file)");
   }
+  constexpr std::uint64_t kMaxCount = std::numeric_limits<std::uint32_t>::max();
   layout.candidate_count = h5::read_uint_attribute(file, "candidate_count");
-  layout.closing_frames =
-      static_cast<std::uint32_t>(h5::read_uint_attribute(file, "closing_frames"));
+  layout.closing_frames = count_attribute(file, "/", "closing_frames", 0, kMaxCount);
   layout.validation_frames =
-      static_cast<std::uint32_t>(h5::read_uint_attribute(file, "validation_frames"));
-  layout.max_hands = static_cast<std::uint32_t>(h5::read_uint_attribute(file, "max_hands"));
-  layout.max_joints = static_cast<std::uint32_t>(h5::read_uint_attribute(file, "max_joints"));
-  layout.max_fingers = static_cast<std::uint32_t>(h5::read_uint_attribute(file, "max_fingers"));
-  const auto object_count =
-      static_cast<std::uint32_t>(h5::read_uint_attribute(file, "object_count"));
-  const auto gripper_count =
-      static_cast<std::uint32_t>(h5::read_uint_attribute(file, "gripper_count"));
+      count_attribute(file, "/", "validation_frames", 0, kMaxCount - layout.closing_frames);
+  layout.max_hands = count_attribute(file, "/", "max_hands", 1, 2);
+  layout.max_joints = count_attribute(file, "/", "max_joints", 1, kMaxCount);
+  layout.max_fingers = count_attribute(file, "/", "max_fingers", 1, kMaxCount);
+  const std::uint32_t object_count = count_attribute(file, "/", "object_count", 0, kMaxCount);
+  const std::uint32_t gripper_count = count_attribute(file, "/", "gripper_count", 0, kMaxCount);
 
-  const auto open = [file](const std::string& path) {
-    return h5::dataset_handle(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "opening " + path);
-  };
-  for (std::uint32_t o = 0; o < object_count; ++o) {
-    Object object;
-    object.vertices = h5::dims(open(object_group(o) + "/vertices"))[0];
-    object.tets = h5::dims(open(object_group(o) + "/tets"))[0];
-    if (h5::exists(file, stress_dataset(o))) {
-      object.stress_slots = h5::dims(open(stress_dataset(o)))[0];
-    }
-    layout.objects.push_back(object);
-  }
-  for (std::uint32_t g = 0; g < gripper_count; ++g) {
-    const h5::Handle group = h5::group_handle(H5Gopen2(file, gripper_group(g).c_str(), H5P_DEFAULT),
-                                              "opening " + gripper_group(g));
-    Gripper gripper;
-    gripper.hands = static_cast<std::uint32_t>(h5::read_uint_attribute(group, "hands"));
-    gripper.joints =
-        static_cast<std::uint32_t>(h5::dims(open(gripper_group(g) + "/joint_names"))[0]);
-    gripper.fingers =
-        static_cast<std::uint32_t>(h5::dims(open(gripper_group(g) + "/finger_names"))[0]);
-    gripper.vertices = h5::dims(open(gripper_group(g) + "/vertices"))[0];
-    layout.grippers.push_back(gripper);
-  }
-  for (const Column& column : dataset_columns()) {
-    if (column.place != Place::kPlan) continue;
-    const h5::Handle dataset = open(std::string("/candidates/") + column.name);
-    column.access_to<DatasetLayout>().put(read_values(dataset, column.element), layout);
-  }
-  if (layout.object.size() != layout.candidate_count) {
-    throw DatasetError("its candidate table has " + std::to_string(layout.object.size()) +
-                       " rows, but its header says " + std::to_string(layout.candidate_count));
-  }
-  layout.trajectory_slots.assign(std::size_t{object_count} * gripper_count, 0);
-  for (std::uint32_t o = 0; o < object_count; ++o) {
-    for (std::uint32_t g = 0; g < gripper_count; ++g) {
-      const std::string path = trajectory_group(o, g) + "/object_vertices";
-      if (h5::exists(file, object_group(o) + "/trajectories") &&
-          h5::exists(file, trajectory_group(o, g))) {
-        layout.trajectory_slots[layout.pair(o, g)] = h5::dims(open(path))[0];
-      }
-    }
-  }
+  read_objects(file, object_count, layout);
+  read_grippers(file, gripper_count, layout);
+  read_trajectory_slots(file, layout);
+  read_candidate_table(file, layout);
   return layout;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// The shape of a dataset file: its group names (format version 1, docs/dataset-format.md;
-// its datasets are dataset_columns()) and every size derived from the plan, so that writer,
-// resume and reader agree on where each candidate's bytes live.
+// The shape of a dataset file: its group names (docs/dataset-format.md; its datasets are
+// dataset_columns()) and every size derived from the plan, so that writer, resume and reader
+// agree on where each candidate's bytes live.
 #include <hdf5.h>
 
 #include <cstdint>
@@ -13,7 +13,7 @@
 namespace grip::io {
 
 inline constexpr const char* kFormatName = "grip-dataset";
-inline constexpr std::uint64_t kFormatVersion = 4;
+inline constexpr std::uint64_t kFormatVersion = 5;
 
 struct DatasetLayout {
   std::uint64_t candidate_count = 0;
@@ -53,7 +53,9 @@ struct DatasetLayout {
   // Checks the plan (indices in range, stress only for soft tet objects, whole vertices...)
   // and throws DatasetError naming the first problem.
   static DatasetLayout from_plan(const DatasetPlan& plan);
-  // Reads the layout of an open dataset file; throws DatasetError when it is not one.
+  // Reads the layout of an open dataset file; throws DatasetError when it is not one, when a
+  // dataset's shape or a size attribute disagrees with the others, when a stored index lies
+  // outside the sizes it indexes, or a plan column does not match its checksum.
   static DatasetLayout read(hid_t file);
 };
 

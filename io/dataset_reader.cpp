@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "io/checksum.hpp"
 #include "io/column.hpp"
 #include "io/dataset_columns.hpp"
 #include "io/dataset_error.hpp"
@@ -19,13 +20,22 @@ std::vector<T> read_column(hid_t file, const std::string& path, hid_t memory_typ
   return h5::read_all<T>(open_dataset(file, path), memory_type);
 }
 
-// Puts the whole-record columns of `place` under `group` into `record`.
+// Puts the whole-record columns of `place` under `group` into `record`, each checked against
+// the checksum written at creation (DatasetError naming `name`, the file, if one differs).
 template <typename Record>
-void read_record(hid_t file, const std::string& group, Place place, Record& record) {
+void read_record(hid_t file, const std::string& name, const std::string& group, Place place,
+                 Record& record) {
   for (const Column& column : dataset_columns()) {
     if (column.place != place) continue;
-    const h5::Handle dataset = open_dataset(file, group + "/" + column.name);
-    column.access_to<Record>().put(read_values(dataset, column.element), record);
+    const std::string path = group + "/" + column.name;
+    const h5::Handle dataset = open_dataset(file, path);
+    const Values values = read_values(dataset, column.element);
+    try {
+      verify_whole_checksum(dataset, path, values);
+    } catch (const DatasetError& e) {
+      throw DatasetError(name + ": " + e.what());
+    }
+    column.access_to<Record>().put(values, record);
   }
 }
 
@@ -69,7 +79,7 @@ Provenance DatasetReader::provenance() const {
   const h5::Handle group =
       h5::group_handle(H5Gopen2(file_, "/provenance", H5P_DEFAULT), "opening /provenance");
   provenance.job_file = h5::read_string_attribute(group, "job_file");
-  read_record(file_, "/provenance", Place::kProvenance, provenance);
+  read_record(file_, path_.string(), "/provenance", Place::kProvenance, provenance);
   return provenance;
 }
 
@@ -86,7 +96,7 @@ ObjectRecord DatasetReader::object(std::uint32_t index) const {
   object.material.poisson_ratio = h5::read_double_attribute(group, "poisson_ratio");
   object.material.density = h5::read_double_attribute(group, "density");
   object.material.friction = h5::read_double_attribute(group, "friction");
-  read_record(file_, path, Place::kObject, object);
+  read_record(file_, path_.string(), path, Place::kObject, object);
   return object;
 }
 
@@ -99,12 +109,20 @@ GripperRecord DatasetReader::gripper(std::uint32_t index) const {
   gripper.kind = h5::read_string_attribute(group, "kind");
   gripper.soft = h5::read_uint_attribute(group, "soft") != 0;
   gripper.hands = static_cast<std::uint32_t>(h5::read_uint_attribute(group, "hands"));
-  read_record(file_, path, Place::kGripper, gripper);
+  read_record(file_, path_.string(), path, Place::kGripper, gripper);
   return gripper;
 }
 
 std::vector<std::uint8_t> DatasetReader::done() const {
   return read_column<std::uint8_t>(file_, "/candidates/done", H5T_NATIVE_UINT8);
+}
+
+std::vector<Damage> DatasetReader::damage() const {
+  try {
+    return find_damage(file_, layout_, done());
+  } catch (const DatasetError& e) {
+    throw DatasetError(path_.string() + ": " + e.what());
+  }
 }
 
 std::vector<CandidateRecord> DatasetReader::candidates() const {

@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numeric>
+#include <utility>
+
+#include "io/dataset_error.hpp"
+#include "io/journal.hpp"
 
 namespace grip::io {
 
@@ -20,6 +25,33 @@ Statistics statistics(std::vector<double> values) {
   return s;
 }
 
+namespace {
+
+// Per candidate, the last commit round of the journal beside `dataset` that lists it; 0 where
+// none does, or there is no readable journal (the file is summarized all the same).
+std::vector<std::uint64_t> commit_rounds(const std::filesystem::path& dataset,
+                                         std::uint64_t candidates) {
+  std::vector<std::uint64_t> rounds(candidates, 0);
+  const std::filesystem::path path = Journal::path_for(dataset);
+  if (!std::filesystem::exists(path)) return rounds;
+  Journal::Contents journal;
+  try {
+    journal = Journal::read(path);
+  } catch (const DatasetError&) {
+    return rounds;
+  }
+  std::size_t next = 0;
+  for (std::size_t round = 0; round < journal.rounds.size(); ++round) {
+    for (std::uint64_t i = 0; i < journal.rounds[round]; ++i, ++next) {
+      const std::uint64_t id = journal.done[next];
+      if (id < candidates) rounds[id] = round + 1;
+    }
+  }
+  return rounds;
+}
+
+}  // namespace
+
 DatasetSummary summarize(const DatasetReader& reader) {
   const DatasetLayout& layout = reader.layout();
   DatasetSummary summary;
@@ -30,7 +62,13 @@ DatasetSummary summarize(const DatasetReader& reader) {
   for (std::uint32_t o = 0; o < layout.objects.size(); ++o) {
     summary.by_object.push_back({reader.object(o).name});
   }
-  const std::vector<std::uint8_t> done = reader.done();
+  std::vector<std::uint8_t> done = reader.done();
+  const std::vector<std::uint64_t> rounds = commit_rounds(reader.path(), layout.candidate_count);
+  for (Damage& damage : reader.damage()) {
+    done[damage.candidate] = 0;
+    const std::uint64_t round = rounds[damage.candidate];
+    summary.damaged.push_back({std::move(damage), round});
+  }
   const std::vector<CandidateRecord> records = reader.candidates();
   std::vector<double> d1, d2, wall_time;
   for (std::uint64_t id = 0; id < layout.candidate_count; ++id) {

@@ -1,6 +1,6 @@
 #pragma once
-// Counts and statistics over a dataset's committed candidates: what `grip inspect` prints
-// after the provenance.
+// Counts and statistics over a dataset's committed candidates, and the committed rows that no
+// longer match their checksums: what `grip inspect` prints after the provenance.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -28,9 +28,16 @@ struct Tally {
   std::uint64_t success = 0;
 };
 
+// A committed row that does not match its checksum, and the commit round that wrote it: the
+// journal's "done" line (the first is round 1), 0 where no journal beside the file says.
+struct DamagedRow {
+  Damage damage;
+  std::uint64_t round = 0;
+};
+
 struct DatasetSummary {
   std::uint64_t candidates = 0;
-  std::uint64_t done = 0;
+  std::uint64_t done = 0;  // done flags set and every row matching its checksums
   std::uint64_t success = 0;
   std::vector<Tally> by_gripper;                            // in gripper order
   std::vector<Tally> by_object;                             // in object order
@@ -38,6 +45,7 @@ struct DatasetSummary {
   Statistics d2;                                            // m, over successful candidates
   Statistics wall_time;                                     // s, over done candidates
   std::array<std::uint64_t, kFailureKindCount> failures{};  // done failures by FailureKind
+  std::vector<DamagedRow> damaged;  // by candidate; its candidates are not counted as done
 };
 
 DatasetSummary summarize(const DatasetReader& reader);

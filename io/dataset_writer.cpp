@@ -7,9 +7,11 @@
 #include <type_traits>
 #include <utility>
 
+#include "io/checksum.hpp"
 #include "io/column.hpp"
 #include "io/column_values.hpp"
 #include "io/dataset_columns.hpp"
+#include "io/dataset_damage.hpp"
 #include "io/dataset_error.hpp"
 
 namespace grip::io {
@@ -121,7 +123,8 @@ void write_from_root(hid_t dataset, hid_t memory_type, const void* data, int ran
             "writing data");
 }
 
-// Creates a column's dataset in `location` and, given `values`, writes them whole from rank 0.
+// Creates a column's dataset in `location` and, given `values`, writes them whole from rank 0
+// with their checksum.
 void create_column(hid_t location, const Column& column, const Dims& dims, const Values* values,
                    int rank, hid_t transfer) {
   if (column.element == Element::kString) {
@@ -131,13 +134,17 @@ void create_column(hid_t location, const Column& column, const Dims& dims, const
     const h5::Handle dataset = make_dataset(location, column, dims, type, type);
     if (strings) {
       write_from_root(dataset, type, packed_strings(*strings, width).data(), rank, transfer);
+      write_whole_checksum(dataset, *values, width);
     }
     return;
   }
   const h5::Handle file_type = element_type(column.element, true);
   const h5::Handle memory_type = element_type(column.element, false);
   const h5::Handle dataset = make_dataset(location, column, dims, file_type, memory_type);
-  if (values) write_from_root(dataset, memory_type, number_data(*values), rank, transfer);
+  if (values) {
+    write_from_root(dataset, memory_type, number_data(*values), rank, transfer);
+    write_whole_checksum(dataset, *values, 1);
+  }
 }
 
 // Creates a whole-record column from the record's values.
@@ -238,7 +245,8 @@ void write_gripper(hid_t file, std::uint32_t index, const GripperRecord& gripper
   }
 }
 
-// Plan columns are written now; done and result columns start as their fill ("not written").
+// Plan columns are written now; done, checksum and result columns start as their fill ("not
+// written").
 void write_candidate_table(hid_t file, const DatasetLayout& layout, int rank, hid_t transfer) {
   const h5::Handle group = make_group(file, "/candidates");
   const hsize_t n = layout.candidate_count;
@@ -248,7 +256,8 @@ void write_candidate_table(hid_t file, const DatasetLayout& layout, int rank, hi
       Values values = empty_values(value_index(column.element));
       column.access_to<DatasetLayout>().get(layout, values);
       create_row_column(group, column, n, sizes, &values, rank, transfer);
-    } else if (column.place == Place::kDone || column.place == Place::kResult) {
+    } else if (column.place == Place::kDone || column.place == Place::kResult ||
+               column.place == Place::kChecksum) {
       create_row_column(group, column, n, sizes, nullptr, rank, transfer);
     }
   }
@@ -470,7 +479,7 @@ DatasetWriter DatasetWriter::resume(const std::filesystem::path& path, const Pro
     try {
       layout = DatasetLayout::read(file);
     } catch (const DatasetError& e) {
-      throw DatasetError(name + ": cannot resume: " + e.what());
+      throw DatasetError(name + ": cannot resume: " + e.what() + "; nothing was changed");
     }
     const std::string wanted = job_id(provenance.job_text, provenance.seed);
     const std::string found = h5::read_string_attribute(file, "job_id");
@@ -503,6 +512,13 @@ DatasetWriter DatasetWriter::resume(const std::filesystem::path& path, const Pro
     for (const std::uint64_t id : journal.done) journaled[id] = 1;
     done.assign(layout.candidate_count, 0);
     for (std::size_t id = 0; id < done.size(); ++id) done[id] = in_file[id] && journaled[id];
+    // A committed row whose bytes no longer match its checksums is redone.
+    try {
+      writer.damaged_ = find_damage(file, layout, done);
+    } catch (const DatasetError& e) {
+      throw DatasetError(name + ": cannot resume: " + e.what() + "; nothing was changed");
+    }
+    for (const Damage& damage : writer.damaged_) done[damage.candidate] = 0;
     journal_bytes = journal.valid_bytes;
   });
   std::uint64_t count = done.size();
@@ -567,11 +583,28 @@ void DatasetWriter::write(std::span<const CandidateResult> results) {
 
   const hid_t file = file_;
   const hid_t transfer = transfer_;
+  // Each row's checksum per column, written beside the rows (this rank's rows in `sorted` order).
+  const std::size_t entries = checksum_entries();
+  std::vector<std::uint32_t> checksums(rows.size() * entries, 0);
+  // Writes `values`, rows of `row_size` packed in order for the results at `positions` in
+  // `sorted`, and records their checksums.
+  const auto write_checksummed =
+      [&](const Column& column, const std::string& path, const std::vector<std::uint64_t>& at,
+          const std::vector<std::size_t>& positions, std::size_t row_size, const Values& values) {
+        const std::size_t entry = checksum_entry(column);
+        for (std::size_t i = 0; i < positions.size(); ++i) {
+          checksums[positions[i] * entries + entry] = row_checksum(values, i * row_size, row_size);
+        }
+        const h5::Handle memory_type = element_type(column.element, false);
+        write_rows(file, path, at, memory_type, number_data(values), transfer);
+      };
+  std::vector<std::size_t> all_positions(sorted.size());
+  std::iota(all_positions.begin(), all_positions.end(), std::size_t{0});
+  const Sizes table = Sizes::of(layout_);
   for (const Column& column : dataset_columns()) {
     if (column.place != Place::kResult) continue;
-    const h5::Handle memory_type = element_type(column.element, false);
-    write_rows(file, std::string("/candidates/") + column.name, rows, memory_type,
-               number_data(packed_rows(column, sorted, layout_)), transfer);
+    write_checksummed(column, std::string("/candidates/") + column.name, rows, all_positions,
+                      row_size(column, table), packed_rows(column, sorted, layout_));
   }
 
   // Trajectories and stress live in per-object datasets: every rank joins the writes of every
@@ -591,41 +624,47 @@ void DatasetWriter::write(std::span<const CandidateResult> results) {
     const auto o = static_cast<std::uint32_t>(p / gripper_count);
     const auto g = static_cast<std::uint32_t>(p % gripper_count);
     std::vector<std::uint64_t> slots;
+    std::vector<std::size_t> positions;
     std::vector<const TrajectoryRecord*> trajectories;
-    for (const auto* result : sorted) {
-      const std::uint64_t id = result->record.id;
-      if (result->trajectory && layout_.pair(layout_.object[id], layout_.gripper[id]) == p) {
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      const std::uint64_t id = sorted[i]->record.id;
+      if (sorted[i]->trajectory && layout_.pair(layout_.object[id], layout_.gripper[id]) == p) {
         slots.push_back(static_cast<std::uint64_t>(layout_.frame_slot[id]));
-        trajectories.push_back(&*result->trajectory);
+        positions.push_back(i);
+        trajectories.push_back(&*sorted[i]->trajectory);
       }
     }
     const std::string group = trajectory_group(o, g) + "/";
+    const Sizes sizes = Sizes::of(layout_, o, g);
     for (const Column& column : dataset_columns()) {
       if (column.place != Place::kTrajectory) continue;
-      const h5::Handle memory_type = element_type(column.element, false);
-      write_rows(file, group + column.name, slots, memory_type,
-                 number_data(packed_rows(column, trajectories, layout_)), transfer);
+      write_checksummed(column, group + column.name, slots, positions, row_size(column, sizes),
+                        packed_rows(column, trajectories, layout_));
     }
   }
   for (std::uint32_t o = 0; o < layout_.objects.size(); ++o) {
     if (!touched[pairs + o]) continue;
     std::vector<std::uint64_t> slots;
+    std::vector<std::size_t> positions;
     std::vector<const CandidateResult*> stressed;
-    for (const auto* result : sorted) {
-      const std::uint64_t id = result->record.id;
-      if (result->stress && layout_.object[id] == o) {
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      const std::uint64_t id = sorted[i]->record.id;
+      if (sorted[i]->stress && layout_.object[id] == o) {
         slots.push_back(static_cast<std::uint64_t>(layout_.stress_slot[id]));
-        stressed.push_back(result);
+        positions.push_back(i);
+        stressed.push_back(sorted[i]);
       }
     }
     const std::string group = object_group(o) + "/";
+    Sizes sizes = table;
+    sizes.object = layout_.objects[o];
     for (const Column& column : dataset_columns()) {
       if (column.place != Place::kStress) continue;
-      const h5::Handle memory_type = element_type(column.element, false);
-      write_rows(file, group + column.name, slots, memory_type,
-                 number_data(packed_rows(column, stressed, layout_)), transfer);
+      write_checksummed(column, group + column.name, slots, positions, row_size(column, sizes),
+                        packed_rows(column, stressed, layout_));
     }
   }
+  write_rows(file, "/candidates/checksum", rows, H5T_NATIVE_UINT32, checksums.data(), transfer);
 
   // Commit: rows reach the disk before their done flags, the flags before the journal line.
   h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), path_.string() + ": flushing a batch");

@@ -2,8 +2,8 @@
 // Writes a dataset collectively over an MPI communicator with parallel HDF5: create() lays out
 // the whole file from the plan at once (fixed sizes, contiguous, space allocated up front), so
 // later writes touch raw data at fixed offsets only; write() commits a batch of results from
-// every rank (rows, flush, done flags, flush, fsync'd journal line); resume() reopens a file of
-// the same job and reports which candidates are already done.
+// every rank (rows and their checksums, flush, done flags, flush, fsync'd journal line);
+// resume() reopens a file of the same job and reports which candidates are already done.
 #include <mpi.h>
 
 #include <cstdint>
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "io/candidate_record.hpp"
+#include "io/dataset_damage.hpp"
 #include "io/dataset_layout.hpp"
 #include "io/dataset_plan.hpp"
 #include "io/hdf5.hpp"
@@ -29,7 +30,9 @@ class DatasetWriter {
                               const Provenance& provenance, MPI_Comm comm);
   // Collective. Reopens a dataset made by the same job (same job text and seed). Refuses with
   // a DatasetError, leaving the file and journal byte for byte untouched, when the file is not
-  // an HDF5 file, is truncated, is not a grip dataset, or belongs to another job.
+  // an HDF5 file, is truncated, is not a grip dataset, belongs to another job, holds an index
+  // outside the sizes it indexes or a plan column that does not match its checksum. Committed
+  // rows that do not match their checksums are pending again (damaged() lists them).
   static DatasetWriter resume(const std::filesystem::path& path, const Provenance& provenance,
                               MPI_Comm comm);
 
@@ -41,6 +44,8 @@ class DatasetWriter {
   // Committed candidates: both their file flag and a journal line say so. Same on every rank.
   bool is_done(std::uint64_t id) const { return done_[id] != 0; }
   std::vector<std::uint64_t> pending() const;
+  // On rank 0 after resume(): the committed rows found damaged, now pending. Empty elsewhere.
+  const std::vector<Damage>& damaged() const { return damaged_; }
 
   // Collective: every rank calls it, the same number of times, each with its own results
   // (possibly none); the batch is committed when it returns. Each result's id
@@ -62,6 +67,7 @@ class DatasetWriter {
   h5::Handle file_;
   h5::Handle transfer_;  // collective MPI-IO data transfer
   std::vector<std::uint8_t> done_;
+  std::vector<Damage> damaged_;
   std::optional<Journal> journal_;  // rank 0 only
 };
 

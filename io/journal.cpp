@@ -130,6 +130,7 @@ Journal::Contents Journal::read(const std::filesystem::path& path) {
         contents.done.push_back(id);
       }
       if (fields >> word) bad("the line lists more ids than its count");
+      contents.rounds.push_back(count);
     }
     line_start = end + 1;
     contents.valid_bytes = line_start;

@@ -15,8 +15,9 @@ class Journal {
   struct Contents {
     std::string job_id;
     std::uint64_t candidate_count = 0;
-    std::vector<std::uint64_t> done;  // ids of every complete "done" line, in journal order
-    std::uint64_t valid_bytes = 0;    // length up to the end of the last complete line
+    std::vector<std::uint64_t> done;    // ids of every complete "done" line, in journal order
+    std::vector<std::uint64_t> rounds;  // ids per complete "done" line (commit round), in order
+    std::uint64_t valid_bytes = 0;      // length up to the end of the last complete line
   };
 
   static std::filesystem::path path_for(const std::filesystem::path& dataset);

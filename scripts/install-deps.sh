@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
   libopenmpi-dev openmpi-bin
-  libhdf5-openmpi-dev libssl-dev
+  libhdf5-openmpi-dev libssl-dev zlib1g-dev
   libpetsc-real-dev libmetis-dev
   libcgal-dev libgmp-dev libmpfr-dev
   libsuitesparse-dev libopenblas0-pthread

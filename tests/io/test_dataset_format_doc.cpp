@@ -1,5 +1,5 @@
-// docs/dataset-format.md names exactly the columns of io/dataset_columns.cpp, and
-// examples/read_dataset.py reads only columns the table has.
+// docs/dataset-format.md names exactly the columns of io/dataset_columns.cpp and lists the
+// checksummed ones in order, and examples/read_dataset.py reads only columns the table has.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -41,6 +41,7 @@ std::string documented_group(Place place) {
     case Place::kPlan:
     case Place::kResult:
     case Place::kDone:
+    case Place::kChecksum:
       return "/candidates";
   }
   return "";
@@ -137,6 +138,36 @@ TEST(DatasetFormatDoc, NamesEveryColumnOfTheTableAndNoOther) {
         << "column " << path << " of io/dataset_columns.cpp is missing from a column table of "
         << "docs/dataset-format.md";
   }
+}
+
+// The "Checksum entries, in order:" sentence names the checksummed columns in the order of the
+// entries of a checksum row.
+TEST(DatasetFormatDoc, ListsTheChecksumEntriesInOrder) {
+  const std::string page = text_of(kSourceDir + "/docs/dataset-format.md");
+  const std::string marker = "Checksum entries, in order:";
+  const std::size_t start = page.find(marker);
+  ASSERT_NE(start, std::string::npos) << "docs/dataset-format.md has no '" << marker << "'";
+  std::vector<std::string> listed;
+  bool quoted = false;
+  std::string name;
+  for (std::size_t i = start + marker.size(); i < page.size(); ++i) {
+    const char c = page[i];
+    if (c == '`') {
+      if (quoted) listed.push_back(name);
+      name.clear();
+      quoted = !quoted;
+    } else if (quoted) {
+      name += c;
+    } else if (c == '.') {
+      break;
+    }
+  }
+  std::vector<std::string> entries;
+  for (const Column& column : dataset_columns()) {
+    if (checksummed(column)) entries.push_back(column.name);
+  }
+  EXPECT_EQ(entries.size(), checksum_entries());
+  EXPECT_EQ(listed, entries);
 }
 
 // The example reads candidate columns as table["NAME"] and trajectory columns as

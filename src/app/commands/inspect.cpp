@@ -1,7 +1,12 @@
 // `grip inspect DATASET.h5`: the dataset's provenance, then what it holds: objects, grippers,
 // candidates done, success rates by gripper and by object, D1/D2 statistics and failures by
-// kind. Reads with serial HDF5; needs no MPI.
+// kind; committed rows that do not match their checksums are reported (exit 1). Reads with
+// serial HDF5; needs no MPI.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
 #include <cstdio>
+#include <set>
 #include <string>
 
 #include "io/dataset_reader.hpp"
@@ -41,6 +46,29 @@ void print_statistics(const char* name, const io::Statistics& s, double scale) {
               s.median * scale, s.max * scale);
 }
 
+std::size_t damaged_candidates(const io::DatasetSummary& summary) {
+  std::set<std::uint64_t> candidates;
+  for (const io::DamagedRow& row : summary.damaged) candidates.insert(row.damage.candidate);
+  return candidates.size();
+}
+
+// One error line per damaged row, the first few of them.
+void report_damage(const std::string& dataset, const std::vector<io::DamagedRow>& damaged) {
+  constexpr std::size_t kShown = 20;
+  for (std::size_t i = 0; i < std::min(damaged.size(), kShown); ++i) {
+    const io::DamagedRow& row = damaged[i];
+    const std::string round = row.round > 0 ? "commit round " + std::to_string(row.round)
+                                            : "no journal names its commit round";
+    spdlog::error(
+        "{}: candidate {} ({}): {} does not match the checksum written with it; the candidate is "
+        "not counted as done (grip farm --resume redoes it)",
+        dataset, row.damage.candidate, round, row.damage.dataset);
+  }
+  if (damaged.size() > kShown) {
+    spdlog::error("{}: {} more damaged rows", dataset, damaged.size() - kShown);
+  }
+}
+
 }  // namespace
 
 int inspect(const std::string& dataset, bool show_job) {
@@ -73,6 +101,10 @@ int inspect(const std::string& dataset, bool show_job) {
               static_cast<unsigned long long>(summary.candidates),
               static_cast<unsigned long long>(summary.done),
               static_cast<unsigned long long>(summary.candidates - summary.done));
+  if (!summary.damaged.empty()) {
+    std::printf("damaged     %zu committed candidates do not match their checksums (pending)\n",
+                damaged_candidates(summary));
+  }
   std::printf("success     %llu of %llu done (%s)\n",
               static_cast<unsigned long long>(summary.success),
               static_cast<unsigned long long>(summary.done),
@@ -97,7 +129,10 @@ int inspect(const std::string& dataset, bool show_job) {
                 static_cast<unsigned long long>(summary.failures[kind]));
   }
   if (!any) std::printf("  none\n");
-  return 0;
+  if (summary.damaged.empty()) return 0;
+  std::fflush(stdout);
+  report_damage(dataset, summary.damaged);
+  return 1;
 }
 
 }  // namespace grip::commands
