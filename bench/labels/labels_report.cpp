@@ -157,7 +157,8 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
   }
   std::ofstream csv(out / "labels.csv");
   csv << "arm,category,seed,candidate,verdict,verdict_reference,closed,closing_forces_n,"
-         "settle_displacement_mm,slip_mm,center_displacement_mm,slip_reference_mm\n";
+         "settle_displacement_mm,slip_mm,center_displacement_mm,slip_reference_mm,"
+         "closing_forces_reference_n,settle_displacement_reference_mm\n";
   for (const LabelsArmResult& arm : result.arms) {
     for (const LabelsPair& pair : pair_trials(arm)) {
       const RobustnessTrial& t = *pair.defaults;
@@ -167,7 +168,10 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
           << fixed_or_dash(t.settle_displacement * 1e3, 4) << ','
           << fixed_or_dash(t.largest_slip * 1e3, 4) << ','
           << fixed_or_dash(t.largest_center_displacement * 1e3, 4) << ','
-          << (pair.reference ? fixed_or_dash(pair.reference->largest_slip * 1e3, 4) : "-") << '\n';
+          << (pair.reference ? fixed_or_dash(pair.reference->largest_slip * 1e3, 4) : "-") << ','
+          << (pair.reference ? forces_text(pair.reference->closing_forces) : "-") << ','
+          << (pair.reference ? fixed_or_dash(pair.reference->settle_displacement * 1e3, 4) : "-")
+          << '\n';
     }
   }
 }
