@@ -380,7 +380,8 @@ TEST(HostileInput, OutputPathsThatCannotBeWrittenAreUsageErrors) {
        "grip: --report: '" + folder.string() + "' is a directory; give a file path"},
       {"simulate s.toml --report " + quoted(file / "r.json"),
        "--report: '" + file.string() + "' is a file, not a folder; choose another path"},
-      {"trial --candidates c.txt --report " + f, "--report: '" + folder.string() + "' is a directory"},
+      {"trial --candidates c.txt --report " + f,
+       "--report: '" + folder.string() + "' is a directory"},
       {"trial --candidates c.txt --vtk " + x,
        "--vtk: '" + file.string() + "' is a file, not a folder; give a folder"},
       {"synth --object box --gripper fin-ray --count 1 --seed 1 --out " + f,
@@ -460,8 +461,8 @@ GripRun run_farm_on_two_ranks(const std::string& arguments) {
   const fs::path out = dir / ("grip_mpi_out_" + std::to_string(::getpid()));
   const fs::path err = dir / ("grip_mpi_err_" + std::to_string(::getpid()));
   const std::string command = std::string(GRIP_MPIEXEC) + " -np 2 --oversubscribe " +
-                              GRIP_EXECUTABLE + " farm " + arguments + " >" + out.string() +
-                              " 2>" + err.string();
+                              GRIP_EXECUTABLE + " farm " + arguments + " >" + out.string() + " 2>" +
+                              err.string();
   const int status = std::system(command.c_str());
   GripRun run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
