@@ -243,6 +243,7 @@ int main(int argc, char** argv) {
   CLI::Option* ccd_write = ccd_bench->add_option(
       "--write-hard", ccd_bench_args.write_hard_dir,
       "Write the generated hard query set (hard-vertex-face.csv, hard-edge-edge.csv) to DIR");
+  ccd_write->check(kOutputFolder);
   ccd_file->needs(ccd_type);
   ccd_write->excludes(ccd_file)->excludes(ccd_type);
   ccd_bench->callback([&] { run = [&] { return grip::commands::ccd_bench(ccd_bench_args); }; });
