@@ -405,6 +405,18 @@ TEST(HostileInput, OutputPathsThatCannotBeWrittenAreUsageErrors) {
     EXPECT_EQ(count_lines(run.err), 1) << run.err;
     EXPECT_NE(run.err.find(k.expected), std::string::npos) << k.expected << '\n' << run.err;
   }
+  // A job's own output, known only once the job is read: refused before planning too.
+  const fs::path job = dir / "job.toml";
+  std::ofstream(job) << "[job]\nname = \"h\"\noutput = \"" << folder.string()
+                     << "\"\n\n[[grippers]]\nname = \"parallel-jaw\"\ncandidates = 1\n"
+                     << "[[objects]]\ncategory = \"cylinder\"\n";
+  const GripRun farm = run_grip("farm " + quoted(job) + " --threads 1");
+  EXPECT_EQ(farm.exit_code, 1) << farm.err;
+  EXPECT_EQ(count_lines(farm.err), 1) << farm.err;
+  EXPECT_NE(farm.err.find("job.toml: the dataset '" + folder.string() +
+                          "' is a directory; give a file path (--output or [job] output)"),
+            std::string::npos)
+      << farm.err;
   EXPECT_EQ(slurp(file), "kept\n");
   EXPECT_TRUE(fs::is_empty(folder));
   fs::remove_all(dir);
