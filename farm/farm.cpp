@@ -146,7 +146,12 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
   provenance.git_revision = options.git_revision;
   provenance.parameters = resolved_parameters(job);
 
-  // Refuse before the (long) planning what the writer would refuse after it.
+  // Refuse before the (long) planning what the writer would refuse after it. (grip farm checks
+  // --output on its command line; the job's own output is known only here.)
+  if (std::filesystem::is_directory(report.dataset)) {
+    throw config::ConfigError(options.job.string() + ": the dataset '" + report.dataset.string() +
+                              "' is a directory; give a file path (--output or [job] output)");
+  }
   if (!options.resume && std::filesystem::exists(report.dataset)) {
     throw io::DatasetError(report.dataset.string() +
                            ": the dataset already exists; continue it with --resume, or choose "

@@ -51,6 +51,7 @@ std::vector<FarmObject> list_objects(const Job& job) {
       object.seed = derive(job.seed, index, 1);
       object.soft = group.soft;
       object.tet_edge = group.tet_edge;
+      object.tet_edge_at = group.tet_edge_at;
       object.mesh_scale = group.mesh_scale;
       object.material = group.randomize ? objects::randomize_material(job.randomization,
                                                                       derive(job.seed, index, 2))
@@ -101,11 +102,11 @@ io::ObjectRecord prepare_object(const FarmObject& object) {
     const double estimate = geometry::estimated_tet_count(
         std::abs(geometry::surface_volume(surface)), options.edge_length);
     if (estimate > geometry::kMaxEstimatedTets) {
-      char message[256];
+      char message[512];
       std::snprintf(message, sizeof message,
-                    "[[objects]] tet_edge: an edge of %g m would make about %.3g tets for '%s', "
-                    "more than the %.0f allowed; use a larger tet_edge",
-                    options.edge_length, estimate, object.name.c_str(),
+                    "%s: [[objects]] tet_edge: an edge of %g m would make about %.3g tets for "
+                    "'%s', more than the %.0f allowed; use a larger tet_edge",
+                    object.tet_edge_at.c_str(), options.edge_length, estimate, object.name.c_str(),
                     geometry::kMaxEstimatedTets);
       throw std::invalid_argument(message);
     }

@@ -22,6 +22,7 @@ struct FarmObject {
   std::uint64_t seed = 0;        // the object's own stream (material, synthesis, trials)
   bool soft = false;
   double tet_edge = 0.008;           // m, soft objects
+  std::string tet_edge_at;           // "job.toml:LINE" of its entry's tet_edge
   double mesh_scale = 1.0;           // multiplies a mesh file's coordinates
   objects::ObjectMaterial material;  // material.scale multiplies every length
 };

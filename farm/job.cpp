@@ -7,6 +7,7 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "src/config/config.hpp"
 #include "src/objects/object_library.hpp"
@@ -91,6 +92,7 @@ ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_d
   }
   group.soft = t.boolean_or("soft", false);
   group.tet_edge = positive(t, "tet_edge", group.tet_edge);
+  group.tet_edge_at = t.location("tet_edge");
   group.randomize = t.boolean_or("randomize", true);
   for (const char* key : {"density", "youngs", "poisson", "friction"}) {
     if (group.randomize && t.has(key)) {
@@ -184,6 +186,42 @@ void check_trial_steps(const trial::TrialParameters& p, const std::optional<Tabl
   if (trial_table) trial_table->fail("settle_max_steps", message);
 }
 
+// Values that contradict each other, refused on the key that set them: a trial that could
+// never count as settled, a gravity phase shorter than one step.
+void check_trial_consistency(const trial::TrialParameters& p, const std::optional<Table>& physics,
+                             const std::optional<Table>& trial_table) {
+  const std::string steady = std::to_string(p.settle_steps);
+  const std::string most = std::to_string(p.settle_max_steps);
+  if (p.settle_max_steps < p.settle_steps && trial_table) {
+    const std::string why =
+        ", so no trial could ever settle; make settle_max_steps at least "
+        "settle_steps";
+    if (trial_table->has("settle_max_steps")) {
+      trial_table->fail("settle_max_steps",
+                        "= " + most + " is fewer than settle_steps = " + steady + why);
+    }
+    trial_table->fail("settle_steps",
+                      "= " + steady + " is more than settle_max_steps = " + most + why);
+  }
+  if (p.phase_duration < p.sim.dt) {
+    char message[256];
+    if (trial_table && trial_table->has("phase_duration")) {
+      std::snprintf(message, sizeof message,
+                    "= %g s is shorter than one step ([physics] dt = %g s); make phase_duration at "
+                    "least dt",
+                    p.phase_duration, p.sim.dt);
+      trial_table->fail("phase_duration", message);
+    }
+    if (physics && physics->has("dt")) {
+      std::snprintf(message, sizeof message,
+                    "= %g s is longer than a gravity phase ([trial] phase_duration = %g s); make "
+                    "dt at most phase_duration",
+                    p.sim.dt, p.phase_duration);
+      physics->fail("dt", message);
+    }
+  }
+}
+
 void read_outputs(const Table& t, Job& job) {
   t.allow({"frames", "stress", "closing_frames", "validation_frames"});
   job.record_frames = t.boolean_or("frames", job.record_frames);
@@ -245,6 +283,7 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
   const auto trial_table = root.optional_table("trial");
   if (trial_table) read_trial(*trial_table, job.trial);
   check_trial_steps(job.trial, physics, trial_table);
+  check_trial_consistency(job.trial, physics, trial_table);
   if (auto t = root.optional_table("synthesis")) {
     t->allow({"steps", "margin"});
     job.synthesis_steps = positive_integer(*t, "steps", job.synthesis_steps);
@@ -259,10 +298,19 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
     if (size < 0 || size > 100000) t->fail("batch", "must be 0 (automatic) or a positive count");
     job.work_unit_size = static_cast<int>(size);
   }
+  // Whatever the trial would still refuse, refused now rather than mid-plan on one rank.
+  try {
+    trial::validate(job.trial);
+  } catch (const std::invalid_argument& e) {
+    throw config::ConfigError(file.string() + ": " + e.what());
+  }
   return job;
 }
 
 std::string read_job_text(const std::filesystem::path& file) {
+  if (std::filesystem::is_directory(file)) {
+    throw config::ConfigError(file.string() + ": is a directory, not a job file");
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw config::ConfigError(file.string() + ": cannot read the job file");
   std::ostringstream text;

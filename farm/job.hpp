@@ -23,6 +23,7 @@ struct ObjectGroup {
   int count = 1;                              // shapes drawn from the category
   bool soft = false;                          // FEM (tetrahedralized) instead of one affine body
   double tet_edge = 0.008;                    // m, soft objects' target tet edge length
+  std::string tet_edge_at;                    // "job.toml:LINE" of tet_edge (or of the entry)
   double mesh_scale = 1.0;                    // multiplies a mesh file's coordinates (units)
   // Draw scale and material from the job's ranges; otherwise use `material` as given.
   bool randomize = true;

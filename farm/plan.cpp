@@ -5,6 +5,7 @@
 
 #include "farm/trial_runner.hpp"
 #include "farm/wire.hpp"
+#include "src/config/config.hpp"
 #include "src/synth/prepared_object.hpp"
 #include "src/synth/synthesize.hpp"
 
@@ -33,6 +34,20 @@ std::vector<synth::Candidate> synthesize_for(const Job& job, const FarmObject& o
   return std::move(result.candidates);
 }
 
+// A rank whose own share failed must not leave the others waiting in the broadcasts that
+// follow: every rank learns the lowest failing rank's error and throws it, so all stop alike.
+void throw_if_any_failed(const std::string& error, MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  int failed = error.empty() ? size : rank;
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MIN, comm);
+  if (failed == size) return;
+  std::string shared = error;
+  broadcast(shared, failed, comm);
+  throw config::ConfigError(shared);
+}
+
 }  // namespace
 
 FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads) {
@@ -48,11 +63,16 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads) {
 
   // Objects: prepared where they are owned, then every rank gets every record.
   std::vector<std::string> packed(objects);
-  for (std::size_t i = 0; i < objects; ++i) {
-    if (static_cast<int>(i % size) == rank) {
+  std::string error;
+  for (std::size_t i = 0; i < objects && error.empty(); ++i) {
+    if (static_cast<int>(i % size) != rank) continue;
+    try {
       arena.execute([&] { packed[i] = pack(prepare_object(plan.objects[i])); });
+    } catch (const std::exception& e) {
+      error = e.what();
     }
   }
+  throw_if_any_failed(error, comm);
   for (std::size_t i = 0; i < objects; ++i) {
     broadcast(packed[i], static_cast<int>(i % size), comm);
     plan.dataset.objects.push_back(unpack_object(packed[i]));
@@ -60,14 +80,19 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads) {
 
   // Candidates of each (object, gripper), the same way.
   std::vector<std::string> synthesized(objects * grippers);
-  for (std::size_t u = 0; u < synthesized.size(); ++u) {
+  for (std::size_t u = 0; u < synthesized.size() && error.empty(); ++u) {
     if (static_cast<int>(u % size) != rank) continue;
     const std::size_t i = u / grippers, g = u % grippers;
-    arena.execute([&] {
-      synthesized[u] = pack(
-          synthesize_for(job, plan.objects[i], plan.dataset.objects[i], job.grippers[g], g + 1));
-    });
+    try {
+      arena.execute([&] {
+        synthesized[u] = pack(
+            synthesize_for(job, plan.objects[i], plan.dataset.objects[i], job.grippers[g], g + 1));
+      });
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
   }
+  throw_if_any_failed(error, comm);
   for (std::size_t u = 0; u < synthesized.size(); ++u) {
     broadcast(synthesized[u], static_cast<int>(u % size), comm);
     const std::size_t i = u / grippers, g = u % grippers;

@@ -57,6 +57,8 @@ DatasetReader::DatasetReader(const std::filesystem::path& path) : path_(path) {
   h5::silence_errors();
   const std::string name = path.string();
   if (!std::filesystem::exists(path)) throw DatasetError(name + ": no such file");
+  if (std::filesystem::is_directory(path))
+    throw DatasetError(name + ": is a directory, not a dataset");
   if (H5Fis_hdf5(name.c_str()) <= 0) {
     throw DatasetError(name + ": not an HDF5 file, so not a grip dataset");
   }

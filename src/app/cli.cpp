@@ -14,6 +14,7 @@
 
 #include "src/app/commands.hpp"
 #include "src/app/logging.hpp"
+#include "src/app/output_paths.hpp"
 #include "src/app/petsc_args.hpp"
 #include "src/app/version.hpp"
 #include "src/grippers/gripper_registry.hpp"
@@ -70,6 +71,12 @@ const CLI::Validator kNonNegative =
 const CLI::Validator kPoisson =
     finite_number("in (-1, 0.5)", "(-1, 0.5)", [](double x) { return x > -1 && x < 0.5; });
 
+// Output paths are checked before any work: a run is not to end on a file it cannot write.
+const CLI::Validator kOutputFile(
+    [](std::string& input) { return grip::output_file_problem(input); }, "");
+const CLI::Validator kOutputFolder(
+    [](std::string& input) { return grip::output_folder_problem(input); }, "");
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -100,7 +107,8 @@ int main(int argc, char** argv) {
   CLI::App* farm = app.add_subcommand(
       "farm", "Generate a dataset from a job file, as one process or under mpirun (docs/farm.md)");
   farm->add_option("job", farm_args.job, "Job file (docs/job-format.md)")->required();
-  farm->add_option("--output", farm_args.output, "The dataset (default: the job's [job] output)");
+  farm->add_option("--output", farm_args.output, "The dataset (default: the job's [job] output)")
+      ->check(kOutputFile);
   farm->add_flag("--resume", farm_args.resume, "Continue an interrupted dataset of the same job");
   farm->add_option("--threads", farm_args.threads,
                    "Threads per rank (default: this node's cores shared by its ranks)")
@@ -108,7 +116,8 @@ int main(int argc, char** argv) {
   farm->add_option("--batch", farm_args.batch,
                    "Candidates per batch (default: the job's, else 4 per thread)")
       ->check(kCount);
-  farm->add_option("--report", farm_args.report, "Write a JSON summary of the run here");
+  farm->add_option("--report", farm_args.report, "Write a JSON summary of the run here")
+      ->check(kOutputFile);
   farm->callback([&] { run = [&] { return grip::commands::farm(farm_args); }; });
 
   grip::commands::TrialArgs trial_args;
@@ -150,8 +159,10 @@ int main(int argc, char** argv) {
       ->required();
   trial->add_option("--index", trial_args.index, "Candidate I, or A-B (inclusive) as one batch")
       ->capture_default_str();
-  trial->add_option("--report", trial_args.report, "Write the JSON report here (default: stdout)");
-  trial->add_option("--vtk", trial_args.vtk, "Write each candidate's frames as a VTK series here");
+  trial->add_option("--report", trial_args.report, "Write the JSON report here (default: stdout)")
+      ->check(kOutputFile);
+  trial->add_option("--vtk", trial_args.vtk, "Write each candidate's frames as a VTK series here")
+      ->check(kOutputFolder);
   trial->add_option("--threads", trial_args.threads, "Threads (default: all cores)")->check(kCount);
   trial
       ->add_option("--squeeze-speed", trial_args.squeeze_speed,
@@ -193,7 +204,9 @@ int main(int argc, char** argv) {
       ->required()
       ->check(whole_number(1, grip::synth::kMaxCandidates));
   synth->add_option("--seed", synth_args.seed, "Random seed")->required()->check(kCount);
-  synth->add_option("--out", synth_args.out, "Candidate file to write")->required();
+  synth->add_option("--out", synth_args.out, "Candidate file to write")
+      ->required()
+      ->check(kOutputFile);
   synth->add_option("--steps", synth_args.steps, "Annealing steps per hand attempt (leap)")
       ->capture_default_str()
       ->check(kPositiveCount);
@@ -212,8 +225,9 @@ int main(int argc, char** argv) {
       ->required();
   simulate->add_option("--threads", simulate_args.threads, "Threads (default: all cores)")
       ->check(kCount);
-  simulate->add_option("--report", simulate_args.report,
-                       "Write the JSON report here (default: stdout)");
+  simulate
+      ->add_option("--report", simulate_args.report, "Write the JSON report here (default: stdout)")
+      ->check(kOutputFile);
   simulate->add_flag("--trace", simulate_args.trace, "Add per-step centres of mass to the report");
   simulate->callback([&] { run = [&] { return grip::commands::simulate(simulate_args); }; });
 
@@ -229,6 +243,7 @@ int main(int argc, char** argv) {
   CLI::Option* ccd_write = ccd_bench->add_option(
       "--write-hard", ccd_bench_args.write_hard_dir,
       "Write the generated hard query set (hard-vertex-face.csv, hard-edge-edge.csv) to DIR");
+  ccd_write->check(kOutputFolder);
   ccd_file->needs(ccd_type);
   ccd_write->excludes(ccd_file)->excludes(ccd_type);
   ccd_bench->callback([&] { run = [&] { return grip::commands::ccd_bench(ccd_bench_args); }; });
@@ -276,7 +291,8 @@ int main(int argc, char** argv) {
   bench_scaling
       ->add_option("--out", bench_scaling_args.out,
                    "Folder for the datasets, table (scaling.md, scaling.csv) and plot")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kOutputFolder);
   bench_scaling->callback(
       [&] { run = [&] { return grip::commands::bench_scaling(bench_scaling_args); }; });
   grip::commands::BenchAccuracyArgs bench_accuracy_args;
@@ -298,7 +314,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(kPositiveCount);
   bench_accuracy->add_option("--out", bench_accuracy_args.out, "Folder for tables and plots")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kOutputFolder);
   bench_accuracy->callback(
       [&] { run = [&] { return grip::commands::bench_accuracy(bench_accuracy_args); }; });
   grip::commands::BenchHardArgs bench_hard_args;
@@ -308,7 +325,8 @@ int main(int argc, char** argv) {
   bench_hard->add_option("--threads", bench_hard_args.threads, "Threads (default: all cores)")
       ->check(kCount);
   bench_hard->add_option("--out", bench_hard_args.out, "Folder for the tables and plot")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kOutputFolder);
   bench_hard->callback([&] { run = [&] { return grip::commands::bench_hard(bench_hard_args); }; });
   grip::commands::BenchModelArgs bench_model_args;
   CLI::App* bench_model = bench->add_subcommand(
@@ -320,7 +338,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(kPositiveCount);
   bench_model->add_option("--out", bench_model_args.out, "Folder for tables and plots")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kOutputFolder);
   bench_model->callback(
       [&] { run = [&] { return grip::commands::bench_model(bench_model_args); }; });
   grip::commands::BenchRobustnessArgs bench_robustness_args;
@@ -351,7 +370,8 @@ int main(int argc, char** argv) {
   bench_robustness
       ->add_option("--out", bench_robustness_args.out,
                    "Folder for robustness.md and robustness.csv")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kOutputFolder);
   bench_robustness->callback(
       [&] { run = [&] { return grip::commands::bench_robustness(bench_robustness_args); }; });
   grip::commands::BenchLabelsArgs bench_labels_args;
@@ -375,7 +395,8 @@ int main(int argc, char** argv) {
   bench_labels->add_option("--threads", bench_labels_args.threads, "Threads (default: all cores)")
       ->check(kCount);
   bench_labels->add_option("--out", bench_labels_args.out, "Folder for labels.md and labels.csv")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kOutputFolder);
   bench_labels->callback(
       [&] { run = [&] { return grip::commands::bench_labels(bench_labels_args); }; });
   grip::commands::BenchTrialArgs bench_trial_args;
@@ -399,7 +420,8 @@ int main(int argc, char** argv) {
   bench_trial->add_flag("--no-reference", bench_trial_args.no_reference,
                         "Skip the runs at the reference (dt/2, newton_tol/10, two lag iterations)");
   bench_trial->add_option("--out", bench_trial_args.out, "Folder for trial.md and trial.csv")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kOutputFolder);
   bench_trial->callback(
       [&] { run = [&] { return grip::commands::bench_trial(bench_trial_args); }; });
   grip::commands::BenchLinearArgs bench_linear_args;
@@ -428,7 +450,9 @@ int main(int argc, char** argv) {
       "Repair a surface mesh into a closed solid, tetrahedralize it, write .msh/.vtu/.obj");
   prepare->add_option("input", prepare_args.input, "Surface mesh (.obj, .stl, .ply, .off)")
       ->required();
-  prepare->add_option("--out", prepare_args.out_dir, "Output folder")->required();
+  prepare->add_option("--out", prepare_args.out_dir, "Output folder")
+      ->required()
+      ->check(kOutputFolder);
   prepare->add_option("--edge", prepare_args.edge_length, "Target tet edge length (m)")->required();
   prepare
       ->add_option("--alpha", prepare_args.alpha_ratio,
@@ -444,7 +468,9 @@ int main(int argc, char** argv) {
   grip::commands::AssetGalleryArgs gallery_args;
   CLI::App* gallery = asset->add_subcommand(
       "gallery", "Write every object category and gripper (open and closed) as .obj meshes");
-  gallery->add_option("--out", gallery_args.out_dir, "Output folder")->required();
+  gallery->add_option("--out", gallery_args.out_dir, "Output folder")
+      ->required()
+      ->check(kOutputFolder);
   gallery->callback([&] { run = [&] { return grip::commands::asset_gallery(gallery_args); }; });
 
   std::string inspect_dataset;

@@ -104,6 +104,8 @@ std::shared_ptr<const Source> parse_source(std::string text, const std::filesyst
 }  // namespace
 
 Document Document::load(const std::filesystem::path& file) {
+  // A folder opens as a stream that reads as empty, which would be parsed as an empty file.
+  if (std::filesystem::is_directory(file)) raise(file, 0, "is a directory, not a file");
   std::ifstream in(file, std::ios::binary);
   if (!in) raise(file, 0, "cannot open the file (does it exist and is it readable?)");
   std::ostringstream text;
@@ -141,6 +143,12 @@ void Table::fail(std::string_view key, std::string_view message) const {
   const void* node = find(key);
   const std::int64_t line = node ? line_of(as_node(node)) : line_of(as_table(node_));
   raise(source_->file, line, "key '" + key_path(key) + "' " + std::string(message));
+}
+
+std::string Table::location(std::string_view key) const {
+  const void* node = find(key);
+  const std::int64_t line = node ? line_of(as_node(node)) : line_of(as_table(node_));
+  return source_->file.string() + ":" + std::to_string(line);
 }
 
 void Table::allow(std::initializer_list<std::string_view> keys) const {

@@ -57,6 +57,8 @@ class Table {
   // Reports a value that parsed but breaks a rule only the caller knows (e.g. dt <= 0), in the
   // same one-line format, at the key's line.
   [[noreturn]] void fail(std::string_view key, std::string_view message) const;
+  // "FILE:LINE" of the key (of this table when the key is absent), for a check made later.
+  std::string location(std::string_view key) const;
 
   const std::filesystem::path& file() const;
   const std::string& path() const { return path_; }  // dotted key path, "" for the root

@@ -44,6 +44,10 @@ SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
     throw std::runtime_error("cannot read '" + file.string() + "': unknown mesh format '" + ext +
                              "'; use .obj, .stl, .ply or .off");
   }
+  if (std::filesystem::is_directory(file)) {
+    throw std::runtime_error("cannot read '" + file.string() +
+                             "': is a directory, not a mesh file");
+  }
   if (!std::filesystem::is_regular_file(file)) {
     throw std::runtime_error("cannot read '" + file.string() + "': no such file");
   }

@@ -29,6 +29,23 @@ BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<st
     if (steps[i] <= 0) batch.retire(static_cast<int>(i));
   }
   tbb::task_arena checks(batch.threads());
+  // A body wholly inside another is an intersecting start, as crossing surfaces are.
+  checks.execute([&] {
+    tbb::parallel_for(std::size_t{0}, files.size(), [&](std::size_t i) {
+      if (steps[i] <= 0) return;
+      const auto contained = find_contained_body(batch.environment(static_cast<int>(i)));
+      if (!contained) return;
+      SceneReport& r = report.scenes[i];
+      r.ok = false;
+      r.intersection_free = false;
+      r.failure = "intersecting start: body '" + files[i].scene.bodies[contained->first].name +
+                  "' lies wholly inside body '" + files[i].scene.bodies[contained->second].name +
+                  "'; move it out";
+    });
+  });
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (!report.scenes[i].ok) batch.retire(static_cast<int>(i));
+  }
   std::vector<int> stepped;
   while (batch.any_active()) {
     stepped.clear();

@@ -201,6 +201,9 @@ void write_candidates(const std::filesystem::path& file, const CandidateObject& 
 }
 
 CandidateFile read_candidates(const std::filesystem::path& file) {
+  if (std::filesystem::is_directory(file)) {
+    throw std::runtime_error(file.string() + ": is a directory, not a candidate file");
+  }
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file.string() + ": cannot open the candidate file");
   LineReader reader(in, file);

@@ -34,6 +34,9 @@ geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, d
   if (const auto category = category_of(spec)) {
     return objects::generate_surface(objects::sample_shape(*category, seed));
   }
+  if (std::filesystem::is_directory(spec)) {
+    throw std::invalid_argument("--object '" + spec + "' is a directory, not a mesh file");
+  }
   if (!std::filesystem::is_regular_file(spec)) {
     std::string names;
     for (const objects::ObjectCategory category : objects::all_object_categories()) {

@@ -1,11 +1,14 @@
 // Hostile input as a user may give it: scene durations and FEM resolutions past the limits,
 // candidate files with numbers that are not finite or far away or counts they do not hold, trial
 // and synth options out of their range, job files past the trial's limits, paths with quotes and
-// backslashes. Each is refused in one line naming the file and key or the
-// option, with a non-zero exit, before anything runs; a path round-trips through the reports.
+// backslashes, a body inside another, output paths that cannot be written, folders given as
+// input files, contradictory job values, a bad job under mpirun. Each is refused in one line
+// naming the file and key or the option, with a non-zero exit, before anything runs; a path
+// round-trips through the reports.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -336,6 +339,192 @@ TEST(HostileInput, PathsWithQuotesAndBackslashesRoundTripThroughTheReports) {
   ASSERT_EQ(trial.exit_code, 0) << trial.err;
   const nlohmann::json trials = nlohmann::json::parse(slurp(report));
   EXPECT_EQ(trials["object"], mesh.string());
+  fs::remove_all(dir);
+}
+
+TEST(HostileInput, ABodyWhollyInsideAnotherIsAnIntersectingStart) {
+  const fs::path dir = scratch("inside");
+  // No surfaces cross, so the exact intersection test saw nothing: "ok", intersection-free.
+  const fs::path scene = dir / "scene.toml";
+  std::ofstream(scene) << "[sim]\nduration = 0.02\n\n"
+                       << "[[body]]\nname = \"outer\"\ntype = \"affine\"\nshape = \"box\"\n"
+                       << "size = [0.2, 0.2, 0.2]\n\n"
+                       << "[[body]]\nname = \"inner\"\ntype = \"affine\"\nshape = \"sphere\"\n"
+                       << "radius = 0.03\n";
+  const GripRun run = run_grip("simulate " + quoted(scene));
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("scene.toml: simulation failed: intersecting start: body 'inner' lies "
+                         "wholly inside body 'outer'; move it out"),
+            std::string::npos)
+      << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["scenes"][0]["status"], "failed");
+  EXPECT_EQ(report["scenes"][0]["intersection_free"], false);
+  EXPECT_EQ(report["scenes"][0]["steps"], 0);
+  fs::remove_all(dir);
+}
+
+TEST(HostileInput, OutputPathsThatCannotBeWrittenAreUsageErrors) {
+  const fs::path dir = scratch("outputs");
+  const fs::path folder = dir / "folder";
+  const fs::path file = dir / "file";
+  fs::create_directories(folder);
+  std::ofstream(file) << "kept\n";
+  const std::string f = quoted(folder), x = quoted(file);
+  // Each was found only after planning or after the whole run, or not at all.
+  const struct {
+    std::string arguments, expected;
+  } cases[] = {
+      {"simulate s.toml --report " + f,
+       "grip: --report: '" + folder.string() + "' is a directory; give a file path"},
+      {"simulate s.toml --report " + quoted(file / "r.json"),
+       "--report: '" + file.string() + "' is a file, not a folder; choose another path"},
+      {"trial --candidates c.txt --report " + f,
+       "--report: '" + folder.string() + "' is a directory"},
+      {"trial --candidates c.txt --vtk " + x,
+       "--vtk: '" + file.string() + "' is a file, not a folder; give a folder"},
+      {"synth --object box --gripper fin-ray --count 1 --seed 1 --out " + f,
+       "--out: '" + folder.string() + "' is a directory; give a file path"},
+      {"farm job.toml --output " + f, "--output: '" + folder.string() + "' is a directory"},
+      {"farm job.toml --report " + quoted(file / "sub" / "r.json"),
+       "--report: '" + file.string() + "' is a file, so folder '" + (file / "sub").string() +
+           "' cannot be created; choose another path"},
+      {"bench hard --out " + x, "--out: '" + file.string() + "' is a file, not a folder"},
+      {"bench scaling job.toml --out " + quoted(file / "d"),
+       "--out: '" + file.string() + "' is a file, so folder"},
+      {"bench model --out " + x, "--out: '" + file.string() + "' is a file, not a folder"},
+      {"bench accuracy --out " + x, "--out: '" + file.string() + "' is a file, not a folder"},
+      {"bench robustness --out " + x, "--out: '" + file.string() + "' is a file, not a folder"},
+      {"bench labels --out " + x, "--out: '" + file.string() + "' is a file, not a folder"},
+      {"bench trial --out " + x, "--out: '" + file.string() + "' is a file, not a folder"},
+  };
+  for (const auto& k : cases) {
+    const GripRun run = run_grip(k.arguments);
+    EXPECT_EQ(run.exit_code, 2) << k.arguments << run.err;
+    EXPECT_EQ(count_lines(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find(k.expected), std::string::npos) << k.expected << '\n' << run.err;
+  }
+  // A job's own output, known only once the job is read: refused before planning too.
+  const fs::path job = dir / "job.toml";
+  std::ofstream(job) << "[job]\nname = \"h\"\noutput = \"" << folder.string()
+                     << "\"\n\n[[grippers]]\nname = \"parallel-jaw\"\ncandidates = 1\n"
+                     << "[[objects]]\ncategory = \"cylinder\"\n";
+  const GripRun farm = run_grip("farm " + quoted(job) + " --threads 1");
+  EXPECT_EQ(farm.exit_code, 1) << farm.err;
+  EXPECT_EQ(count_lines(farm.err), 1) << farm.err;
+  EXPECT_NE(farm.err.find("job.toml: the dataset '" + folder.string() +
+                          "' is a directory; give a file path (--output or [job] output)"),
+            std::string::npos)
+      << farm.err;
+  EXPECT_EQ(slurp(file), "kept\n");
+  EXPECT_TRUE(fs::is_empty(folder));
+  fs::remove_all(dir);
+}
+
+TEST(HostileInput, FoldersGivenAsInputFilesAreSaidToBeFolders) {
+  const fs::path dir = scratch("folders");
+  const fs::path folder = dir / "in.obj";
+  fs::create_directories(folder);
+  const std::string f = quoted(folder);
+  // A folder opened as an empty stream: "missing key", "no candidate file magic", ...
+  for (const auto& [arguments, expected] :
+       {std::pair<std::string, std::string>{"simulate " + f, ": is a directory, not a file"},
+        {"farm " + f + " --threads 1", ": is a directory, not a job file"},
+        {"trial --candidates " + f, ": is a directory, not a candidate file"},
+        {"synth --object " + f + " --gripper fin-ray --count 1 --seed 1 --out " +
+             quoted(dir / "c.txt"),
+         "--object '" + folder.string() + "' is a directory, not a mesh file"},
+        {"inspect " + f, ": is a directory, not a dataset"}}) {
+    const GripRun run = run_grip(arguments);
+    EXPECT_EQ(run.exit_code, 1) << arguments << run.err;
+    EXPECT_EQ(count_lines(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "c.txt"));
+  fs::remove_all(dir);
+}
+
+TEST(HostileInput, ContradictoryJobValuesAreRefusedWhenTheJobIsRead) {
+  const fs::path dir = scratch("contradictions");
+  const std::string rigid = "[[objects]]\ncategory = \"cylinder\"\n";
+  // Each once passed the job and failed in planning, without file or line.
+  expect_job_refused(dir, rigid + "[trial]\nsettle_steps = 10\nsettle_max_steps = 5\n",
+                     "job.toml:12: key 'trial.settle_max_steps' = 5 is fewer than settle_steps "
+                     "= 10, so no trial could ever settle; make settle_max_steps at least "
+                     "settle_steps");
+  expect_job_refused(dir, rigid + "[trial]\nsettle_steps = 300\n",
+                     "job.toml:11: key 'trial.settle_steps' = 300 is more than settle_max_steps "
+                     "= 200");
+  expect_job_refused(dir, rigid + "[trial]\nphase_duration = 0.001\n",
+                     "job.toml:11: key 'trial.phase_duration' = 0.001 s is shorter than one step "
+                     "([physics] dt = 0.01 s); make phase_duration at least dt");
+  expect_job_refused(dir, rigid + "[physics]\ndt = 0.5\n",
+                     "job.toml:11: key 'physics.dt' = 0.5 s is longer than a gravity phase "
+                     "([trial] phase_duration = 0.1 s); make dt at most phase_duration");
+  fs::remove_all(dir);
+}
+
+// `grip farm` under `mpirun -np 2` (as root too, oversubscribed on a small machine).
+GripRun run_farm_on_two_ranks(const std::string& arguments) {
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  const fs::path dir = fs::temp_directory_path();
+  const fs::path out = dir / ("grip_mpi_out_" + std::to_string(::getpid()));
+  const fs::path err = dir / ("grip_mpi_err_" + std::to_string(::getpid()));
+  const std::string command = std::string(GRIP_MPIEXEC) + " -np 2 --oversubscribe " +
+                              GRIP_EXECUTABLE + " farm " + arguments + " >" + out.string() + " 2>" +
+                              err.string();
+  const int status = std::system(command.c_str());
+  GripRun run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = slurp(out);
+  run.err = slurp(err);
+  fs::remove(out);
+  fs::remove(err);
+  return run;
+}
+
+int count_of(const std::string& text, const std::string& part) {
+  int count = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) {
+    ++count;
+  }
+  return count;
+}
+
+TEST(HostileInput, ABadJobUnderMpirunIsOneMessageAndEveryRankExits) {
+  const fs::path dir = scratch("mpirun");
+  const fs::path job = dir / "job.toml";
+  const fs::path out = dir / "out";
+  const std::string head = "[job]\nname = \"h\"\noutput = \"" + (out / "dataset.h5").string() +
+                           "\"\n\n[[grippers]]\nname = \"parallel-jaw\"\ncandidates = 1\n";
+  // The soft capsule is the second object, so rank 1 prepares it alone: its error once ended
+  // in MPI_ABORT while rank 0 waited for the object, and named no file or line.
+  std::ofstream(job) << head
+                     << "[[objects]]\ncategory = \"cylinder\"\n[[objects]]\ncategory = "
+                        "\"capsule\"\nsoft = true\ntet_edge = 1e-5\n";
+  const GripRun tets = run_farm_on_two_ranks(quoted(job) + " --threads 1");
+  EXPECT_NE(tets.exit_code, 0) << tets.err;
+  EXPECT_EQ(count_of(tets.err, "[error]"), 1) << tets.err;
+  EXPECT_NE(tets.err.find("job.toml:13: [[objects]] tet_edge: an edge of 1e-05 m would make "
+                          "about"),
+            std::string::npos)
+      << tets.err;
+  EXPECT_EQ(tets.err.find("MPI_ABORT"), std::string::npos) << tets.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  // A value every rank refuses when it reads the job: one message too.
+  std::ofstream(job) << head
+                     << "[[objects]]\ncategory = \"cylinder\"\n[trial]\nsettle_steps = 300\n";
+  const GripRun settle = run_farm_on_two_ranks(quoted(job) + " --threads 1");
+  EXPECT_NE(settle.exit_code, 0) << settle.err;
+  EXPECT_EQ(count_of(settle.err, "[error]"), 1) << settle.err;
+  EXPECT_NE(settle.err.find("job.toml:11: key 'trial.settle_steps' = 300 is more than"),
+            std::string::npos)
+      << settle.err;
+  EXPECT_EQ(settle.err.find("MPI_ABORT"), std::string::npos) << settle.err;
+  EXPECT_FALSE(fs::exists(out));
   fs::remove_all(dir);
 }
 
