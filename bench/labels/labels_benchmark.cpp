@@ -45,6 +45,7 @@ RobustnessOptions arm_options(const LabelsOptions& options, const LabelsArm& arm
   o.soft = arm.soft;
   o.parameters = parameters;
   o.threads = options.threads;
+  o.production_models = options.production_models;
   return o;
 }
 

@@ -34,6 +34,7 @@ struct LabelsOptions {
   int seeds = 2;                        // shapes per category
   int candidates = 4;                   // per shape
   int threads = 0;                      // 0: all cores
+  bool production_models = false;       // RobustnessOptions::production_models
   std::filesystem::path out = "out/labels";
 };
 

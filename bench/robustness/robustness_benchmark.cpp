@@ -148,8 +148,14 @@ std::string verdict_of(const RobustnessTrial& trial) {
                                                  : std::string(io::to_string(trial.failure));
 }
 
-std::string robustness_gripper_model(const std::string& gripper) {
+std::string robustness_gripper_model(const std::string& gripper, bool production_models) {
   if (gripper == "parallel-jaw") return "rigid box jaws (the registry's parallel-jaw)";
+  if (production_models) {
+    std::string model = "the registry's ";  // appended: GCC 12 warns falsely on a + chain
+    model += gripper;
+    model += ", as grip trial builds it";
+    return model;
+  }
   if (gripper == "fin-ray")
     return "fin-ray fingers with 1 tet layer across the depth (4 in production)";
   if (gripper == "leap") return "LEAP hand with 8-sided capsule links (coarse_leap_hand)";
@@ -184,7 +190,7 @@ std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options) {
         const int candidates = options.candidates > 0 ? options.candidates
                                : soft                 ? d.soft_candidates
                                                       : d.rigid_candidates;
-        sets.push_back({gripper, category, soft, seeds, candidates});
+        sets.push_back({gripper, category, soft, seeds, candidates, options.production_models});
       }
     }
   }

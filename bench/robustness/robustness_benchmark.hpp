@@ -19,8 +19,11 @@ struct RobustnessOptions {
   int candidates = 0;                   // per (object, gripper); 0: each gripper's default
   bool rigid = true;                    // run rigid objects (one affine body)
   bool soft = true;                     // run soft objects (FEM, as `grip trial --soft`)
-  trial::TrialParameters parameters;    // the protocol and the solver's settings
-  int threads = 0;                      // 0: all cores
+  // The models `grip trial` and the farm simulate (the 4-layer fin-ray finger, the shipped LEAP
+  // hand, `grip trial --soft`'s tets); false: the coarse ones (robustness_gripper_model).
+  bool production_models = false;
+  trial::TrialParameters parameters;  // the protocol and the solver's settings
+  int threads = 0;                    // 0: all cores
   std::filesystem::path out = "out/robustness";
 };
 
@@ -33,6 +36,7 @@ struct RobustnessSet {
   bool soft = false;
   int seeds = 0;
   int candidates = 0;
+  bool production_models = false;  // RobustnessOptions::production_models
 };
 
 // At most this many seeds are tried per shape asked for.
@@ -48,7 +52,7 @@ struct RobustnessBatch {
 };
 
 // The gripper each registry name is simulated with in this benchmark, in words.
-std::string robustness_gripper_model(const std::string& gripper);
+std::string robustness_gripper_model(const std::string& gripper, bool production_models);
 
 // The sets the options ask for: gripper by gripper, then category, rigid before soft. Throws
 // std::invalid_argument for an unknown gripper or category, seeds or candidates below 0, or

@@ -83,6 +83,11 @@ std::string plan_text(const RobustnessResult& result, const std::string& gripper
          std::to_string(candidates) + " candidates";
 }
 
+// Whether the run simulated the production models (every set of a run agrees).
+bool production_models(const RobustnessResult& result) {
+  return !result.sets.empty() && result.sets.front().production_models;
+}
+
 }  // namespace
 
 RankStatistics rank_statistics(const std::vector<long>& counts) {
@@ -191,8 +196,9 @@ void write_robustness_files(const fs::path& out, const RobustnessResult& result,
      << "| gripper | simulated as | rigid objects | soft objects (FEM) |\n"
      << "| --- | --- | --- | --- |\n";
   for (const std::string& gripper : gripper_order(result)) {
-    md << "| " << gripper << " | " << robustness_gripper_model(gripper) << " | "
-       << plan_text(result, gripper, false) << " | " << plan_text(result, gripper, true) << " |\n";
+    md << "| " << gripper << " | " << robustness_gripper_model(gripper, production_models(result))
+       << " | " << plan_text(result, gripper, false) << " | " << plan_text(result, gripper, true)
+       << " |\n";
   }
   md << "\nNewton it/step: the Newton iterations of every step the trials took (all parts of a "
         "retried step, and the step a failed trial gave up on); median, 99th percentile and "
@@ -256,7 +262,8 @@ void write_robustness_json_line(std::ostream& out, const RobustnessResult& resul
                                 const std::vector<RobustnessTally>& rows) {
   nlohmann::ordered_json grippers = nlohmann::ordered_json::object();
   for (const std::string& gripper : gripper_order(result)) {
-    nlohmann::ordered_json g = {{"model", robustness_gripper_model(gripper)}};
+    nlohmann::ordered_json g = {
+        {"model", robustness_gripper_model(gripper, production_models(result))}};
     g.update(tally_json(find_row(rows, gripper)));
     grippers[gripper] = std::move(g);
   }

@@ -28,6 +28,7 @@ namespace {
 // counted here, not the stress field.
 constexpr solver::Material kObjectMaterial{1000.0, 1e6, 0.4, 3.5};
 constexpr double kTetEdge = 0.016;
+constexpr double kProductionTetEdge = 0.008;  // `grip trial --tet-edge`'s default
 
 // The grippers as simulated here, built once on first use.
 const grippers::ParallelGripper& rigid_jaws() {
@@ -51,6 +52,18 @@ const grippers::HandModel& coarse_hand() {
   return hand;
 }
 
+const grippers::ParallelGripper& production_fin_ray() {
+  static const grippers::ParallelGripper gripper =
+      grippers::make_parallel_gripper(grippers::GripperKind::kFinRay);
+  return gripper;
+}
+
+const grippers::HandModel& production_hand() {
+  static const grippers::HandModel hand =
+      grippers::make_hand(grippers::GripperKind::kLeap, grippers::HandSide::kRight);
+  return hand;
+}
+
 // The largest of the values measured (NaN ones are phases never run); NaN if none was.
 double largest_measured(const std::array<double, 6>& values) {
   double most = std::numeric_limits<double>::quiet_NaN();
@@ -62,8 +75,14 @@ double largest_measured(const std::array<double, 6>& values) {
 
 }  // namespace
 
-std::string robustness_object_model(bool soft) {
+std::string robustness_object_model(bool soft, bool production_models) {
   if (!soft) return "rigid: one affine body";
+  if (production_models) {
+    return fmt::format(
+        "soft: FEM, E {:g} MPa, nu {:g}, tets as grip trial --soft meshes them (at most {:g} mm, "
+        "two across the thinnest wall)",
+        kObjectMaterial.youngs / 1e6, kObjectMaterial.poisson, kProductionTetEdge * 1e3);
+  }
   return fmt::format(
       "soft: FEM, E {:g} MPa, nu {:g}, tets of at most {:g} mm, one across the "
       "thinnest wall",
@@ -85,9 +104,13 @@ trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed) {
   object.material = kObjectMaterial;
   if (set.soft) {
     geometry::TetOptions options;
-    const objects::ObjectShape shape =
-        objects::sample_shape(objects::parse_object_category(set.category), seed);
-    options.edge_length = std::min(kTetEdge, objects::thinnest_feature(shape));
+    if (set.production_models) {
+      options.edge_length = synth::object_tet_edge(set.category, seed, 1.0, kProductionTetEdge);
+    } else {
+      const objects::ObjectShape shape =
+          objects::sample_shape(objects::parse_object_category(set.category), seed);
+      options.edge_length = std::min(kTetEdge, objects::thinnest_feature(shape));
+    }
     object.tets = geometry::tetrahedralize(object.surface, options, set.category);
     object.surface = geometry::boundary_surface(*object.tets);
   }
@@ -97,10 +120,13 @@ trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed) {
 RobustnessScene::RobustnessScene(const RobustnessSet& set, const trial::TrialObject& object,
                                  const trial::TrialParameters& parameters) {
   if (set.gripper == "leap") {
-    hand_ = std::make_unique<trial::HandTrialScene>(object, coarse_hand(), "leap", parameters);
+    hand_ = std::make_unique<trial::HandTrialScene>(
+        object, set.production_models ? production_hand() : coarse_hand(), "leap", parameters);
   } else {
+    const grippers::ParallelGripper& fin_ray =
+        set.production_models ? production_fin_ray() : coarse_fin_ray();
     parallel_ = std::make_unique<trial::TrialScene>(
-        object, set.gripper == "fin-ray" ? coarse_fin_ray() : rigid_jaws(), parameters);
+        object, set.gripper == "fin-ray" ? fin_ray : rigid_jaws(), parameters);
   }
 }
 

@@ -21,7 +21,7 @@ class HandTrialScene;
 namespace grip::bench {
 
 // The object model of rigid or soft objects here, in words.
-std::string robustness_object_model(bool soft);
+std::string robustness_object_model(bool soft, bool production_models);
 
 // Candidates on the shape of the set's category and `seed`, `count` asked (fewer when synthesis
 // finds fewer), as `grip synth --seed` makes them.
@@ -29,7 +29,7 @@ std::vector<synth::Candidate> synthesize_candidates(const RobustnessSet& set, st
                                                     int count);
 
 // The shape of the set's category and `seed` with `grip trial --soft`'s material; a soft one
-// meshed as robustness_object_model(true) says.
+// meshed as robustness_object_model says.
 trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed);
 
 // One object and the set's gripper: the trial scene, built once, run for any candidates.

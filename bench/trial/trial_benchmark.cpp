@@ -30,8 +30,8 @@ const std::vector<std::string>& categories_of(const TrialBenchOptions& options) 
   return options.categories.empty() ? kLabelsCategories : options.categories;
 }
 
-RobustnessSet set_of(const LabelsArm& arm, const std::string& category) {
-  return {arm.gripper, category, arm.soft, 1, 1};
+RobustnessSet set_of(const LabelsArm& arm, const std::string& category, bool production_models) {
+  return {arm.gripper, category, arm.soft, 1, 1, production_models};
 }
 
 double clock_seconds(clockid_t clock) {
@@ -52,6 +52,7 @@ struct PlannedArm {
   TrialBenchArm plan;
   std::vector<Shape> shapes;          // per category asked for; no candidates: none found
   std::vector<std::size_t> shape_of;  // per candidate of the plan
+  bool production_models = true;      // TrialBenchOptions::production_models
 };
 
 void fall_short(TrialBenchArm& plan, std::string text) {
@@ -95,13 +96,19 @@ Shape prepare_shape(const RobustnessSet& set, int wanted, const TrialBenchResult
 PlannedArm plan_arm(const LabelsArm& arm, const TrialBenchOptions& options,
                     const TrialBenchResult& result) {
   PlannedArm p;
-  p.plan = {arm, robustness_gripper_model(arm.gripper), robustness_object_model(arm.soft), {}, {}};
+  p.plan = {arm,
+            robustness_gripper_model(arm.gripper, options.production_models),
+            robustness_object_model(arm.soft, options.production_models),
+            {},
+            {}};
+  p.production_models = options.production_models;
   const std::vector<std::string>& categories = categories_of(options);
   const int count = options.candidates > 0 ? options.candidates : trial_bench_candidates(arm);
   const int c = static_cast<int>(categories.size());
   for (int j = 0; j < std::min(c, count); ++j) {
     const int wanted = count / c + (j < count % c ? 1 : 0);
-    p.shapes.push_back(prepare_shape(set_of(arm, categories[j]), wanted, result, p.plan));
+    p.shapes.push_back(prepare_shape(set_of(arm, categories[j], options.production_models), wanted,
+                                     result, p.plan));
   }
   for (int i = 0; i < count; ++i) {
     const Shape& shape = p.shapes[i % c];
@@ -130,8 +137,8 @@ TrialBenchRun run_slot(const TrialBenchSlot& slot, const PlannedArm& arm) {
   run.cpu_seconds = clock_seconds(CLOCK_THREAD_CPUTIME_ID) - cpu_start;
   run.process_cpu_seconds = clock_seconds(CLOCK_PROCESS_CPUTIME_ID) - process_start;
   run.slot = slot;
-  run.trial =
-      robustness_trial(set_of(arm.plan.arm, c.category), c.seed, c.candidate, outcomes.front());
+  run.trial = robustness_trial(set_of(arm.plan.arm, c.category, arm.production_models), c.seed,
+                               c.candidate, outcomes.front());
   run.displacement = outcomes.front().result.record.displacement;
   run.stages = outcomes.front().stage_seconds;
   return run;

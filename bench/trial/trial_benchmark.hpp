@@ -26,6 +26,9 @@ struct TrialBenchOptions {
   int candidates = 0;                   // per arm; 0: trial_bench_candidates(arm)
   int repeats = 3;                      // runs of each candidate at the defaults
   bool reference = true;                // each candidate once more at reference_parameters
+  // The models `grip trial` and the farm simulate, so that the table is what a farm pays; false:
+  // the robustness benchmark's coarse ones (RobustnessOptions::production_models).
+  bool production_models = true;
   std::filesystem::path out = "out/bench-trial";
 };
 

@@ -394,6 +394,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_labels->add_option("--threads", bench_labels_args.threads, "Threads (default: all cores)")
       ->check(kCount);
+  bench_labels
+      ->add_option("--models", bench_labels_args.models,
+                   "coarse: the robustness benchmark's (1-layer fin-ray, capsule hand, coarser "
+                   "soft objects); production: the models grip trial simulates")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"coarse", "production"}));
   bench_labels->add_option("--out", bench_labels_args.out, "Folder for labels.md and labels.csv")
       ->capture_default_str()
       ->check(kOutputFolder);
@@ -419,6 +425,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_trial->add_flag("--no-reference", bench_trial_args.no_reference,
                         "Skip the runs at the reference (dt/2, newton_tol/10, two lag iterations)");
+  bench_trial
+      ->add_option("--models", bench_trial_args.models,
+                   "production: the models grip trial simulates; coarse: the robustness "
+                   "benchmark's (1-layer fin-ray, capsule hand, coarser soft objects)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"production", "coarse"}));
   bench_trial->add_option("--out", bench_trial_args.out, "Folder for trial.md and trial.csv")
       ->capture_default_str()
       ->check(kOutputFolder);

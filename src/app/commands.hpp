@@ -192,6 +192,7 @@ struct BenchLabelsArgs {
   int seeds = 2;                        // shapes per category
   int candidates = 4;                   // per shape
   int threads = 0;                      // 0: all cores
+  std::string models = "coarse";        // coarse | production (LabelsOptions)
   std::string out = "out/labels";
 };
 int bench_labels(const BenchLabelsArgs& args);
@@ -205,6 +206,7 @@ struct BenchTrialArgs {
   int candidates = 0;                   // per arm; 0: the arm's default
   int repeats = 3;                      // runs of each candidate at the defaults (median)
   bool no_reference = false;            // skip the runs at the reference
+  std::string models = "production";    // production | coarse (TrialBenchOptions)
   std::string out = "out/bench-trial";
 };
 int bench_trial(const BenchTrialArgs& args);

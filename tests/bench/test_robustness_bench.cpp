@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "bench/robustness/robustness_report.hpp"
+#include "bench/robustness/robustness_trials.hpp"
 
 namespace grip::bench {
 namespace {
@@ -56,6 +57,27 @@ TEST(RobustnessBench, PlanFollowsOptionsAndRefusesBadOnes) {
   bad = options;
   bad.rigid = false;
   EXPECT_THROW(plan_robustness(bad), std::invalid_argument);
+}
+
+// The production models are the ones `grip trial` builds: a soft object meshed as `grip trial
+// --soft` meshes it has more tets than the coarse model's, and the plan carries the choice.
+TEST(RobustnessBench, ProductionModelsAreTheTrialsOwn) {
+  RobustnessOptions options;
+  options.grippers = {"fin-ray"};
+  options.categories = {"cylinder"};
+  options.rigid = false;
+  options.production_models = true;
+  const std::vector<RobustnessSet> sets = plan_robustness(options);
+  ASSERT_EQ(sets.size(), 1u);
+  EXPECT_TRUE(sets[0].production_models);
+  RobustnessSet coarse = sets[0];
+  coarse.production_models = false;
+  const trial::TrialObject fine = make_object(sets[0], 1);
+  const trial::TrialObject rough = make_object(coarse, 1);
+  ASSERT_TRUE(fine.tets && rough.tets);
+  EXPECT_GT(fine.tets->tets.rows(), 2 * rough.tets->tets.rows());
+  EXPECT_NE(robustness_gripper_model("fin-ray", true), robustness_gripper_model("fin-ray", false));
+  EXPECT_NE(robustness_object_model(true, true), robustness_object_model(true, false));
 }
 
 TEST(RobustnessBench, RankStatisticsOfAHistogram) {

@@ -29,7 +29,9 @@ int asset_prepare(const AssetPrepareArgs& args) {
   namespace fs = std::filesystem;
   namespace geo = grip::geometry;
   const fs::path input(args.input);
-  const std::string source = "'" + input.string() + "'";
+  std::string source = "'";  // appended: GCC 12 warns falsely (-Wrestrict) on a + chain
+  source += input.string();
+  source += "'";
   if (!(args.edge_length > 0.0)) {
     throw std::invalid_argument("--edge must be a positive length in metres");
   }

@@ -18,6 +18,7 @@ int bench_labels(const BenchLabelsArgs& args) {
   options.seeds = args.seeds;
   options.candidates = args.candidates;
   options.threads = args.threads;
+  options.production_models = args.models == "production";
   options.out = args.out;
   try {
     for (const std::string& arm : args.arms) options.arms.push_back(bench::parse_labels_arm(arm));

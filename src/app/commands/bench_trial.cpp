@@ -18,6 +18,7 @@ int bench_trial(const BenchTrialArgs& args) {
   options.candidates = args.candidates;
   options.repeats = args.repeats;
   options.reference = !args.no_reference;
+  options.production_models = args.models == "production";
   options.out = args.out;
   try {
     for (const std::string& arm : args.arms) options.arms.push_back(bench::parse_labels_arm(arm));
