@@ -98,6 +98,37 @@ TEST_F(GeometryMeshIoTest, UnreadableContentIsAnError) {
   EXPECT_THROW(read_surface_mesh(vertices_only), std::runtime_error);
 }
 
+// Found by fuzz/fuzz_mesh: 18 bytes that made CGAL allocate 2.4 GB for the vertices declared.
+TEST_F(GeometryMeshIoTest, OffCountsBeyondTheFileSizeAreAnError) {
+  for (const std::string text : {"OFF\n99999999 1 0\n", "# c\n4 99999999 0\n0 0 0\n"}) {
+    try {
+      read_surface_mesh(write("huge.off", text));
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("more than its"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(read_surface_mesh(write("tet.off",
+                                    "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                                    "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"))
+                .triangles.rows(),
+            4);
+}
+
+// Found by fuzz/fuzz_mesh: CGAL's PLY reader indexed an empty element list.
+TEST_F(GeometryMeshIoTest, PlyPropertyBeforeAnyElementIsAnError) {
+  const fs::path file = write("property_first.ply",
+                              "ply\nformat ascii 1.0\nproperty float x\nelement vertex 1\n"
+                              "end_header\n0\n");
+  try {
+    read_surface_mesh(file);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("property before any element"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(GeometryMeshIoTest, UnknownExtensionIsAnError) {
   const fs::path file = write("mesh.xyz", "v 0 0 0\n");
   try {
