@@ -77,16 +77,27 @@ void check_off_counts(const std::filesystem::path& file, std::uintmax_t size) {
 }
 
 // CGAL's PLY reader adds each property to the last element declared, reading past an empty
-// array when a property comes first: such a header is refused here.
-void check_ply_header(const std::filesystem::path& file) {
+// array when a property comes first, and reads an element count as unsigned, so that -1 keeps
+// it reading for ever: such headers are refused here. Each element takes at least one byte.
+void check_ply_header(const std::filesystem::path& file, std::uintmax_t size) {
   std::ifstream in(file, std::ios::binary);
   std::string line;
   bool element = false;
   while (std::getline(in, line)) {
-    std::string word;
-    std::istringstream(line) >> word;
+    std::istringstream words(line);
+    std::string word, name, count;
+    words >> word;
     if (word == "end_header") return;
-    if (word == "element") element = true;
+    if (word == "element") {
+      element = true;
+      words >> name >> count;
+      if (count.empty() || count.size() > 19 ||
+          count.find_first_not_of("0123456789") != std::string::npos || std::stoull(count) > size) {
+        throw std::runtime_error("cannot read '" + file.string() + "': its header declares '" +
+                                 count + "' " + name + " elements, not a count its " +
+                                 std::to_string(size) + " bytes can hold");
+      }
+    }
     if (word == "property" && !element) {
       throw std::runtime_error("cannot read '" + file.string() +
                                "': its header declares a property before any element");
@@ -112,12 +123,21 @@ SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
     throw std::runtime_error("mesh '" + file.string() + "' is empty: the file has no data");
   }
   if (ext == ".off") check_off_counts(file, size);
-  if (ext == ".ply") check_ply_header(file);
+  if (ext == ".ply") check_ply_header(file, size);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
   if (!CGAL::IO::read_polygon_soup(file.string(), points, polygons)) {
     throw std::runtime_error("cannot read '" + file.string() + "': not a valid " + ext.substr(1) +
                              " mesh (the parser rejected it)");
+  }
+  for (const auto& polygon : polygons) {
+    for (const std::size_t index : polygon) {
+      if (index >= points.size()) {
+        throw std::runtime_error("cannot read '" + file.string() + "': a face refers to vertex " +
+                                 std::to_string(index + 1) + " of " +
+                                 std::to_string(points.size()));
+      }
+    }
   }
   CGAL::Polygon_mesh_processing::merge_duplicate_points_in_polygon_soup(points, polygons);
 

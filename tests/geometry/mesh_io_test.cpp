@@ -129,6 +129,29 @@ TEST_F(GeometryMeshIoTest, PlyPropertyBeforeAnyElementIsAnError) {
   }
 }
 
+// Found by fuzz/fuzz_mesh: a face index outside the vertices read past them, and a PLY element
+// count of -1 kept CGAL's reader going for ever.
+TEST_F(GeometryMeshIoTest, FaceIndicesAndElementCountsOutOfRangeAreErrors) {
+  const auto error = [](const fs::path& file) {
+    try {
+      read_surface_mesh(file);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(
+      error(write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 0 2\n")).find("refers to vertex"),
+      std::string::npos);
+  EXPECT_NE(error(write("past.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")).find("vertex 4 of 3"),
+            std::string::npos);
+  EXPECT_NE(error(write("negative.ply",
+                        "ply\nformat ascii 1.0\nelement vertex -1\n"
+                        "property float x\nend_header\n"))
+                .find("'-1' vertex elements"),
+            std::string::npos);
+}
+
 TEST_F(GeometryMeshIoTest, UnknownExtensionIsAnError) {
   const fs::path file = write("mesh.xyz", "v 0 0 0\n");
   try {
