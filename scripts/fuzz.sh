@@ -30,7 +30,7 @@ cmake --build "$build" --parallel "$(nproc)" --target "${targets[@]}"
 # file claims), and grip code that lets std::bad_alloc out is a finding.
 export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=1:max_allocation_size_mb=512"
 export LSAN_OPTIONS="suppressions=$root/scripts/sanitize/lsan.supp:print_suppressions=0"
-export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$root/scripts/sanitize/ubsan.supp"
 mkdir -p "$build/findings" "$build/tmp"
 export TMPDIR="$build/tmp"  # where the targets write each input as a file
 failed=()

@@ -29,5 +29,5 @@ cmake --build "$build" --parallel "$(nproc)" "${targets[@]}"
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:fast_unwind_on_malloc=0"
 export OMPI_MCA_mca_base_component_disable_dlclose=1
 export LSAN_OPTIONS="suppressions=$root/scripts/sanitize/lsan.supp:print_suppressions=0"
-export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$root/scripts/sanitize/ubsan.supp"
 ctest --test-dir "$build" --output-on-failure --timeout 1800 --parallel "$(nproc)" "$@"
