@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -126,7 +127,13 @@ SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
   if (ext == ".ply") check_ply_header(file, size);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
-  if (!CGAL::IO::read_polygon_soup(file.string(), points, polygons)) {
+  bool read = false;
+  try {
+    read = CGAL::IO::read_polygon_soup(file.string(), points, polygons);
+  } catch (const std::length_error&) {  // CGAL sizes a face by the count the file gives
+  } catch (const std::bad_alloc&) {
+  }
+  if (!read) {
     throw std::runtime_error("cannot read '" + file.string() + "': not a valid " + ext.substr(1) +
                              " mesh (the parser rejected it)");
   }

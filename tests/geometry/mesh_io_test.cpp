@@ -150,6 +150,12 @@ TEST_F(GeometryMeshIoTest, FaceIndicesAndElementCountsOutOfRangeAreErrors) {
                         "property float x\nend_header\n"))
                 .find("'-1' vertex elements"),
             std::string::npos);
+  // A face of 2^61 corners made CGAL's OFF reader throw std::length_error.
+  EXPECT_NE(error(write("corners.off",
+                        "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n"
+                        "2305843009213693952 0 1 2\n"))
+                .find("not a valid off mesh"),
+            std::string::npos);
 }
 
 TEST_F(GeometryMeshIoTest, UnknownExtensionIsAnError) {
