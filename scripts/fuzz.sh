@@ -43,7 +43,7 @@ for target in "${targets[@]}"; do
     failed+=("$target")
     tail -n 40 "$build/$target.log" >&2
   fi
-  grep -E "^stat::number_of_executed_units|^#[0-9]+ +DONE" "$build/$target.log" >&2 || true
+  grep -aE "^stat::number_of_executed_units|^#[0-9]+ +DONE" "$build/$target.log" >&2 || true
 done
 rm -rf "$build/tmp"
 if [[ ${#failed[@]} -gt 0 ]]; then
