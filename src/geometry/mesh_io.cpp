@@ -84,6 +84,7 @@ void check_ply_header(const std::filesystem::path& file, std::uintmax_t size) {
   std::ifstream in(file, std::ios::binary);
   std::string line;
   bool element = false;
+  bool vertex = false;  // within the vertex element
   while (std::getline(in, line)) {
     std::istringstream words(line);
     std::string word, name, count;
@@ -92,6 +93,7 @@ void check_ply_header(const std::filesystem::path& file, std::uintmax_t size) {
     if (word == "element") {
       element = true;
       words >> name >> count;
+      vertex = name == "vertex";
       if (count.empty() || count.size() > 19 ||
           count.find_first_not_of("0123456789") != std::string::npos || std::stoull(count) > size) {
         throw std::runtime_error("cannot read '" + file.string() + "': its header declares '" +
@@ -102,6 +104,14 @@ void check_ply_header(const std::filesystem::path& file, std::uintmax_t size) {
     if (word == "property" && !element) {
       throw std::runtime_error("cannot read '" + file.string() +
                                "': its header declares a property before any element");
+    }
+    // CGAL reads a coordinate of another type through a null pointer.
+    std::string type, property;
+    words >> type >> property;
+    if (word == "property" && vertex && (property == "x" || property == "y" || property == "z") &&
+        type != "float" && type != "double" && type != "float32" && type != "float64") {
+      throw std::runtime_error("cannot read '" + file.string() + "': vertex coordinate '" +
+                               property + "' is of type '" + type + "'; use float or double");
     }
   }
 }
