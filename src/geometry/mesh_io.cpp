@@ -50,7 +50,7 @@ std::string next_off_word(std::istream& in) {
 
 // CGAL sizes its arrays by an OFF header's counts before it reads a vertex, so a file of a few
 // bytes that claims a billion vertices would make it allocate gigabytes. Each vertex takes at
-// least 6 bytes ("0 0 0\n") and each face 2, in text as in binary.
+// least 6 bytes ("0 0 0\n") and each face 2.
 void check_off_counts(const std::filesystem::path& file, std::uintmax_t size) {
   std::ifstream in(file, std::ios::binary);
   std::string word = next_off_word(in);
