@@ -13,6 +13,7 @@ packages=(
   libsuitesparse-dev libopenblas0-pthread
   libeigen3-dev libspdlog-dev libfmt-dev libtbb-dev
   libtomlplusplus-dev libcli11-dev liburdfdom-dev clang-format nlohmann-json3-dev
+  clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: clang and its libFuzzer runtime
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-matplotlib python3-numpy
 )

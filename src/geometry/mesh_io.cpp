@@ -10,7 +10,11 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <new>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace grip::geometry {
 namespace {
@@ -34,6 +38,84 @@ void finish_writing(std::ofstream& out, const std::filesystem::path& file) {
   }
 }
 
+// The next word of an OFF file, skipping '#' comments; empty at the end.
+std::string next_off_word(std::istream& in) {
+  std::string word;
+  while (in >> word) {
+    if (word[0] != '#') return word;
+    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  return {};
+}
+
+// CGAL sizes its arrays by an OFF header's counts before it reads a vertex, so a file of a few
+// bytes that claims a billion vertices would make it allocate gigabytes. Each vertex takes at
+// least 6 bytes ("0 0 0\n") and each face 2.
+void check_off_counts(const std::filesystem::path& file, std::uintmax_t size) {
+  std::ifstream in(file, std::ios::binary);
+  std::string word = next_off_word(in);
+  if (word.size() >= 3 && word.compare(word.size() - 3, 3, "OFF") == 0) {
+    if (word[0] == 'n') next_off_word(in);  // nOFF: the dimension
+    word = next_off_word(in);
+    if (word == "BINARY") return;  // binary counts are not checked here
+  }
+  const auto count = [](const std::string& text) {
+    try {
+      std::size_t end = 0;
+      const long long value = std::stoll(text, &end);
+      return end == text.size() && value > 0 ? static_cast<std::uintmax_t>(value) : 0;
+    } catch (const std::logic_error&) {
+      return std::uintmax_t{0};  // not a count: CGAL's parser says what is wrong
+    }
+  };
+  const std::uintmax_t vertices = count(word);
+  const std::uintmax_t faces = count(next_off_word(in));
+  if (vertices > size / 6 || faces > size / 2) {
+    throw std::runtime_error("cannot read '" + file.string() + "': its header declares " +
+                             std::to_string(vertices) + " vertices and " + std::to_string(faces) +
+                             " faces, more than its " + std::to_string(size) + " bytes can hold");
+  }
+}
+
+// CGAL's PLY reader adds each property to the last element declared, reading past an empty
+// array when a property comes first, and reads an element count as unsigned, so that -1 keeps
+// it reading for ever: such headers are refused here. Each element takes at least one byte.
+void check_ply_header(const std::filesystem::path& file, std::uintmax_t size) {
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  bool element = false;
+  bool vertex = false;  // within the vertex element
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string word, name, count;
+    words >> word;
+    if (word == "end_header") return;
+    if (word == "element") {
+      element = true;
+      words >> name >> count;
+      vertex = name == "vertex";
+      if (count.empty() || count.size() > 19 ||
+          count.find_first_not_of("0123456789") != std::string::npos || std::stoull(count) > size) {
+        throw std::runtime_error("cannot read '" + file.string() + "': its header declares '" +
+                                 count + "' " + name + " elements, not a count its " +
+                                 std::to_string(size) + " bytes can hold");
+      }
+    }
+    if (word == "property" && !element) {
+      throw std::runtime_error("cannot read '" + file.string() +
+                               "': its header declares a property before any element");
+    }
+    // CGAL reads a coordinate of another type through a null pointer.
+    std::string type, property;
+    words >> type >> property;
+    if (word == "property" && vertex && (property == "x" || property == "y" || property == "z") &&
+        type != "float" && type != "double" && type != "float32" && type != "float64") {
+      throw std::runtime_error("cannot read '" + file.string() + "': vertex coordinate '" +
+                               property + "' is of type '" + type + "'; use float or double");
+    }
+  }
+}
+
 }  // namespace
 
 SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
@@ -51,14 +133,32 @@ SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) {
     throw std::runtime_error("cannot read '" + file.string() + "': no such file");
   }
-  if (std::filesystem::file_size(file) == 0) {
+  const std::uintmax_t size = std::filesystem::file_size(file);
+  if (size == 0) {
     throw std::runtime_error("mesh '" + file.string() + "' is empty: the file has no data");
   }
+  if (ext == ".off") check_off_counts(file, size);
+  if (ext == ".ply") check_ply_header(file, size);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
-  if (!CGAL::IO::read_polygon_soup(file.string(), points, polygons)) {
+  bool read = false;
+  try {
+    read = CGAL::IO::read_polygon_soup(file.string(), points, polygons);
+  } catch (const std::length_error&) {  // CGAL sizes a face by the count the file gives
+  } catch (const std::bad_alloc&) {
+  }
+  if (!read) {
     throw std::runtime_error("cannot read '" + file.string() + "': not a valid " + ext.substr(1) +
                              " mesh (the parser rejected it)");
+  }
+  for (const auto& polygon : polygons) {
+    for (const std::size_t index : polygon) {
+      if (index >= points.size()) {
+        throw std::runtime_error("cannot read '" + file.string() + "': a face refers to vertex " +
+                                 std::to_string(index + 1) + " of " +
+                                 std::to_string(points.size()));
+      }
+    }
   }
   CGAL::Polygon_mesh_processing::merge_duplicate_points_in_polygon_soup(points, polygons);
 

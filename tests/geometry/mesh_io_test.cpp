@@ -98,6 +98,72 @@ TEST_F(GeometryMeshIoTest, UnreadableContentIsAnError) {
   EXPECT_THROW(read_surface_mesh(vertices_only), std::runtime_error);
 }
 
+// Found by fuzz/fuzz_mesh: 18 bytes that made CGAL allocate 2.4 GB for the vertices declared.
+TEST_F(GeometryMeshIoTest, OffCountsBeyondTheFileSizeAreAnError) {
+  for (const std::string text : {"OFF\n99999999 1 0\n", "# c\n4 99999999 0\n0 0 0\n"}) {
+    try {
+      read_surface_mesh(write("huge.off", text));
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("more than its"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(read_surface_mesh(write("tet.off",
+                                    "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                                    "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"))
+                .triangles.rows(),
+            4);
+}
+
+// Found by fuzz/fuzz_mesh: CGAL's PLY reader indexed an empty element list.
+TEST_F(GeometryMeshIoTest, PlyPropertyBeforeAnyElementIsAnError) {
+  const fs::path file = write("property_first.ply",
+                              "ply\nformat ascii 1.0\nproperty float x\nelement vertex 1\n"
+                              "end_header\n0\n");
+  try {
+    read_surface_mesh(file);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("property before any element"), std::string::npos)
+        << e.what();
+  }
+}
+
+// Found by fuzz/fuzz_mesh: a face index outside the vertices read past them, and a PLY element
+// count of -1 kept CGAL's reader going for ever.
+TEST_F(GeometryMeshIoTest, FaceIndicesAndElementCountsOutOfRangeAreErrors) {
+  const auto error = [](const fs::path& file) {
+    try {
+      read_surface_mesh(file);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(
+      error(write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 0 2\n")).find("refers to vertex"),
+      std::string::npos);
+  EXPECT_NE(error(write("past.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")).find("vertex 4 of 3"),
+            std::string::npos);
+  EXPECT_NE(error(write("negative.ply",
+                        "ply\nformat ascii 1.0\nelement vertex -1\n"
+                        "property float x\nend_header\n"))
+                .find("'-1' vertex elements"),
+            std::string::npos);
+  // Integer coordinates made CGAL's PLY reader call through a null pointer.
+  EXPECT_NE(error(write("int.ply",
+                        "ply\nformat ascii 1.0\nelement vertex 3\nproperty int x\n"
+                        "property float y\nproperty float z\nend_header\n"))
+                .find("vertex coordinate 'x' is of type 'int'"),
+            std::string::npos);
+  // A face of 2^61 corners made CGAL's OFF reader throw std::length_error.
+  EXPECT_NE(error(write("corners.off",
+                        "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n"
+                        "2305843009213693952 0 1 2\n"))
+                .find("not a valid off mesh"),
+            std::string::npos);
+}
+
 TEST_F(GeometryMeshIoTest, UnknownExtensionIsAnError) {
   const fs::path file = write("mesh.xyz", "v 0 0 0\n");
   try {
