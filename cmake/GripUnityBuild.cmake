@@ -1,9 +1,10 @@
 # GRIP_UNITY_BUILD: every library and the grip executable compiled as a few batches of their
 # sources ("unity" builds). Separate translation units each parse and instantiate the same Eigen
-# and CGAL templates again; batches do it once, so a clean build of grip takes about 40% less
-# CPU. Same flags, same warnings, same code. scripts/build.sh turns it on (the newcomer's first
-# build); without it, editing one file recompiles only that file. Tests are compiled file by file
-# either way. A source whose file-local names clash with another's in its batch is compiled alone.
+# and CGAL templates again; batches do it once, so a clean build of grip takes about 30% less
+# CPU (docs/architecture.md). Same flags, same code, no warning added. scripts/build.sh turns it
+# on (the newcomer's first build); without it, editing one file recompiles only that file. Tests
+# are compiled file by file either way. A source whose file-local names clash with another's in
+# its batch is compiled alone.
 option(GRIP_UNITY_BUILD "Compile libraries and grip in batches of sources (faster clean builds)"
        OFF)
 if(NOT GRIP_UNITY_BUILD)
