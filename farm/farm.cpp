@@ -9,8 +9,8 @@
 #include <optional>
 #include <thread>
 
+#include "farm/live_progress.hpp"
 #include "farm/plan.hpp"
-#include "farm/progress_line.hpp"
 #include "farm/stop_request.hpp"
 #include "farm/trial_runner.hpp"
 #include "farm/wire.hpp"
@@ -167,8 +167,9 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
         report.dataset.string(), writer->damaged().size(), first.candidate, first.dataset);
   }
 
+  LiveProgress progress(comm, options.progress_interval);
   const Clock::time_point plan_start = Clock::now();
-  const FarmPlan plan = make_plan(job, comm, report.threads);
+  const FarmPlan plan = make_plan(job, comm, report.threads, progress);
   report.plan_seconds = seconds_since(plan_start);
   if (plan.candidates.empty()) {  // every rank has the same plan, so all fail alike
     throw config::ConfigError(options.job.string() +
@@ -207,7 +208,7 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
   }
 
   const Clock::time_point trial_start = Clock::now();
-  const ProgressLine progress(pending.size());
+  progress.start_trials(pending.size());
   RunnerCache runners(plan, job);
   WorkUnitClaims claims(comm, std::max<std::uint64_t>(rounds, 1));
   for (std::uint64_t round = 0; round < rounds; ++round) {
@@ -221,19 +222,27 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
       std::vector<const synth::Candidate*> candidates;
       for (std::uint64_t id : unit.ids) candidates.push_back(&plan.candidates[id]);
       const bool trajectory = plan.dataset.candidates[unit.ids.front()].frames;
+      std::size_t counted = 0;  // of this work unit's trials, added to the progress
+      const auto after_step = [&](std::size_t ended) {
+        progress.add(LiveProgress::kTrials, ended - counted);
+        counted = ended;
+        progress.poll();
+      };
       for (trial::TrialOutcome& outcome :
            runners.get(unit.object, unit.gripper)
-               .run(candidates, unit.ids, report.threads, trajectory)) {
+               .run(candidates, unit.ids, report.threads, trajectory, after_step)) {
         io::CandidateResult& result = outcome.result;
         if (!plan.dataset.candidates[result.record.id].stress) result.stress.reset();
         results.push_back(std::move(result));
       }
+      progress.add(LiveProgress::kTrials, unit.ids.size() - counted);
     }
+    progress.wait_for_ranks();
     writer->write(results);
     std::uint64_t committed = results.size();
     MPI_Allreduce(MPI_IN_PLACE, &committed, 1, MPI_UINT64_T, MPI_SUM, comm);
     report.done += committed;
-    if (rank == 0) progress.log(report.done, seconds_since(trial_start));
+    progress.log_trials(report.done);
     int stop = stop_requested() ? 1 : 0;
     MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, comm);
     if (stop) {

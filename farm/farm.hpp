@@ -12,12 +12,13 @@
 namespace grip::farm {
 
 struct FarmOptions {
-  std::filesystem::path job;     // the job file
-  std::filesystem::path output;  // the dataset; empty: the job's [job] output
-  bool resume = false;           // continue an existing dataset of the same job
-  int threads = 0;               // per rank; 0: this node's cores shared by its ranks
-  int work_unit_size = 0;        // candidates per work unit; 0: the job's, else 4 per thread
-  std::string grip_version;      // recorded in the dataset's provenance
+  std::filesystem::path job;      // the job file
+  std::filesystem::path output;   // the dataset; empty: the job's [job] output
+  bool resume = false;            // continue an existing dataset of the same job
+  int threads = 0;                // per rank; 0: this node's cores shared by its ranks
+  int work_unit_size = 0;         // candidates per work unit; 0: the job's, else 4 per thread
+  double progress_interval = -1;  // s between progress lines; < 0: 1 on a terminal, else 5
+  std::string grip_version;       // recorded in the dataset's provenance
   std::string git_revision;
 };
 

@@ -50,7 +50,7 @@ void throw_if_any_failed(const std::string& error, MPI_Comm comm) {
 
 }  // namespace
 
-FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads) {
+FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads, LiveProgress& progress) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -60,6 +60,7 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads) {
   plan.objects = list_objects(job);
   const std::size_t objects = plan.objects.size();
   const std::size_t grippers = job.grippers.size();
+  progress.start_plan(objects, objects * grippers);
 
   // Objects: prepared where they are owned, then every rank gets every record.
   std::vector<std::string> packed(objects);
@@ -68,10 +69,13 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads) {
     if (static_cast<int>(i % size) != rank) continue;
     try {
       arena.execute([&] { packed[i] = pack(prepare_object(plan.objects[i])); });
+      progress.add(LiveProgress::kObjects);
+      progress.poll();
     } catch (const std::exception& e) {
       error = e.what();
     }
   }
+  progress.wait_for_ranks();
   throw_if_any_failed(error, comm);
   for (std::size_t i = 0; i < objects; ++i) {
     broadcast(packed[i], static_cast<int>(i % size), comm);
@@ -84,14 +88,20 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads) {
     if (static_cast<int>(u % size) != rank) continue;
     const std::size_t i = u / grippers, g = u % grippers;
     try {
+      std::vector<synth::Candidate> candidates;
       arena.execute([&] {
-        synthesized[u] = pack(
-            synthesize_for(job, plan.objects[i], plan.dataset.objects[i], job.grippers[g], g + 1));
+        candidates =
+            synthesize_for(job, plan.objects[i], plan.dataset.objects[i], job.grippers[g], g + 1);
       });
+      synthesized[u] = pack(candidates);
+      progress.add(LiveProgress::kPairs);
+      progress.add(LiveProgress::kCandidates, candidates.size());
+      progress.poll();
     } catch (const std::exception& e) {
       error = e.what();
     }
   }
+  progress.wait_for_ranks();
   throw_if_any_failed(error, comm);
   for (std::size_t u = 0; u < synthesized.size(); ++u) {
     broadcast(synthesized[u], static_cast<int>(u % size), comm);
@@ -113,6 +123,7 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads) {
   }
   plan.dataset.closing_frames = static_cast<std::uint32_t>(job.trial.closing_frames);
   plan.dataset.validation_frames = static_cast<std::uint32_t>(job.trial.validation_frames);
+  progress.log_plan();
   if (rank == 0) {
     for (std::size_t i = 0; i < objects; ++i) {
       const io::ObjectRecord& r = plan.dataset.objects[i];

@@ -8,6 +8,7 @@
 
 #include "farm/farm_object.hpp"
 #include "farm/job.hpp"
+#include "farm/live_progress.hpp"
 #include "io/dataset_plan.hpp"
 #include "src/synth/candidate.hpp"
 
@@ -21,8 +22,8 @@ struct FarmPlan {
 
 // Collective over `comm`; every rank returns the same plan. Object i is prepared on rank
 // i mod size and synthesis of (object i, gripper g) runs on rank (i * grippers + g) mod size,
-// each with `threads` threads; the results are broadcast bit for bit. Logs what each
-// object yields (spdlog, rank 0).
-FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads);
+// each with `threads` threads; the results are broadcast bit for bit. Counts objects prepared
+// and candidates synthesized in `progress`; logs what each object yields (spdlog, rank 0).
+FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads, LiveProgress& progress);
 
 }  // namespace grip::farm

@@ -1,6 +1,7 @@
 #include "farm/trial_runner.hpp"
 
 #include <string>
+#include <utility>
 #include <variant>
 
 #include "src/trial/grasp_trial.hpp"
@@ -37,12 +38,13 @@ io::GripperRecord TrialRunner::gripper_record() const {
 
 std::vector<trial::TrialOutcome> TrialRunner::run(
     const std::vector<const synth::Candidate*>& candidates, const std::vector<std::uint64_t>& ids,
-    int threads, bool trajectory) const {
+    int threads, bool trajectory, std::function<void(std::size_t)> after_step) const {
   trial::TrialRunOptions options;
   options.threads = threads;
   options.trajectory = trajectory;
   options.ids = ids;
   options.max_active = 2 * threads;  // enough to keep every thread busy while others freeze
+  options.after_step = std::move(after_step);
   if (auto* parallel = std::get_if<std::unique_ptr<trial::TrialScene>>(&scene_->scene)) {
     std::vector<trial::ParallelGrasp> grasps;
     for (const synth::Candidate* c : candidates) {

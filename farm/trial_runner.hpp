@@ -1,7 +1,9 @@
 #pragma once
 // One object's trials with one gripper of the job, whichever kind: the trial scene (its solver
 // Model, shared by every environment) built once, then work units of candidates run through it.
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -25,9 +27,11 @@ class TrialRunner {
   io::GripperRecord gripper_record() const;
 
   // The candidates' trials as one solver::Batch on `threads` threads; outcome k carries ids[k].
+  // after_step: trial::TrialRunOptions' (may be empty).
   std::vector<trial::TrialOutcome> run(const std::vector<const synth::Candidate*>& candidates,
                                        const std::vector<std::uint64_t>& ids, int threads,
-                                       bool trajectory) const;
+                                       bool trajectory,
+                                       std::function<void(std::size_t)> after_step = {}) const;
 
  private:
   struct Scene;

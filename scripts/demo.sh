@@ -6,7 +6,7 @@
 # The dataset goes to out/demo/ (override the folder with GRIP_OUT).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-"$root/scripts/build.sh"
+"$root/scripts/build.sh" --target grip  # the tests and benchmarks are scripts/test.sh's
 grip="$root/build/grip"
 dataset=${GRIP_OUT:-$root/out}/demo/dataset.h5
 

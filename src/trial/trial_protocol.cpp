@@ -134,6 +134,7 @@ class ProtocolRunner {
         if (states_[i].phase != Phase::kDone) advance(i);
       });
       start_more();
+      if (options_.after_step) options_.after_step(ended());
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -146,6 +147,12 @@ class ProtocolRunner {
   }
 
  private:
+  std::size_t ended() const {
+    return static_cast<std::size_t>(
+        std::count_if(states_.begin(), states_.end(),
+                      [](const TrialState& s) { return s.phase == Phase::kDone; }));
+  }
+
   void add(std::size_t k) {
     const int i = batch_.add(gripper_.model());
     solver::Environment& env = batch_.environment(i);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -28,6 +29,9 @@ struct TrialRunOptions {
   // Trials stepping at once; the next candidate starts as soon as one ends, so no thread waits
   // for a batch's slowest trial. 0: every candidate at once. Results do not depend on it.
   int max_active = 0;
+  // Called on the calling thread after every step of the batch with how many of its trials
+  // have ended so far (the farm's live progress). Results do not depend on it.
+  std::function<void(std::size_t ended)> after_step;
 };
 
 // One gripper's side of a batch of trials: its scene (object, fingers, measurements) and its

@@ -1,9 +1,11 @@
 // `grip farm` and `grip bench scaling` as a user runs them: a bad job file or an existing
-// dataset is one message naming the file and the fix with exit status 1, the scaling
-// benchmark writes its table for every setting, and their JSON keeps any path as it is.
+// dataset is one message naming the file and the fix with exit status 1, progress lines come
+// while the trials run, the scaling benchmark writes its table for every setting, and their
+// JSON keeps any path as it is.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -94,6 +96,53 @@ TEST_F(FarmCli, ReportsKeepPathsWithQuotesBackslashesAndNewlines) {
   ASSERT_FALSE(summary.is_discarded()) << last;
   EXPECT_EQ(summary["job"], job.string());
   EXPECT_EQ(summary["rows"][0]["trials"], 1);
+}
+
+// Progress comes while the trials run, not only when a round is committed: with the whole job
+// in one round, a line with fewer trials than the total is live progress. Reporting progress at
+// every solver step or never gives the same dataset.
+TEST_F(FarmCli, ProgressLinesComeBeforeTheRoundEndsAndChangeNothing) {
+  std::string job = testing::small_job(2, 2, false);
+  const std::string one_round = "round_batches = 1";
+  job.replace(job.find(one_round), one_round.size(), "round_batches = 100");
+  testing::write_file(dir_ / "job.toml", job);
+  const auto farm = [&](const std::string& interval, const std::string& name) {
+    ::setenv("GRIP_PROGRESS_INTERVAL", interval.c_str(), 1);
+    auto run = grip::testing::run_grip("farm " + (dir_ / "job.toml").string() + " --output " +
+                                       (dir_ / name).string() + " --threads 1 --batch 1");
+    ::unsetenv("GRIP_PROGRESS_INTERVAL");
+    return run;
+  };
+  const auto live = farm("0", "live.h5");
+  const auto quiet = farm("1000000", "quiet.h5");
+  ASSERT_EQ(live.exit_code, 0) << live.err;
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+
+  const std::size_t trials = io::DatasetReader(dir_ / "live.h5").candidates().size();
+  ASSERT_GE(trials, 2u);
+  const std::string total = "/" + std::to_string(trials) + " trials";
+  const std::size_t first = live.err.find("1" + total);
+  const std::size_t committed = live.err.find(std::to_string(trials) + total + " (100.0%)");
+  EXPECT_NE(first, std::string::npos) << live.err;
+  EXPECT_NE(committed, std::string::npos) << live.err;
+  EXPECT_LT(first, committed) << live.err;
+  EXPECT_NE(live.err.find("planning: 1/2 objects prepared"), std::string::npos) << live.err;
+  EXPECT_EQ(live.err.find('\r'), std::string::npos) << "not a terminal: log lines only";
+  // Without live progress only the commit and the end of planning are logged.
+  EXPECT_EQ(quiet.err.find("1" + total), std::string::npos) << quiet.err;
+  EXPECT_NE(quiet.err.find(std::to_string(trials) + total + " (100.0%)"), std::string::npos);
+  EXPECT_NE(quiet.err.find("planning: 2/2 objects prepared"), std::string::npos) << quiet.err;
+  testing::expect_same_dataset(dir_ / "quiet.h5", dir_ / "live.h5");
+}
+
+TEST_F(FarmCli, BadProgressIntervalIsAUsageError) {
+  ::setenv("GRIP_PROGRESS_INTERVAL", "soon", 1);
+  const auto run = grip::testing::run_grip("farm " + (dir_ / "job.toml").string());
+  ::unsetenv("GRIP_PROGRESS_INTERVAL");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("GRIP_PROGRESS_INTERVAL: must be a number of seconds >= 0, not 'soon'"),
+            std::string::npos)
+      << run.err;
 }
 
 }  // namespace

@@ -4,8 +4,11 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 #include "farm/farm.hpp"
@@ -46,9 +49,27 @@ void write_report(const std::string& file, const farm::FarmReport& r) {
   out << json::text(report, "%.6f") << '\n';
 }
 
+// GRIP_PROGRESS_INTERVAL: seconds between progress lines (docs/farm.md); -1 when unset, none
+// when it is not a number >= 0.
+std::optional<double> progress_interval() {
+  const char* text = std::getenv("GRIP_PROGRESS_INTERVAL");
+  if (text == nullptr || *text == '\0') return -1.0;
+  char* end = nullptr;
+  const double seconds = std::strtod(text, &end);
+  if (*end != '\0' || !std::isfinite(seconds) || seconds < 0) return std::nullopt;
+  return seconds;
+}
+
 }  // namespace
 
 int farm(const FarmArgs& args) {
+  const std::optional<double> interval = progress_interval();
+  if (!interval) {
+    std::fprintf(stderr,
+                 "grip: GRIP_PROGRESS_INTERVAL: must be a number of seconds >= 0, not '%s'\n",
+                 std::getenv("GRIP_PROGRESS_INTERVAL"));
+    return 2;
+  }
   const MpiSession mpi;
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -61,6 +82,7 @@ int farm(const FarmArgs& args) {
   options.resume = args.resume;
   options.threads = args.threads;
   options.work_unit_size = args.batch;
+  options.progress_interval = *interval;
   options.grip_version = version();
   options.git_revision = git_revision();
   farm::FarmReport report;
