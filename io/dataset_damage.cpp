@@ -14,12 +14,8 @@ namespace {
 
 constexpr std::size_t kBlockBytes = std::size_t{16} << 20;
 
-h5::Handle open_dataset(hid_t file, const std::string& path) {
-  return h5::dataset_handle(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "opening " + path);
-}
-
 std::vector<std::uint8_t> flags(hid_t file, const std::string& path) {
-  return h5::read_all<std::uint8_t>(open_dataset(file, path), H5T_NATIVE_UINT8);
+  return h5::read_all<std::uint8_t>(h5::open_dataset(file, path), H5T_NATIVE_UINT8);
 }
 
 // A dataset's rows to check: (row, candidate) in row order.
@@ -30,7 +26,7 @@ class Checker {
   explicit Checker(hid_t file)
       : file_(file),
         entries_(checksum_entries()),
-        stored_(h5::read_all<std::uint32_t>(open_dataset(file, "/candidates/checksum"),
+        stored_(h5::read_all<std::uint32_t>(h5::open_dataset(file, "/candidates/checksum"),
                                             H5T_NATIVE_UINT32)) {}
 
   // Compares `rows` of column `column` at `path` (rows of `row_size` values) with the stored
@@ -38,7 +34,7 @@ class Checker {
   void check(const Column& column, const std::string& path, std::size_t row_size,
              const Rows& rows) {
     if (rows.empty()) return;
-    const h5::Handle dataset = open_dataset(file_, path);
+    const h5::Handle dataset = h5::open_dataset(file_, path);
     const std::size_t row_bytes =
         std::max<std::size_t>(row_size * element_bytes(column.element), 1);
     const std::uint64_t per_block = std::max<std::size_t>(kBlockBytes / row_bytes, 1);

@@ -114,13 +114,9 @@ std::string shape_text(const Dims& dims) {
   return text + ")";
 }
 
-h5::Handle open_dataset(hid_t file, const std::string& path) {
-  return h5::dataset_handle(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "opening " + path);
-}
-
 // The dataset at `path`, which must have the shape `expected`.
 h5::Handle open_shaped(hid_t file, const std::string& path, const Dims& expected) {
-  h5::Handle dataset = open_dataset(file, path);
+  h5::Handle dataset = h5::open_dataset(file, path);
   const Dims found = h5::dims(dataset);
   if (found != expected) {
     throw DatasetError(path + " has shape " + shape_text(found) + ", expected " +
@@ -131,7 +127,7 @@ h5::Handle open_shaped(hid_t file, const std::string& path, const Dims& expected
 
 // The rows of the dataset at `path`, whose other extents must be `row`.
 std::uint64_t rows_of(hid_t file, const std::string& path, const Dims& row) {
-  const Dims found = h5::dims(open_dataset(file, path));
+  const Dims found = h5::dims(h5::open_dataset(file, path));
   if (found.size() != row.size() + 1 || !std::equal(row.begin(), row.end(), found.begin() + 1)) {
     std::string expected = "(rows";
     for (const hsize_t extent : row) expected += ", " + std::to_string(extent);

@@ -11,13 +11,9 @@ namespace grip::io {
 
 namespace {
 
-h5::Handle open_dataset(hid_t file, const std::string& path) {
-  return h5::dataset_handle(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "opening " + path);
-}
-
 template <typename T>
 std::vector<T> read_column(hid_t file, const std::string& path, hid_t memory_type) {
-  return h5::read_all<T>(open_dataset(file, path), memory_type);
+  return h5::read_all<T>(h5::open_dataset(file, path), memory_type);
 }
 
 // Puts the whole-record columns of `place` under `group` into `record`, each checked against
@@ -28,7 +24,7 @@ void read_record(hid_t file, const std::string& name, const std::string& group, 
   for (const Column& column : dataset_columns()) {
     if (column.place != place) continue;
     const std::string path = group + "/" + column.name;
-    const h5::Handle dataset = open_dataset(file, path);
+    const h5::Handle dataset = h5::open_dataset(file, path);
     const Values values = read_values(dataset, column.element);
     try {
       verify_whole_checksum(dataset, path, values);
@@ -47,7 +43,7 @@ void read_record_row(hid_t file, const std::string& group, Place place, std::uin
     if (column.place != place) continue;
     const std::string path = group + "/" + column.name;
     column.access_to<Record>().put(
-        read_row_values(open_dataset(file, path), path, row, column.element), record);
+        read_row_values(h5::open_dataset(file, path), path, row, column.element), record);
   }
 }
 
@@ -135,8 +131,8 @@ std::vector<CandidateRecord> DatasetReader::candidates() const {
     if (column.place != Place::kResult) continue;
     const Access<CandidateResult>& access = column.access_to<CandidateResult>();
     if (access.put == nullptr) continue;  // the written flags, read by committed()
-    const Values values =
-        read_values(open_dataset(file_, std::string("/candidates/") + column.name), column.element);
+    const Values values = read_values(
+        h5::open_dataset(file_, std::string("/candidates/") + column.name), column.element);
     const std::size_t width = row_size(column, table);
     for (std::size_t id = 0; id < results.size(); ++id) {
       Values row = slice(values, id * width, width);
@@ -156,7 +152,7 @@ std::vector<CandidateRecord> DatasetReader::candidates() const {
 bool DatasetReader::committed(std::uint64_t id, const char* written_column) const {
   // A flag alone is not enough: an interrupted batch may have set it before its done flag.
   const auto flag = [&](const std::string& path) {
-    const Values row = read_row_values(open_dataset(file_, path), path, id, Element::kUint8);
+    const Values row = read_row_values(h5::open_dataset(file_, path), path, id, Element::kUint8);
     return std::get<std::vector<std::uint8_t>>(row).at(0) != 0;
   };
   return flag("/candidates/done") && flag(std::string("/candidates/") + written_column);

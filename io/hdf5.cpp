@@ -51,6 +51,10 @@ hid_t checked(hid_t id, const std::string& what) {
 Handle file_handle(hid_t id, const std::string& what) { return {checked(id, what), H5Fclose}; }
 Handle group_handle(hid_t id, const std::string& what) { return {checked(id, what), H5Gclose}; }
 Handle dataset_handle(hid_t id, const std::string& what) { return {checked(id, what), H5Dclose}; }
+
+Handle open_dataset(hid_t file, const std::string& path) {
+  return dataset_handle(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "opening " + path);
+}
 Handle space_handle(hid_t id, const std::string& what) { return {checked(id, what), H5Sclose}; }
 Handle type_handle(hid_t id, const std::string& what) { return {checked(id, what), H5Tclose}; }
 Handle plist_handle(hid_t id, const std::string& what) { return {checked(id, what), H5Pclose}; }

@@ -52,6 +52,8 @@ hid_t checked(hid_t id, const std::string& what);
 Handle file_handle(hid_t id, const std::string& what);
 Handle group_handle(hid_t id, const std::string& what);
 Handle dataset_handle(hid_t id, const std::string& what);
+// Opens the dataset at `path` in `file` (DatasetError "opening <path>" if it cannot).
+Handle open_dataset(hid_t file, const std::string& path);
 Handle space_handle(hid_t id, const std::string& what);
 Handle type_handle(hid_t id, const std::string& what);
 Handle plist_handle(hid_t id, const std::string& what);
