@@ -13,10 +13,7 @@ while [[ $# -ge 2 && $1 == --target ]]; do
 done
 "$root/scripts/install-deps.sh"
 if [[ ! -f "$root/build/build.ninja" || $# -gt 0 ]]; then
-  launcher=()
-  if command -v ccache >/dev/null; then
-    launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  fi
+  source "$root/scripts/ccache-launcher.sh"
   cmake -S "$root" -B "$root/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DGRIP_UNITY_BUILD=ON \
     "${launcher[@]}" "$@" >/dev/null
 fi
