@@ -21,14 +21,18 @@ std::string labels_arm_name(const LabelsArm& arm) {
   return arm.gripper + " x " + (arm.soft ? "soft" : "rigid");
 }
 
-trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults) {
+trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults,
+                                            const LabelsRefinement& refinement) {
   trial::TrialParameters p = defaults;
-  p.sim.dt = defaults.sim.dt / 2;
-  p.sim.newton_tol = defaults.sim.newton_tol / 10;
-  p.sim.friction_lag_iterations = 2;
-  p.settle_steps = 2 * defaults.settle_steps;
-  p.settle_max_steps = 2 * defaults.settle_max_steps;
-  p.displacement_factor = 2 * defaults.displacement_factor;
+  if (refinement.dt) {
+    p.sim.dt = defaults.sim.dt / 2;
+    p.settle_steps = 2 * defaults.settle_steps;
+    p.settle_max_steps = 2 * defaults.settle_max_steps;
+    p.displacement_factor = 2 * defaults.displacement_factor;
+  }
+  if (refinement.newton_tol) p.sim.newton_tol = defaults.sim.newton_tol / 10;
+  if (refinement.friction_lag)
+    p.sim.friction_lag_iterations = defaults.sim.friction_lag_iterations + 1;
   return p;
 }
 
@@ -72,7 +76,8 @@ void check_labels_options(const LabelsOptions& options) {
 LabelsResult run_labels(const LabelsOptions& options) {
   check_labels_options(options);
   LabelsResult result;
-  result.reference = reference_parameters(result.defaults);
+  result.defaults = options.defaults;
+  result.reference = reference_parameters(result.defaults, options.refinement);
   result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   const auto start = std::chrono::steady_clock::now();
   for (const LabelsArm& arm : arms_of(options)) {

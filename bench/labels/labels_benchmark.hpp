@@ -14,6 +14,13 @@
 
 namespace grip::bench {
 
+// What the reference refines; by default all three.
+struct LabelsRefinement {
+  bool dt = true;            // halved
+  bool newton_tol = true;    // divided by 10
+  bool friction_lag = true;  // one more iteration
+};
+
 // A gripper and an object model: one column of the benchmark.
 struct LabelsArm {
   std::string gripper;  // registry name
@@ -35,18 +42,21 @@ struct LabelsOptions {
   int candidates = 4;                   // per shape
   int threads = 0;                      // 0: all cores
   bool production_models = false;       // RobustnessOptions::production_models
+  trial::TrialParameters defaults;      // the protocol's defaults unless a bench option says
+  LabelsRefinement refinement;
   std::filesystem::path out = "out/labels";
 };
 
 // The default categories: four that every gripper finds candidates on.
 inline const std::vector<std::string> kLabelsCategories = {"box", "cylinder", "capsule", "bottle"};
 
-// The reference settings for `defaults`: dt / 2, newton_tol / 10, two friction lag iterations.
-// What the protocol measures in seconds and metres stays the same: its steps are counted at
-// the reference's dt (settle_steps and settle_max_steps doubled), and the verdict's
-// displacement threshold stays the same length (displacement_factor doubled): a verdict is
-// "moved less than 1 mm", not a multiple of the step.
-trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults);
+// The reference settings for `defaults`: dt / 2, newton_tol / 10, one more friction lag
+// iteration (those `refinement` asks for). What the protocol measures in seconds and metres
+// stays the same: at dt / 2 its steps are counted at the reference's dt (settle_steps and
+// settle_max_steps doubled), and the verdict's displacement threshold stays the same length
+// (displacement_factor doubled): a verdict is "moved less than 1 mm", not a multiple of the step.
+trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults,
+                                            const LabelsRefinement& refinement = {});
 
 // One arm's trials, run at the defaults and at the reference, in the same order.
 struct LabelsArmResult {

@@ -400,6 +400,20 @@ int main(int argc, char** argv) {
                    "soft objects); production: the models grip trial simulates")
       ->capture_default_str()
       ->check(CLI::IsMember({"coarse", "production"}));
+  bench_labels
+      ->add_option("--refine", bench_labels_args.refine,
+                   "What the reference refines (default: all): dt (halved), newton_tol (/10), "
+                   "friction_lag (one more iteration)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"dt", "newton_tol", "friction_lag"}));
+  bench_labels
+      ->add_option("--newton-tol", bench_labels_args.newton_tol,
+                   "The defaults' Newton tolerance (default: the trial's, 1e-3)")
+      ->check(CLI::PositiveNumber);
+  bench_labels
+      ->add_option("--friction-lag", bench_labels_args.friction_lag_iterations,
+                   "The defaults' friction lag iterations (default: the trial's, 1)")
+      ->check(CLI::PositiveNumber);
   bench_labels->add_option("--out", bench_labels_args.out, "Folder for labels.md and labels.csv")
       ->capture_default_str()
       ->check(kOutputFolder);

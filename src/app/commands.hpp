@@ -193,6 +193,10 @@ struct BenchLabelsArgs {
   int candidates = 4;                   // per shape
   int threads = 0;                      // 0: all cores
   std::string models = "coarse";        // coarse | production (LabelsOptions)
+  // What the reference refines: any of dt, newton_tol, friction_lag; empty: all three.
+  std::vector<std::string> refine;
+  double newton_tol = 0.0;          // the defaults' Newton tolerance; 0: the trial's
+  int friction_lag_iterations = 0;  // the defaults' friction lag iterations; 0: the trial's
   std::string out = "out/labels";
 };
 int bench_labels(const BenchLabelsArgs& args);

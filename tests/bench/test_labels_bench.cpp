@@ -31,6 +31,26 @@ TEST(LabelsBench, ReferenceRefinesTheNumericsNotTheQuestion) {
   EXPECT_EQ(r.phase_duration, d.phase_duration);
 }
 
+TEST(LabelsBench, AReferenceCanRefineOneSettingAlone) {
+  trial::TrialParameters d;
+  d.sim.newton_tol = 1e-4;
+  d.sim.friction_lag_iterations = 2;
+  LabelsRefinement lag_only;
+  lag_only.dt = lag_only.newton_tol = false;
+  const trial::TrialParameters lag = reference_parameters(d, lag_only);
+  EXPECT_EQ(lag.sim.friction_lag_iterations, 3);
+  EXPECT_EQ(lag.sim.dt, d.sim.dt);
+  EXPECT_EQ(lag.sim.newton_tol, d.sim.newton_tol);
+  EXPECT_EQ(lag.settle_steps, d.settle_steps);
+  EXPECT_EQ(lag.displacement_factor, d.displacement_factor);
+  LabelsRefinement tol_only;
+  tol_only.dt = tol_only.friction_lag = false;
+  const trial::TrialParameters tol = reference_parameters(d, tol_only);
+  EXPECT_EQ(tol.sim.newton_tol, d.sim.newton_tol / 10);
+  EXPECT_EQ(tol.sim.friction_lag_iterations, 2);
+  EXPECT_EQ(tol.sim.dt, d.sim.dt);
+}
+
 TEST(LabelsBench, RefusesBadOptions) {
   LabelsOptions options;
   options.seeds = 0;

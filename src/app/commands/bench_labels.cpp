@@ -19,6 +19,18 @@ int bench_labels(const BenchLabelsArgs& args) {
   options.candidates = args.candidates;
   options.threads = args.threads;
   options.production_models = args.models == "production";
+  options.refinement.dt = args.refine.empty();
+  options.refinement.newton_tol = args.refine.empty();
+  options.refinement.friction_lag = args.refine.empty();
+  for (const std::string& r : args.refine) {
+    options.refinement.dt = options.refinement.dt || r == "dt";
+    options.refinement.newton_tol = options.refinement.newton_tol || r == "newton_tol";
+    options.refinement.friction_lag = options.refinement.friction_lag || r == "friction_lag";
+  }
+  if (args.newton_tol > 0.0) options.defaults.sim.newton_tol = args.newton_tol;
+  if (args.friction_lag_iterations > 0) {
+    options.defaults.sim.friction_lag_iterations = args.friction_lag_iterations;
+  }
   options.out = args.out;
   try {
     for (const std::string& arm : args.arms) options.arms.push_back(bench::parse_labels_arm(arm));
