@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "solver/body/body.hpp"
-#include "solver/contact/bvh.hpp"
 #include "solver/kernels/edge_edge_distance.hpp"
 #include "solver/kernels/edge_edge_mollifier.hpp"
 #include "solver/kernels/point_triangle_distance.hpp"
@@ -32,72 +31,10 @@ bool on_kinematic_body(const Model& model, int collision_vertex) {
   return is_kinematic(model.bodies()[model.collision().vertex_body[collision_vertex]]);
 }
 
-// One kind of primitive (faces or edges) in two trees. Kinematic bodies never touch each other
-// (a hand's links, a gripper's jaws), and they can hold most of the primitives: theirs look
-// only among the other bodies' primitives, in a second, smaller tree over those.
-class PrimitiveTrees {
- public:
-  // boxes[i] and first_vertex[i]: primitive i's swept box and one of its collision vertices.
-  PrimitiveTrees(const Model& model, std::vector<Aabb> boxes, const std::vector<int>& first_vertex)
-      : boxes_(std::move(boxes)) {
-    all_.build(boxes_);
-    std::vector<Aabb> free_boxes;
-    for (std::size_t i = 0; i < boxes_.size(); ++i) {
-      if (on_kinematic_body(model, first_vertex[i])) continue;
-      free_index_.push_back(static_cast<int>(i));
-      free_boxes.push_back(boxes_[i]);
-    }
-    free_.build(free_boxes);
-  }
-
-  const Aabb& box(int i) const { return boxes_[static_cast<std::size_t>(i)]; }
-
-  // Calls visit(primitive index) for each box of the right tree that overlaps `box`.
-  template <typename Visit>
-  void query(bool from_kinematic, const Aabb& box, Visit&& visit) const {
-    if (from_kinematic) {
-      free_.query(box, [&](int k) { visit(free_index_[static_cast<std::size_t>(k)]); });
-    } else {
-      all_.query(box, visit);
-    }
-  }
-
- private:
-  std::vector<Aabb> boxes_;
-  Bvh all_;
-  Bvh free_;
-  std::vector<int> free_index_;  // the free tree's boxes as primitive indices
-};
-
-PrimitiveTrees face_trees(const Model& model, const Vertices& start, const Vertices& end,
-                          double margin) {
-  const CollisionMesh& mesh = model.collision();
-  std::vector<Aabb> boxes(mesh.faces.size());
-  std::vector<int> first(mesh.faces.size());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const auto& t = mesh.faces[f];
-    boxes[f] = swept_box(start, end, {t[0], t[1], t[2]}, margin);
-    first[f] = t[0];
-  }
-  return PrimitiveTrees(model, std::move(boxes), first);
-}
-
-PrimitiveTrees edge_trees(const Model& model, const Vertices& start, const Vertices& end,
-                          double margin) {
-  const CollisionMesh& mesh = model.collision();
-  std::vector<Aabb> boxes(mesh.edges.size());
-  std::vector<int> first(mesh.edges.size());
-  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
-    boxes[e] = swept_box(start, end, {mesh.edges[e][0], mesh.edges[e][1]}, margin);
-    first[e] = mesh.edges[e][0];
-  }
-  return PrimitiveTrees(model, std::move(boxes), first);
-}
-
 void add_point_triangle_candidates(const Model& model, const Vertices& start, const Vertices& end,
-                                   double margin, std::vector<ContactCandidate>& candidates) {
+                                   double margin, PrimitiveTrees& faces,
+                                   std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
-  const PrimitiveTrees faces = face_trees(model, start, end, margin);
   for (int v = 0; v < mesh.size(); ++v) {
     const int body_v = mesh.vertex_body[v];
     faces.query(on_kinematic_body(model, v), swept_box(start, end, {v}, margin), [&](int f) {
@@ -112,10 +49,9 @@ void add_point_triangle_candidates(const Model& model, const Vertices& start, co
   }
 }
 
-void add_edge_edge_candidates(const Model& model, const Vertices& start, const Vertices& end,
-                              double margin, std::vector<ContactCandidate>& candidates) {
+void add_edge_edge_candidates(const Model& model, PrimitiveTrees& edges,
+                              std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
-  const PrimitiveTrees edges = edge_trees(model, start, end, margin);
   auto kinematic = [&](int edge) { return on_kinematic_body(model, mesh.edges[edge][0]); };
   for (int a = 0; a < static_cast<int>(mesh.edges.size()); ++a) {
     const auto& ea = mesh.edges[a];
@@ -142,14 +78,35 @@ void add_edge_edge_candidates(const Model& model, const Vertices& start, const V
 
 }  // namespace
 
-std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
+std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const Vertices& start,
                                                       const Vertices& end, double d_hat) {
+  const CollisionMesh& mesh = model.collision();
   // Two boxes each inflated by half of d_hat overlap whenever their contents come within d_hat.
   const double margin = 0.5 * d_hat * (1.0 + 1e-9);
+  boxes_.resize(mesh.faces.size());
+  first_vertex_.resize(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    boxes_[f] = swept_box(start, end, {t[0], t[1], t[2]}, margin);
+    first_vertex_[f] = t[0];
+  }
+  faces_.update(model, boxes_, first_vertex_);
   std::vector<ContactCandidate> candidates;
-  add_point_triangle_candidates(model, start, end, margin, candidates);
-  add_edge_edge_candidates(model, start, end, margin, candidates);
+  add_point_triangle_candidates(model, start, end, margin, faces_, candidates);
+  boxes_.resize(mesh.edges.size());
+  first_vertex_.resize(mesh.edges.size());
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    boxes_[e] = swept_box(start, end, {mesh.edges[e][0], mesh.edges[e][1]}, margin);
+    first_vertex_[e] = mesh.edges[e][0];
+  }
+  edges_.update(model, boxes_, first_vertex_);
+  add_edge_edge_candidates(model, edges_, candidates);
   return candidates;
+}
+
+std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
+                                                      const Vertices& end, double d_hat) {
+  return ContactBroadPhase().find(model, start, end, d_hat);
 }
 
 std::pair<std::vector<std::array<int, 4>>, std::vector<std::array<int, 4>>> self_pairs_near_at_rest(
