@@ -10,17 +10,6 @@
 namespace grip::solver {
 namespace {
 
-Aabb swept_box(const Vertices& start, const Vertices& end, std::initializer_list<int> vertices,
-               double margin) {
-  Aabb box;
-  for (int v : vertices) {
-    box.expand(Eigen::Vector3d(start.row(v)));
-    box.expand(Eigen::Vector3d(end.row(v)));
-  }
-  box.inflate(margin);
-  return box;
-}
-
 Eigen::Vector3d rest_position(const Model& model, int collision_vertex) {
   const CollisionMesh& mesh = model.collision();
   return model.bodies()[mesh.vertex_body[collision_vertex]].rest.row(
@@ -31,13 +20,16 @@ bool on_kinematic_body(const Model& model, int collision_vertex) {
   return is_kinematic(model.bodies()[model.collision().vertex_body[collision_vertex]]);
 }
 
-void add_point_triangle_candidates(const Model& model, const Vertices& start, const Vertices& end,
-                                   double margin, PrimitiveTrees& faces,
+// Only kinematic bodies whose box reaches the free primitives' look among them.
+void add_point_triangle_candidates(const Model& model, const std::vector<Aabb>& vertex_boxes,
+                                   const std::vector<char>& reaches, PrimitiveTrees& faces,
                                    std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
   for (int v = 0; v < mesh.size(); ++v) {
     const int body_v = mesh.vertex_body[v];
-    faces.query(on_kinematic_body(model, v), swept_box(start, end, {v}, margin), [&](int f) {
+    const bool kinematic = on_kinematic_body(model, v);
+    if (kinematic && !reaches[body_v]) continue;
+    faces.query(kinematic, vertex_boxes[v], [&](int f) {
       const auto& t = mesh.faces[f];
       if (t[0] == v || t[1] == v || t[2] == v) return;
       const double mu = model.pair_friction(body_v, mesh.vertex_body[t[0]]);
@@ -49,13 +41,14 @@ void add_point_triangle_candidates(const Model& model, const Vertices& start, co
   }
 }
 
-void add_edge_edge_candidates(const Model& model, PrimitiveTrees& edges,
-                              std::vector<ContactCandidate>& candidates) {
+void add_edge_edge_candidates(const Model& model, const std::vector<char>& reaches,
+                              PrimitiveTrees& edges, std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
   auto kinematic = [&](int edge) { return on_kinematic_body(model, mesh.edges[edge][0]); };
   for (int a = 0; a < static_cast<int>(mesh.edges.size()); ++a) {
     const auto& ea = mesh.edges[a];
     const int body_a = mesh.vertex_body[ea[0]];
+    if (kinematic(a) && !reaches[body_a]) continue;
     // Each unordered pair once: found from its lower index when both trees hold the other
     // edge, from the kinematic edge's side otherwise (only it looks in the smaller tree).
     edges.query(kinematic(a), edges.box(a), [&](int b) {
@@ -83,24 +76,48 @@ std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const 
   const CollisionMesh& mesh = model.collision();
   // Two boxes each inflated by half of d_hat overlap whenever their contents come within d_hat.
   const double margin = 0.5 * d_hat * (1.0 + 1e-9);
+  // Each vertex's swept box, and each body's. A primitive's box is the union of its vertices'
+  // (inflating after the union or before gives the same bits: rounding is monotonic).
+  vertex_boxes_.resize(static_cast<std::size_t>(mesh.size()));
+  body_boxes_.assign(model.bodies().size(), Aabb{});
+  for (int v = 0; v < mesh.size(); ++v) {
+    Aabb& box = vertex_boxes_[v];
+    box = Aabb{};
+    box.expand(Eigen::Vector3d(start.row(v)));
+    box.expand(Eigen::Vector3d(end.row(v)));
+    box.inflate(margin);
+    body_boxes_[mesh.vertex_body[v]].expand(box);
+  }
+  // Whether each body's box reaches the free primitives' boxes (it matters for kinematic ones).
+  const auto reaching = [&](const PrimitiveTrees& trees, std::vector<char>& reaches) {
+    reaches.resize(body_boxes_.size());
+    for (std::size_t b = 0; b < body_boxes_.size(); ++b) {
+      reaches[b] = body_boxes_[b].overlaps(trees.free_bounds());
+    }
+  };
   boxes_.resize(mesh.faces.size());
   first_vertex_.resize(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& t = mesh.faces[f];
-    boxes_[f] = swept_box(start, end, {t[0], t[1], t[2]}, margin);
+    boxes_[f] = vertex_boxes_[t[0]];
+    boxes_[f].expand(vertex_boxes_[t[1]]);
+    boxes_[f].expand(vertex_boxes_[t[2]]);
     first_vertex_[f] = t[0];
   }
   faces_.update(model, boxes_, first_vertex_);
+  reaching(faces_, reaches_);
   std::vector<ContactCandidate> candidates;
-  add_point_triangle_candidates(model, start, end, margin, faces_, candidates);
+  add_point_triangle_candidates(model, vertex_boxes_, reaches_, faces_, candidates);
   boxes_.resize(mesh.edges.size());
   first_vertex_.resize(mesh.edges.size());
   for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
-    boxes_[e] = swept_box(start, end, {mesh.edges[e][0], mesh.edges[e][1]}, margin);
+    boxes_[e] = vertex_boxes_[mesh.edges[e][0]];
+    boxes_[e].expand(vertex_boxes_[mesh.edges[e][1]]);
     first_vertex_[e] = mesh.edges[e][0];
   }
   edges_.update(model, boxes_, first_vertex_);
-  add_edge_edge_candidates(model, edges_, candidates);
+  reaching(edges_, reaches_);
+  add_edge_edge_candidates(model, reaches_, edges_, candidates);
   return candidates;
 }
 

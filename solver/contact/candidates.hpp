@@ -39,7 +39,11 @@ class ContactBroadPhase {
  private:
   PrimitiveTrees faces_;
   PrimitiveTrees edges_;
-  std::vector<Aabb> boxes_;  // scratch
+  // Scratch of one call.
+  std::vector<Aabb> vertex_boxes_;
+  std::vector<Aabb> body_boxes_;
+  std::vector<char> reaches_;
+  std::vector<Aabb> boxes_;
   std::vector<int> first_vertex_;
 };
 

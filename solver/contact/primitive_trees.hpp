@@ -19,6 +19,8 @@ class PrimitiveTrees {
               const std::vector<int>& first_vertex);
 
   const Aabb& box(int i) const { return boxes_[static_cast<std::size_t>(i)]; }
+  // The union of the free (not kinematic) primitives' boxes.
+  const Aabb& free_bounds() const { return free_bounds_; }
 
   // Calls visit(primitive index) for each box of the right tree that overlaps `box`.
   template <typename Visit>
@@ -36,6 +38,7 @@ class PrimitiveTrees {
   Bvh free_;
   std::vector<int> free_index_;  // the free tree's boxes as primitive indices
   std::vector<Aabb> free_boxes_;
+  Aabb free_bounds_;
 };
 
 }  // namespace grip::solver
