@@ -41,14 +41,27 @@ void add_point_triangle_candidates(const Model& model, const std::vector<Aabb>& 
   }
 }
 
+// A free edge keeps only free partners (its kinematic ones are found from their side): one
+// whose body touches no free body's edges (a rigid object's among a hand's links) skips its query.
 void add_edge_edge_candidates(const Model& model, const std::vector<char>& reaches,
                               PrimitiveTrees& edges, std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
   auto kinematic = [&](int edge) { return on_kinematic_body(model, mesh.edges[edge][0]); };
+  const int body_count = static_cast<int>(model.bodies().size());
+  std::vector<char> has_free_edges(body_count, 0);
+  for (const auto& e : mesh.edges) {
+    if (!on_kinematic_body(model, e[0])) has_free_edges[mesh.vertex_body[e[0]]] = 1;
+  }
+  std::vector<char> touches_free_edges(body_count, 0);
+  for (int b = 0; b < body_count; ++b) {
+    for (int c = 0; c < body_count; ++c) {
+      if (has_free_edges[c] && model.may_touch(b, c)) touches_free_edges[b] = 1;
+    }
+  }
   for (int a = 0; a < static_cast<int>(mesh.edges.size()); ++a) {
     const auto& ea = mesh.edges[a];
     const int body_a = mesh.vertex_body[ea[0]];
-    if (kinematic(a) && !reaches[body_a]) continue;
+    if (!(kinematic(a) ? reaches[body_a] : touches_free_edges[body_a])) continue;
     // Each unordered pair once: found from its lower index when both trees hold the other
     // edge, from the kinematic edge's side otherwise (only it looks in the smaller tree).
     edges.query(kinematic(a), edges.box(a), [&](int b) {
