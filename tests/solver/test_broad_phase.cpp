@@ -81,20 +81,74 @@ void expect_same(const std::vector<ContactCandidate>& a, const std::vector<Conta
   }
 }
 
-// Two kinematic jaws, an affine box between them and a soft (FEM) box on top, 1 mm apart.
-SceneDescription jaws_box_and_soft_box() {
+using SortedPair = std::pair<bool, std::array<int, 4>>;
+
+// An edge-edge pair's two edges in ascending order.
+SortedPair normalized(bool edge_edge, std::array<int, 4> v) {
+  if (edge_edge && std::make_pair(v[2], v[3]) < std::make_pair(v[0], v[1])) {
+    v = {v[2], v[3], v[0], v[1]};
+  }
+  return {edge_edge, v};
+}
+
+// Every pair the broad phase promises, by brute force over all pairs of primitives, sorted.
+std::vector<SortedPair> brute_force(const Model& model, const Vertices& start, const Vertices& end,
+                                    double d_hat) {
+  const CollisionMesh& mesh = model.collision();
+  const auto box = [&](std::initializer_list<int> vertices) {
+    Aabb b;
+    for (int v : vertices) {
+      b.expand(Eigen::Vector3d(start.row(v)));
+      b.expand(Eigen::Vector3d(end.row(v)));
+    }
+    b.inflate(0.5 * d_hat * (1.0 + 1e-9));
+    return b;
+  };
+  std::vector<SortedPair> pairs;
+  for (int v = 0; v < mesh.size(); ++v) {
+    for (const auto& t : mesh.faces) {
+      if (t[0] == v || t[1] == v || t[2] == v) continue;
+      if (!model.may_touch(mesh.vertex_body[v], mesh.vertex_body[t[0]])) continue;
+      if (box({v}).overlaps(box({t[0], t[1], t[2]})))
+        pairs.push_back({false, {v, t[0], t[1], t[2]}});
+    }
+  }
+  for (std::size_t a = 0; a < mesh.edges.size(); ++a) {
+    for (std::size_t b = a + 1; b < mesh.edges.size(); ++b) {
+      const auto &ea = mesh.edges[a], &eb = mesh.edges[b];
+      if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
+      if (!model.may_touch(mesh.vertex_body[ea[0]], mesh.vertex_body[eb[0]])) continue;
+      if (box({ea[0], ea[1]}).overlaps(box({eb[0], eb[1]}))) {
+        pairs.push_back(normalized(true, {ea[0], ea[1], eb[0], eb[1]}));
+      }
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+std::vector<SortedPair> as_sorted(const std::vector<ContactCandidate>& candidates) {
+  std::vector<SortedPair> pairs;
+  for (const ContactCandidate& c : candidates) pairs.push_back(normalized(c.edge_edge, c.vertex));
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+// Two kinematic jaws and an affine box between them, 1 mm apart; with `soft`, a soft (FEM) box
+// on top of it too.
+SceneDescription jaws_and_boxes(bool soft) {
   using testing::rigid_box;
   SceneDescription scene;
   const Eigen::Vector3d size(0.02, 0.02, 0.02);
   scene.bodies = {rigid_box("left", BodyType::kKinematic, size, {-0.021, 0, 0}),
                   rigid_box("right", BodyType::kKinematic, size, {0.021, 0, 0}),
-                  rigid_box("box", BodyType::kAffine, size, {0, 0, 0}),
-                  testing::soft_box("soft", size, 0.01, {0, 0, 0.021}, 1e6)};
+                  rigid_box("box", BodyType::kAffine, size, {0, 0, 0})};
+  if (soft) scene.bodies.push_back(testing::soft_box("soft", size, 0.01, {0, 0, 0.021}, 1e6));
   return scene;
 }
 
-TEST(ContactBroadPhase, KeptBetweenCallsFindsWhatAFreshOneFinds) {
-  const std::shared_ptr<const Model> model = Model::build(jaws_box_and_soft_box());
+void expect_kept_finds_what_fresh_finds(const SceneDescription& scene) {
+  const std::shared_ptr<const Model> model = Model::build(scene);
   const Vertices rest = Environment(model).collision_positions();
   const std::vector<int>& vertex_body = model->collision().vertex_body;
   std::mt19937 rng(5);
@@ -120,12 +174,19 @@ TEST(ContactBroadPhase, KeptBetweenCallsFindsWhatAFreshOneFinds) {
     const double d_hat = frame % 5 == 4 ? 3e-3 : 1.5e-3;
     const std::vector<ContactCandidate> fresh = find_contact_candidates(*model, start, end, d_hat);
     expect_same(kept.find(*model, start, end, d_hat), fresh);
+    EXPECT_EQ(as_sorted(fresh), brute_force(*model, start, end, d_hat)) << "frame " << frame;
     expect_same(kept.find(*model, end, end, d_hat),
                 find_contact_candidates(*model, end, end, d_hat));
     nonempty += fresh.empty() ? 0 : 1;
     start = end;
   }
   EXPECT_GT(nonempty, 30);
+}
+
+TEST(ContactBroadPhase, KeptBetweenCallsFindsWhatAFreshOneFinds) {
+  expect_kept_finds_what_fresh_finds(jaws_and_boxes(true));
+  // Only kinematic bodies and one rigid body: no edge of the free body looks among the others.
+  expect_kept_finds_what_fresh_finds(jaws_and_boxes(false));
 }
 
 }  // namespace
