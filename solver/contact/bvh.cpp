@@ -6,45 +6,63 @@
 namespace grip::solver {
 
 void Bvh::build(std::span<const Aabb> boxes) {
-  nodes_.clear();
-  order_.resize(boxes.size());
+  if (boxes.size() != order_.size()) {
+    order_.resize(boxes.size());
+    nodes_.clear();
+    if (!boxes.empty()) lay_out(0, static_cast<int>(boxes.size()));
+    leaf_boxes_.resize(boxes.size());
+    keys_.resize(boxes.size());
+  }
+  boxes_ = boxes;
   std::iota(order_.begin(), order_.end(), 0);
-  if (boxes.empty()) return;
-  nodes_.reserve(2 * boxes.size() / kLeafSize + 2);
-  build_node(boxes, 0, static_cast<int>(boxes.size()));
-  leaf_boxes_.resize(boxes.size());
-  for (std::size_t i = 0; i < order_.size(); ++i) leaf_boxes_[i] = boxes[order_[i]];
+  ++generation_;
 }
 
-// Median split along the longest axis of the centres' extent. The depth stays below
-// log2(n / kLeafSize) + 1, far inside the query stack of 64.
-int Bvh::build_node(std::span<const Aabb> boxes, int first, int count) {
+// Median splits: the depth stays below log2(n / kLeafSize) + 1, far inside the query stack of
+// 64. Returns the index after the subtree's nodes.
+int Bvh::lay_out(int first, int count) {
   const int index = static_cast<int>(nodes_.size());
-  nodes_.emplace_back();
+  nodes_.push_back(Node{Aabb{}, first, count, -1});
+  if (count <= kLeafSize) return index + 1;
+  const int half = count / 2;
+  const int right = lay_out(first, half);
+  nodes_[index].right = right;
+  return lay_out(first + half, count - half);
+}
+
+void Bvh::open(Node& node) {
   Aabb bounds;
   Aabb centers;
-  for (int i = first; i < first + count; ++i) {
-    bounds.expand(boxes[order_[i]]);
-    centers.expand(boxes[order_[i]].center());
+  for (int i = node.first; i < node.first + node.count; ++i) {
+    const Aabb& box = boxes_[order_[i]];
+    bounds.expand(box);
+    centers.expand(box.center());
   }
-  if (count <= kLeafSize) {
-    nodes_[index] = Node{bounds, first, count, -1};
-    return index;
+  node.box = bounds;
+  if (node.count <= kLeafSize) {
+    for (int i = node.first; i < node.first + node.count; ++i) leaf_boxes_[i] = boxes_[order_[i]];
+  } else {
+    (centers.max - centers.min).maxCoeff(&node.axis);
   }
-  int axis = 0;
-  (centers.max - centers.min).maxCoeff(&axis);
-  const int half = count / 2;
-  // Ties broken by index so the tree does not depend on the sort's implementation.
-  std::nth_element(order_.begin() + first, order_.begin() + first + half,
-                   order_.begin() + first + count, [&](int a, int b) {
-                     const double ca = boxes[a].center()[axis];
-                     const double cb = boxes[b].center()[axis];
-                     return ca < cb || (ca == cb && a < b);
-                   });
-  const int left = build_node(boxes, first, half);
-  const int right = build_node(boxes, first + half, count - half);
-  nodes_[index] = Node{bounds, left, 0, right};
-  return index;
+  node.opened = generation_;
+}
+
+// Along the longest axis of the centres' extent, the lower half of the centres to the first
+// child.
+void Bvh::split(Node& node) {
+  const int first = node.first;
+  const int count = node.count;
+  const int axis = node.axis;
+  Key* keys = keys_.data() + first;
+  for (int i = 0; i < count; ++i) {
+    keys[i] = {boxes_[order_[first + i]].center()[axis], order_[first + i]};
+  }
+  // Ties broken by index so the split does not depend on the sort's implementation.
+  std::nth_element(keys, keys + count / 2, keys + count, [](const Key& a, const Key& b) {
+    return a.center < b.center || (a.center == b.center && a.box < b.box);
+  });
+  for (int i = 0; i < count; ++i) order_[first + i] = keys[i].box;
+  node.split = generation_;
 }
 
 }  // namespace grip::solver

@@ -3,24 +3,12 @@
 #include <algorithm>
 
 #include "solver/body/body.hpp"
-#include "solver/contact/bvh.hpp"
 #include "solver/kernels/edge_edge_distance.hpp"
 #include "solver/kernels/edge_edge_mollifier.hpp"
 #include "solver/kernels/point_triangle_distance.hpp"
 
 namespace grip::solver {
 namespace {
-
-Aabb swept_box(const Vertices& start, const Vertices& end, std::initializer_list<int> vertices,
-               double margin) {
-  Aabb box;
-  for (int v : vertices) {
-    box.expand(Eigen::Vector3d(start.row(v)));
-    box.expand(Eigen::Vector3d(end.row(v)));
-  }
-  box.inflate(margin);
-  return box;
-}
 
 Eigen::Vector3d rest_position(const Model& model, int collision_vertex) {
   const CollisionMesh& mesh = model.collision();
@@ -32,75 +20,16 @@ bool on_kinematic_body(const Model& model, int collision_vertex) {
   return is_kinematic(model.bodies()[model.collision().vertex_body[collision_vertex]]);
 }
 
-// One kind of primitive (faces or edges) in two trees. Kinematic bodies never touch each other
-// (a hand's links, a gripper's jaws), and they can hold most of the primitives: theirs look
-// only among the other bodies' primitives, in a second, smaller tree over those.
-class PrimitiveTrees {
- public:
-  // boxes[i] and first_vertex[i]: primitive i's swept box and one of its collision vertices.
-  PrimitiveTrees(const Model& model, std::vector<Aabb> boxes, const std::vector<int>& first_vertex)
-      : boxes_(std::move(boxes)) {
-    all_.build(boxes_);
-    std::vector<Aabb> free_boxes;
-    for (std::size_t i = 0; i < boxes_.size(); ++i) {
-      if (on_kinematic_body(model, first_vertex[i])) continue;
-      free_index_.push_back(static_cast<int>(i));
-      free_boxes.push_back(boxes_[i]);
-    }
-    free_.build(free_boxes);
-  }
-
-  const Aabb& box(int i) const { return boxes_[static_cast<std::size_t>(i)]; }
-
-  // Calls visit(primitive index) for each box of the right tree that overlaps `box`.
-  template <typename Visit>
-  void query(bool from_kinematic, const Aabb& box, Visit&& visit) const {
-    if (from_kinematic) {
-      free_.query(box, [&](int k) { visit(free_index_[static_cast<std::size_t>(k)]); });
-    } else {
-      all_.query(box, visit);
-    }
-  }
-
- private:
-  std::vector<Aabb> boxes_;
-  Bvh all_;
-  Bvh free_;
-  std::vector<int> free_index_;  // the free tree's boxes as primitive indices
-};
-
-PrimitiveTrees face_trees(const Model& model, const Vertices& start, const Vertices& end,
-                          double margin) {
+// Only kinematic bodies whose box reaches the free primitives' look among them.
+void add_point_triangle_candidates(const Model& model, const std::vector<Aabb>& vertex_boxes,
+                                   const std::vector<char>& reaches, PrimitiveTrees& faces,
+                                   std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
-  std::vector<Aabb> boxes(mesh.faces.size());
-  std::vector<int> first(mesh.faces.size());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const auto& t = mesh.faces[f];
-    boxes[f] = swept_box(start, end, {t[0], t[1], t[2]}, margin);
-    first[f] = t[0];
-  }
-  return PrimitiveTrees(model, std::move(boxes), first);
-}
-
-PrimitiveTrees edge_trees(const Model& model, const Vertices& start, const Vertices& end,
-                          double margin) {
-  const CollisionMesh& mesh = model.collision();
-  std::vector<Aabb> boxes(mesh.edges.size());
-  std::vector<int> first(mesh.edges.size());
-  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
-    boxes[e] = swept_box(start, end, {mesh.edges[e][0], mesh.edges[e][1]}, margin);
-    first[e] = mesh.edges[e][0];
-  }
-  return PrimitiveTrees(model, std::move(boxes), first);
-}
-
-void add_point_triangle_candidates(const Model& model, const Vertices& start, const Vertices& end,
-                                   double margin, std::vector<ContactCandidate>& candidates) {
-  const CollisionMesh& mesh = model.collision();
-  const PrimitiveTrees faces = face_trees(model, start, end, margin);
   for (int v = 0; v < mesh.size(); ++v) {
     const int body_v = mesh.vertex_body[v];
-    faces.query(on_kinematic_body(model, v), swept_box(start, end, {v}, margin), [&](int f) {
+    const bool kinematic = on_kinematic_body(model, v);
+    if (kinematic && !reaches[body_v]) continue;
+    faces.query(kinematic, vertex_boxes[v], [&](int f) {
       const auto& t = mesh.faces[f];
       if (t[0] == v || t[1] == v || t[2] == v) return;
       const double mu = model.pair_friction(body_v, mesh.vertex_body[t[0]]);
@@ -112,14 +41,27 @@ void add_point_triangle_candidates(const Model& model, const Vertices& start, co
   }
 }
 
-void add_edge_edge_candidates(const Model& model, const Vertices& start, const Vertices& end,
-                              double margin, std::vector<ContactCandidate>& candidates) {
+// A free edge keeps only free partners (its kinematic ones are found from their side): one
+// whose body touches no free body's edges (a rigid object's among a hand's links) skips its query.
+void add_edge_edge_candidates(const Model& model, const std::vector<char>& reaches,
+                              PrimitiveTrees& edges, std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
-  const PrimitiveTrees edges = edge_trees(model, start, end, margin);
   auto kinematic = [&](int edge) { return on_kinematic_body(model, mesh.edges[edge][0]); };
+  const int body_count = static_cast<int>(model.bodies().size());
+  std::vector<char> has_free_edges(body_count, 0);
+  for (const auto& e : mesh.edges) {
+    if (!on_kinematic_body(model, e[0])) has_free_edges[mesh.vertex_body[e[0]]] = 1;
+  }
+  std::vector<char> touches_free_edges(body_count, 0);
+  for (int b = 0; b < body_count; ++b) {
+    for (int c = 0; c < body_count; ++c) {
+      if (has_free_edges[c] && model.may_touch(b, c)) touches_free_edges[b] = 1;
+    }
+  }
   for (int a = 0; a < static_cast<int>(mesh.edges.size()); ++a) {
     const auto& ea = mesh.edges[a];
     const int body_a = mesh.vertex_body[ea[0]];
+    if (!(kinematic(a) ? reaches[body_a] : touches_free_edges[body_a])) continue;
     // Each unordered pair once: found from its lower index when both trees hold the other
     // edge, from the kinematic edge's side otherwise (only it looks in the smaller tree).
     edges.query(kinematic(a), edges.box(a), [&](int b) {
@@ -142,14 +84,59 @@ void add_edge_edge_candidates(const Model& model, const Vertices& start, const V
 
 }  // namespace
 
-std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
+std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const Vertices& start,
                                                       const Vertices& end, double d_hat) {
+  const CollisionMesh& mesh = model.collision();
   // Two boxes each inflated by half of d_hat overlap whenever their contents come within d_hat.
   const double margin = 0.5 * d_hat * (1.0 + 1e-9);
+  // Each vertex's swept box, and each body's. A primitive's box is the union of its vertices'
+  // (inflating after the union or before gives the same bits: rounding is monotonic).
+  vertex_boxes_.resize(static_cast<std::size_t>(mesh.size()));
+  body_boxes_.assign(model.bodies().size(), Aabb{});
+  for (int v = 0; v < mesh.size(); ++v) {
+    Aabb& box = vertex_boxes_[v];
+    box = Aabb{};
+    box.expand(Eigen::Vector3d(start.row(v)));
+    box.expand(Eigen::Vector3d(end.row(v)));
+    box.inflate(margin);
+    body_boxes_[mesh.vertex_body[v]].expand(box);
+  }
+  // Whether each body's box reaches the free primitives' boxes (it matters for kinematic ones).
+  const auto reaching = [&](const PrimitiveTrees& trees, std::vector<char>& reaches) {
+    reaches.resize(body_boxes_.size());
+    for (std::size_t b = 0; b < body_boxes_.size(); ++b) {
+      reaches[b] = body_boxes_[b].overlaps(trees.free_bounds());
+    }
+  };
+  boxes_.resize(mesh.faces.size());
+  first_vertex_.resize(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    boxes_[f] = vertex_boxes_[t[0]];
+    boxes_[f].expand(vertex_boxes_[t[1]]);
+    boxes_[f].expand(vertex_boxes_[t[2]]);
+    first_vertex_[f] = t[0];
+  }
+  faces_.update(model, boxes_, first_vertex_);
+  reaching(faces_, reaches_);
   std::vector<ContactCandidate> candidates;
-  add_point_triangle_candidates(model, start, end, margin, candidates);
-  add_edge_edge_candidates(model, start, end, margin, candidates);
+  add_point_triangle_candidates(model, vertex_boxes_, reaches_, faces_, candidates);
+  boxes_.resize(mesh.edges.size());
+  first_vertex_.resize(mesh.edges.size());
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    boxes_[e] = vertex_boxes_[mesh.edges[e][0]];
+    boxes_[e].expand(vertex_boxes_[mesh.edges[e][1]]);
+    first_vertex_[e] = mesh.edges[e][0];
+  }
+  edges_.update(model, boxes_, first_vertex_);
+  reaching(edges_, reaches_);
+  add_edge_edge_candidates(model, reaches_, edges_, candidates);
   return candidates;
+}
+
+std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
+                                                      const Vertices& end, double d_hat) {
+  return ContactBroadPhase().find(model, start, end, d_hat);
 }
 
 std::pair<std::vector<std::array<int, 4>>, std::vector<std::array<int, 4>>> self_pairs_near_at_rest(

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "solver/contact/primitive_trees.hpp"
 #include "solver/model.hpp"
 
 namespace grip::solver {
@@ -27,6 +28,24 @@ struct ContactCandidate {
 // out.
 std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
                                                       const Vertices& end, double d_hat);
+
+// The broad phase kept from call to call (one per environment), so that its trees keep their
+// storage and shape; it finds exactly what find_contact_candidates finds.
+class ContactBroadPhase {
+ public:
+  std::vector<ContactCandidate> find(const Model& model, const Vertices& start, const Vertices& end,
+                                     double d_hat);
+
+ private:
+  PrimitiveTrees faces_;
+  PrimitiveTrees edges_;
+  // Scratch of one call.
+  std::vector<Aabb> vertex_boxes_;
+  std::vector<Aabb> body_boxes_;
+  std::vector<char> reaches_;
+  std::vector<Aabb> boxes_;
+  std::vector<int> first_vertex_;
+};
 
 // The FEM bodies' own pairs within d_hat at rest, point-triangle then edge-edge, each sorted:
 // what Model keeps in CollisionMesh.

@@ -51,7 +51,7 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
 const std::vector<ContactCandidate>& NewtonSolver::near(NewtonStep& step, const Vertices& x) {
   if (!step.near) {
     const StageTimer timer(stages_.broad_phase);
-    step.near = find_contact_candidates(model_, x, x, model_.sim().d_hat);
+    step.near = broad_phase_.find(model_, x, x, model_.sim().d_hat);
   }
   return *step.near;
 }
@@ -212,7 +212,7 @@ bool NewtonSolver::filter_step(const State& state, NewtonStep& step, const Syste
   std::vector<ContactCandidate> swept;
   {
     const StageTimer timer(stages_.broad_phase);
-    swept = find_contact_candidates(model_, system.x, x_end, sim.d_hat);
+    swept = broad_phase_.find(model_, system.x, x_end, sim.d_hat);
   }
   {
     const StageTimer timer(stages_.ccd);

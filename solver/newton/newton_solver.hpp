@@ -109,6 +109,7 @@ class NewtonSolver {
 
   const Model& model_;
   IncrementalPotential potential_;
+  ContactBroadPhase broad_phase_;
   SparseAssembly assembly_;
   SparseCholesky cholesky_;
   std::shared_ptr<LinearSystemSolver> linear_solver_;  // null: cholesky_ solves every system

@@ -1,0 +1,193 @@
+// The broad phase kept from call to call finds exactly what a fresh one finds, in the same
+// order: its lazily built trees answer as whole trees, whatever was built and asked before.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "scene_builders.hpp"
+#include "solver/body/body.hpp"
+#include "solver/contact/bvh.hpp"
+#include "solver/contact/candidates.hpp"
+
+namespace grip::solver {
+namespace {
+
+std::vector<int> found(Bvh& bvh, const Aabb& query) {
+  std::vector<int> hits;
+  bvh.query(query, [&](int i) { hits.push_back(i); });
+  return hits;
+}
+
+Aabb random_box(std::mt19937& rng, double size) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Aabb box;
+  box.expand(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
+  box.inflate(size * unit(rng));
+  return box;
+}
+
+TEST(Bvh, LazyTreeAnswersAsTheWholeTreeOverMovingBoxes) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-1e-3, 1e-3);
+  for (const int count : {1, 4, 5, 9, 300}) {
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < count; ++i) boxes.push_back(random_box(rng, 0.02));
+    Bvh kept;
+    for (int frame = 0; frame < 20; ++frame) {
+      // Some frames move every box, some a tenth of them, some none.
+      for (int i = 0; i < count; ++i) {
+        if (frame % 3 == 2 || (frame % 3 == 1 && i % 10 != 0)) continue;
+        const Eigen::Vector3d shift(jitter(rng), jitter(rng), jitter(rng));
+        boxes[i].min += shift;
+        boxes[i].max += shift;
+      }
+      std::vector<Aabb> queries;
+      for (int q = 0; q < 30; ++q) queries.push_back(random_box(rng, 0.1));
+      Aabb everything;
+      everything.expand(Eigen::Vector3d::Constant(-1.0));
+      everything.expand(Eigen::Vector3d::Constant(2.0));
+      // The whole tree: a first query reaching every node builds all of it.
+      Bvh whole;
+      whole.build(boxes);
+      const std::vector<int> all = found(whole, everything);
+      ASSERT_EQ(static_cast<int>(all.size()), count);
+      kept.build(boxes);
+      for (int q = static_cast<int>(queries.size()) - 1; q >= 0; --q) {
+        const std::vector<int> hits = found(kept, queries[q]);
+        EXPECT_EQ(hits, found(whole, queries[q])) << count << " boxes, frame " << frame;
+        std::vector<int> brute;
+        for (int i = 0; i < count; ++i) {
+          if (boxes[i].overlaps(queries[q])) brute.push_back(i);
+        }
+        std::vector<int> sorted = hits;
+        std::sort(sorted.begin(), sorted.end());
+        EXPECT_EQ(sorted, brute);
+      }
+      EXPECT_EQ(found(kept, everything), all);
+    }
+  }
+}
+
+void expect_same(const std::vector<ContactCandidate>& a, const std::vector<ContactCandidate>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].edge_edge, b[i].edge_edge) << i;
+    EXPECT_EQ(a[i].vertex, b[i].vertex) << i;
+    EXPECT_EQ(a[i].friction, b[i].friction) << i;
+    EXPECT_EQ(a[i].mollifier_eps, b[i].mollifier_eps) << i;
+    EXPECT_EQ(a[i].near_at_rest, b[i].near_at_rest) << i;
+  }
+}
+
+using SortedPair = std::pair<bool, std::array<int, 4>>;
+
+// An edge-edge pair's two edges in ascending order.
+SortedPair normalized(bool edge_edge, std::array<int, 4> v) {
+  if (edge_edge && std::make_pair(v[2], v[3]) < std::make_pair(v[0], v[1])) {
+    v = {v[2], v[3], v[0], v[1]};
+  }
+  return {edge_edge, v};
+}
+
+// Every pair the broad phase promises, by brute force over all pairs of primitives, sorted.
+std::vector<SortedPair> brute_force(const Model& model, const Vertices& start, const Vertices& end,
+                                    double d_hat) {
+  const CollisionMesh& mesh = model.collision();
+  const auto box = [&](std::initializer_list<int> vertices) {
+    Aabb b;
+    for (int v : vertices) {
+      b.expand(Eigen::Vector3d(start.row(v)));
+      b.expand(Eigen::Vector3d(end.row(v)));
+    }
+    b.inflate(0.5 * d_hat * (1.0 + 1e-9));
+    return b;
+  };
+  std::vector<SortedPair> pairs;
+  for (int v = 0; v < mesh.size(); ++v) {
+    for (const auto& t : mesh.faces) {
+      if (t[0] == v || t[1] == v || t[2] == v) continue;
+      if (!model.may_touch(mesh.vertex_body[v], mesh.vertex_body[t[0]])) continue;
+      if (box({v}).overlaps(box({t[0], t[1], t[2]})))
+        pairs.push_back({false, {v, t[0], t[1], t[2]}});
+    }
+  }
+  for (std::size_t a = 0; a < mesh.edges.size(); ++a) {
+    for (std::size_t b = a + 1; b < mesh.edges.size(); ++b) {
+      const auto &ea = mesh.edges[a], &eb = mesh.edges[b];
+      if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
+      if (!model.may_touch(mesh.vertex_body[ea[0]], mesh.vertex_body[eb[0]])) continue;
+      if (box({ea[0], ea[1]}).overlaps(box({eb[0], eb[1]}))) {
+        pairs.push_back(normalized(true, {ea[0], ea[1], eb[0], eb[1]}));
+      }
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+std::vector<SortedPair> as_sorted(const std::vector<ContactCandidate>& candidates) {
+  std::vector<SortedPair> pairs;
+  for (const ContactCandidate& c : candidates) pairs.push_back(normalized(c.edge_edge, c.vertex));
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+// Two kinematic jaws and an affine box between them, 1 mm apart; with `soft`, a soft (FEM) box
+// on top of it too.
+SceneDescription jaws_and_boxes(bool soft) {
+  using testing::rigid_box;
+  SceneDescription scene;
+  const Eigen::Vector3d size(0.02, 0.02, 0.02);
+  scene.bodies = {rigid_box("left", BodyType::kKinematic, size, {-0.021, 0, 0}),
+                  rigid_box("right", BodyType::kKinematic, size, {0.021, 0, 0}),
+                  rigid_box("box", BodyType::kAffine, size, {0, 0, 0})};
+  if (soft) scene.bodies.push_back(testing::soft_box("soft", size, 0.01, {0, 0, 0.021}, 1e6));
+  return scene;
+}
+
+void expect_kept_finds_what_fresh_finds(const SceneDescription& scene) {
+  const std::shared_ptr<const Model> model = Model::build(scene);
+  const Vertices rest = Environment(model).collision_positions();
+  const std::vector<int>& vertex_body = model->collision().vertex_body;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-5e-4, 5e-4);
+  ContactBroadPhase kept;
+  Vertices start = rest;
+  int nonempty = 0;
+  for (int frame = 0; frame < 40; ++frame) {
+    // Each body moves rigidly, the soft one vertex by vertex too; some frames keep the
+    // kinematic bodies or everything where they were.
+    std::vector<Eigen::Vector3d> motion(model->bodies().size());
+    for (auto& m : motion) m = Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng));
+    Vertices end = start;
+    for (int v = 0; v < rest.rows(); ++v) {
+      const int body = vertex_body[v];
+      if (frame % 4 == 3) continue;
+      if (frame % 4 == 2 && is_kinematic(model->bodies()[body])) continue;
+      end.row(v) += motion[body].transpose();
+      if (model->bodies()[body].type == BodyType::kFem) {
+        end.row(v) += 0.2 * Eigen::RowVector3d(jitter(rng), jitter(rng), jitter(rng));
+      }
+    }
+    const double d_hat = frame % 5 == 4 ? 3e-3 : 1.5e-3;
+    const std::vector<ContactCandidate> fresh = find_contact_candidates(*model, start, end, d_hat);
+    expect_same(kept.find(*model, start, end, d_hat), fresh);
+    EXPECT_EQ(as_sorted(fresh), brute_force(*model, start, end, d_hat)) << "frame " << frame;
+    expect_same(kept.find(*model, end, end, d_hat),
+                find_contact_candidates(*model, end, end, d_hat));
+    nonempty += fresh.empty() ? 0 : 1;
+    start = end;
+  }
+  EXPECT_GT(nonempty, 30);
+}
+
+TEST(ContactBroadPhase, KeptBetweenCallsFindsWhatAFreshOneFinds) {
+  expect_kept_finds_what_fresh_finds(jaws_and_boxes(true));
+  // Only kinematic bodies and one rigid body: no edge of the free body looks among the others.
+  expect_kept_finds_what_fresh_finds(jaws_and_boxes(false));
+}
+
+}  // namespace
+}  // namespace grip::solver
