@@ -324,20 +324,18 @@ MujocoOutcome run_mujoco_trial(const geometry::SurfaceMesh& object, double densi
                                const trial::TrialParameters& parameters,
                                const MujocoSettings& settings) {
   const double start = process_cpu_seconds();
-  MujocoOutcome out;
   std::string message;
   mjModel* m = load_model(
       scene_xml(object, density, friction, gripper, pose, opening, parameters, settings), message);
   if (!m) {
+    MujocoOutcome out;
     out.verdict = "load_error";
     out.message = "MuJoCo: " + message;
     return out;
   }
   mjData* d = mj_makeData(m);
-  out.compile_cpu_seconds = process_cpu_seconds() - start;
-  const MujocoOutcome run = Simulation(m, d, parameters, settings).run();
-  const double compiled = start + out.compile_cpu_seconds;
-  out = run;
+  const double compiled = process_cpu_seconds();
+  MujocoOutcome out = Simulation(m, d, parameters, settings).run();
   out.compile_cpu_seconds = compiled - start;
   out.cpu_seconds = process_cpu_seconds() - compiled;
   mj_deleteData(d);
