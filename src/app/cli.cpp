@@ -419,6 +419,27 @@ int main(int argc, char** argv) {
       ->check(kOutputFolder);
   bench_labels->callback(
       [&] { run = [&] { return grip::commands::bench_labels(bench_labels_args); }; });
+  grip::commands::BenchPeerArgs bench_peer_args;
+  CLI::App* bench_peer = bench->add_subcommand(
+      "peer",
+      "The same parallel-jaw candidates validated by grip and by MuJoCo (D1, D2, verdicts)");
+  bench_peer
+      ->add_option("--categories", bench_peer_args.categories,
+                   "Object categories (default: box,cylinder,capsule,bottle,sphere,ellipsoid)")
+      ->delimiter(',');
+  bench_peer->add_option("--seeds", bench_peer_args.seeds, "Shapes per category")
+      ->check(kPositiveCount)
+      ->capture_default_str();
+  bench_peer->add_option("--candidates", bench_peer_args.candidates, "Candidates per shape")
+      ->check(kPositiveCount)
+      ->capture_default_str();
+  bench_peer->add_option("--threads", bench_peer_args.threads, "Threads of grip's trial")
+      ->check(kPositiveCount)
+      ->capture_default_str();
+  bench_peer->add_option("--out", bench_peer_args.out, "Folder for peer.md and peer.csv")
+      ->capture_default_str()
+      ->check(kOutputFolder);
+  bench_peer->callback([&] { run = [&] { return grip::commands::bench_peer(bench_peer_args); }; });
   grip::commands::BenchTrialArgs bench_trial_args;
   CLI::App* bench_trial = bench->add_subcommand(
       "trial", "What one grasp trial costs per gripper x object model, by solver stage");

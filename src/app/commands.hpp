@@ -201,6 +201,17 @@ struct BenchLabelsArgs {
 };
 int bench_labels(const BenchLabelsArgs& args);
 
+// grip bench peer [--categories ...] [--seeds N] [--candidates N] [--threads N] [--out DIR]: the
+// same parallel-jaw candidates validated by grip and by MuJoCo (bench/peer/, docs/results.md).
+struct BenchPeerArgs {
+  std::vector<std::string> categories;  // empty: box, cylinder, capsule, bottle, sphere, ellipsoid
+  int seeds = 4;                        // shapes per category
+  int candidates = 9;                   // per shape
+  int threads = 1;                      // grip's trial
+  std::string out = "out/peer";
+};
+int bench_peer(const BenchPeerArgs& args);
+
 // grip bench trial [--arms ...] [--categories ...] [--candidates N] [--repeats N]
 // [--no-reference] [--out DIR]: what one grasp trial costs per gripper x object model, by solver
 // stage, one trial at a time on one thread (bench/trial/, docs/results.md).

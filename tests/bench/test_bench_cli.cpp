@@ -2,7 +2,9 @@
 // table, CSV and plot and exits 0 when every case holds; an unknown case, a bimanual accuracy
 // scene (there is none) or an unknown sweep is one message and exit status 1; `grip bench
 // labels` refuses an arm without its object model or an unknown category in one line, exit 2,
-// writing nothing, and `grip bench trial` an unknown gripper or no repeats.
+// writing nothing, and `grip bench trial` an unknown gripper or no repeats; `grip bench peer`
+// refuses an unknown category the same way, and writes its files and JSON line (or, built without
+// MuJoCo, says how to install it in one line, exit 1).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -75,6 +77,27 @@ TEST(BenchCli, TrialRefusesAnUnknownGripperAndNoRepeatsInOneLine) {
       << repeats.err;
   EXPECT_EQ(repeats.err.find('\n'), repeats.err.size() - 1) << repeats.err;
   EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(BenchCli, PeerRefusesAnUnknownCategoryAndRunsOrNamesMujoco) {
+  const fs::path out = scratch("peer");
+  const auto category = run_grip("bench peer --categories teacup --out " + out.string());
+  EXPECT_EQ(category.exit_code, 2);
+  EXPECT_NE(category.err.find("teacup"), std::string::npos) << category.err;
+  EXPECT_EQ(category.err.find('\n'), category.err.size() - 1) << category.err;
+  EXPECT_FALSE(fs::exists(out));
+  const auto run =
+      run_grip("bench peer --categories box --seeds 1 --candidates 2 --out " + out.string());
+  if (run.exit_code == 1) {
+    EXPECT_NE(run.err.find("apt-get install libmujoco-dev"), std::string::npos) << run.err;
+    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+    return;
+  }
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("{\"benchmark\": \"peer\""), std::string::npos) << run.out;
+  EXPECT_NE(slurp(out / "peer.csv").find("parallel-jaw,box,"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "peer.md"));
+  fs::remove_all(out);
 }
 
 }  // namespace

@@ -1,0 +1,59 @@
+#pragma once
+// The grasp trial of a rigid-jaw parallel gripper on a rigid object run in MuJoCo (an optional
+// dependency: mujoco_available() says whether this build has it): the same jaws, object mesh,
+// grip force and six-axis gravity test as grip's protocol, and grip's verdict rule.
+#include <array>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "src/geometry/mesh.hpp"
+#include "src/grippers/parallel_gripper.hpp"
+#include "src/trial/trial_parameters.hpp"
+
+namespace grip::bench {
+
+// Whether this build has MuJoCo, and its version ("2.2.2"; empty without it).
+bool mujoco_available();
+std::string mujoco_version();
+
+// MuJoCo's own settings of the peer trial; the protocol's lengths and forces are grip's.
+struct MujocoSettings {
+  double timestep = 0.001;  // s
+  // Contacts as stiff as MuJoCo recommends: their time constant two steps (default 0.02 s), and
+  // their impedance (solimp d0 = dwidth; default 0.9 to 0.95). MuJoCo's contacts are soft
+  // constraints: under a force F they sink about (1 - d) / d F tc^2 / m_eff, with m_eff the
+  // bodies' reduced mass along the normal, so light objects sink most.
+  double contact_time_constant = 0.005;  // s
+  double contact_impedance = 0.99;
+  double jaw_mass = 0.1;        // kg, gravity compensated
+  double closing_margin = 1.0;  // s allowed beyond the jaws' travel at squeeze_speed
+};
+
+struct MujocoOutcome {
+  // "success", or grip's failure kinds: no_contact, lost_contact, displaced, unsettled,
+  // numerical (MuJoCo's instability warning); "load_error" if the model did not compile.
+  std::string verdict;
+  std::string message;  // MuJoCo's error or warning, if any
+  bool settled = false;
+  std::array<double, 2> closing_forces = {0.0, 0.0};         // N per jaw when settled
+  double largest_slip = 0.0;                                 // m, as grip's verdict measures it
+  std::array<Eigen::Isometry3d, 2> fingers;                  // world from finger frame, settled
+  Eigen::Isometry3d object = Eigen::Isometry3d::Identity();  // world from object frame, settled
+  double cpu_seconds = 0.0;          // the process's CPU time for the simulation
+  double compile_cpu_seconds = 0.0;  // and for building the model (the mesh's convex hull)
+};
+
+// One trial: `object` (closed, outward, object frame = world at the start) of `density` and
+// `friction` (combined with the jaws' as grip combines them), the gripper at `pose` (world from
+// gripper frame) with its jaws `opening` apart. Without MuJoCo: verdict "load_error".
+MujocoOutcome run_mujoco_trial(const geometry::SurfaceMesh& object, double density, double friction,
+                               const grippers::ParallelGripper& gripper,
+                               const Eigen::Isometry3d& pose, double opening,
+                               const trial::TrialParameters& parameters,
+                               const MujocoSettings& settings = {});
+
+// The process's CPU time so far (s), every thread's.
+double process_cpu_seconds();
+
+}  // namespace grip::bench

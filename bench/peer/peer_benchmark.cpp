@@ -1,0 +1,138 @@
+#include "bench/peer/peer_benchmark.hpp"
+
+#include <spdlog/spdlog.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "bench/peer/grasp_distances.hpp"
+#include "bench/peer/mujoco_trial.hpp"
+#include "bench/robustness/robustness_trials.hpp"
+#include "src/grippers/gripper_registry.hpp"
+#include "src/objects/object_library.hpp"
+
+namespace grip::bench {
+namespace {
+
+constexpr const char* kGripper = "parallel-jaw";
+
+std::string verdict_text(const io::CandidateRecord& record) {
+  return record.failure == io::FailureKind::kNone ? "success"
+                                                  : std::string(io::to_string(record.failure));
+}
+
+std::vector<std::string> categories_of(const PeerOptions& options) {
+  return options.categories.empty() ? kPeerCategories : options.categories;
+}
+
+// One shape: grip's trials, then MuJoCo's, candidate by candidate.
+void run_shape(const RobustnessSet& set, std::uint64_t seed,
+               const std::vector<synth::Candidate>& candidates, const PeerOptions& options,
+               PeerResult& result) {
+  // The jaws RobustnessScene simulates, and the object as it prepares it.
+  static const grippers::ParallelGripper jaws =
+      grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw);
+  const trial::TrialObject object = make_object(set, seed);
+  const RobustnessScene scene(set, object, options.parameters);
+  const GraspDistances distances(jaws, object.surface, options.parameters);
+  const double friction =
+      std::sqrt(object.material.friction * options.parameters.rigid_finger_friction);
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    PeerTrial t;
+    t.gripper = kGripper;
+    t.category = set.category;
+    t.seed = seed;
+    t.candidate = k;
+    const double start = process_cpu_seconds();
+    const trial::TrialOutcome outcome = scene.run({candidates[k]}, options.threads).front();
+    t.grip_cpu_seconds = process_cpu_seconds() - start;
+    const io::CandidateRecord& record = outcome.result.record;
+    t.grip_verdict = verdict_text(record);
+    t.grip_d1 = record.d1;
+    t.grip_d2 = record.d2;
+    t.grip_slip = robustness_trial(set, seed, k, outcome).largest_slip;
+
+    const synth::HandGrasp& hand = candidates[k].hands.front();
+    const MujocoOutcome m = run_mujoco_trial(object.surface, object.material.density, friction,
+                                             jaws, hand.pose, hand.joints[0], options.parameters);
+    t.mujoco_verdict = m.verdict;
+    t.mujoco_message = m.message;
+    if (m.settled) {
+      const metrics::DistanceMetrics d = distances(m.fingers, m.object);
+      t.mujoco_d1 = d.d1;
+      t.mujoco_d2 = d.d2;
+      t.mujoco_slip = m.largest_slip;
+    }
+    t.mujoco_cpu_seconds = m.cpu_seconds;
+    t.mujoco_compile_cpu_seconds = m.compile_cpu_seconds;
+    result.trials.push_back(std::move(t));
+  }
+}
+
+}  // namespace
+
+bool refused_by_grip(const PeerTrial& trial) {
+  return trial.grip_verdict == io::to_string(io::FailureKind::kInitialPenetration);
+}
+
+void check_peer_options(const PeerOptions& options) {
+  if (options.seeds < 1 || options.candidates < 1) {
+    throw std::invalid_argument("grip bench peer: --seeds and --candidates must be at least 1");
+  }
+  try {
+    for (const std::string& c : categories_of(options)) objects::parse_object_category(c);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("grip bench peer: ") + e.what());
+  }
+}
+
+PeerResult run_peer(const PeerOptions& options) {
+  check_peer_options(options);
+  PeerResult result;
+  result.mujoco_version = mujoco_version();
+  result.parameters = options.parameters;
+  result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(result.threads);
+  const auto start = std::chrono::steady_clock::now();
+  for (const std::string& category : categories_of(options)) {
+    const RobustnessSet set{kGripper, category, false, options.seeds, options.candidates, false};
+    int found = 0;
+    const auto last_seed = static_cast<std::uint64_t>(kSeedsTriedPerShape * options.seeds);
+    for (std::uint64_t seed = 1; seed <= last_seed && found < options.seeds; ++seed) {
+      const std::string shape = category + " seed " + std::to_string(seed);
+      std::vector<synth::Candidate> candidates;
+      arena.execute([&] { candidates = synthesize_candidates(set, seed, options.candidates); });
+      if (candidates.empty()) {
+        result.skipped.push_back(shape);
+        continue;
+      }
+      ++found;
+      if (static_cast<int>(candidates.size()) < options.candidates) {
+        result.shortfalls.push_back(shape + ": " + std::to_string(candidates.size()) + " of " +
+                                    std::to_string(options.candidates) + " candidates");
+      }
+      const auto begin = std::chrono::steady_clock::now();
+      try {
+        arena.execute([&] { run_shape(set, seed, candidates, options, result); });
+      } catch (const std::exception& e) {
+        result.shortfalls.push_back(shape + ": no trials (" + e.what() + ")");
+        spdlog::warn("peer: {}", result.shortfalls.back());
+        continue;
+      }
+      spdlog::info("peer: {} x {}: {} candidate(s) in {:.1f} s", kGripper, shape, candidates.size(),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
+    }
+    if (found < options.seeds) {
+      result.shortfalls.push_back(category + ": " + std::to_string(found) + " of " +
+                                  std::to_string(options.seeds) + " shapes in seeds 1-" +
+                                  std::to_string(last_seed));
+    }
+  }
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace grip::bench

@@ -1,0 +1,69 @@
+#pragma once
+// `grip bench peer`: the GRIP paper's simulator comparison (Table I: IPC against Isaac Gym)
+// reproduced against MuJoCo. The same synthesized parallel-jaw candidates on rigid objects run
+// through grip's trial and through the same scene in MuJoCo (mujoco_trial.hpp); per engine the
+// verdict, D1/D2 at its settled grasp (measured by the same code) and the CPU time.
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "src/trial/trial_parameters.hpp"
+
+namespace grip::bench {
+
+// The default categories: six on which the parallel jaws find candidates.
+inline const std::vector<std::string> kPeerCategories = {"box",    "cylinder", "capsule",
+                                                         "bottle", "sphere",   "ellipsoid"};
+
+struct PeerOptions {
+  std::vector<std::string> categories;  // empty: kPeerCategories
+  int seeds = 4;                        // shapes per category
+  int candidates = 9;                   // per shape
+  int threads = 1;                      // grip's trial; MuJoCo runs on one
+  trial::TrialParameters parameters;
+  std::filesystem::path out = "out/peer";
+};
+
+// One candidate through both engines.
+struct PeerTrial {
+  static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  std::string gripper;
+  std::string category;
+  std::uint64_t seed = 0;
+  std::uint64_t candidate = 0;
+  // grip: "success" or its failure kind; D1/D2 at the settled grasp (NaN if none).
+  std::string grip_verdict;
+  double grip_d1 = nan, grip_d2 = nan;
+  double grip_slip = nan;  // m, the largest over the gravity phases run
+  double grip_cpu_seconds = 0.0;
+  // MuJoCo: the same.
+  std::string mujoco_verdict;
+  std::string mujoco_message;
+  double mujoco_d1 = nan, mujoco_d2 = nan;
+  double mujoco_slip = nan;
+  double mujoco_cpu_seconds = 0.0;
+  double mujoco_compile_cpu_seconds = 0.0;  // building the model, not counted in the above
+};
+
+// grip refused the candidate (its pose intersects the object): not simulated, not compared.
+bool refused_by_grip(const PeerTrial& trial);
+
+struct PeerResult {
+  std::vector<PeerTrial> trials;
+  std::vector<std::string> skipped;     // "box seed 3": no candidate on that shape
+  std::vector<std::string> shortfalls;  // fewer shapes or candidates than asked
+  std::string mujoco_version;
+  int threads = 0;
+  trial::TrialParameters parameters;
+  double wall_seconds = 0.0;
+};
+
+// Throws std::invalid_argument for an unknown category or seeds or candidates below 1.
+void check_peer_options(const PeerOptions& options);
+
+// Requires MuJoCo (mujoco_available()). Logs one line per shape.
+PeerResult run_peer(const PeerOptions& options);
+
+}  // namespace grip::bench
