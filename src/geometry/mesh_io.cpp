@@ -8,13 +8,18 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace grip::geometry {
 namespace {
@@ -48,33 +53,131 @@ std::string next_off_word(std::istream& in) {
   return {};
 }
 
+[[noreturn]] void refuse_off(const std::filesystem::path& file, const std::string& problem) {
+  throw std::runtime_error("cannot read '" + file.string() + "': " + problem);
+}
+
+// A count as CGAL's OFF header reads it, or nothing when the word is not one (CGAL's parser
+// then says what is wrong).
+std::optional<long long> off_count(const std::string& text) {
+  try {
+    std::size_t end = 0;
+    const long long value = std::stoll(text, &end);
+    if (end == text.size()) return value;
+  } catch (const std::logic_error&) {
+  }
+  return std::nullopt;
+}
+
+std::int64_t big_endian_int32(std::istream& in) {
+  unsigned char bytes[4] = {};
+  in.read(reinterpret_cast<char*>(bytes), 4);
+  const std::uint32_t value = (std::uint32_t{bytes[0]} << 24) | (std::uint32_t{bytes[1]} << 16) |
+                              (std::uint32_t{bytes[2]} << 8) | std::uint32_t{bytes[3]};
+  return static_cast<std::int32_t>(value);
+}
+
+// Binary OFF: big-endian int32 counts, float32 vertices, each face its corner count and
+// indices (int32; CGAL's polygon soup reader reads no face color after them). CGAL sizes its arrays
+// by the counts, and each face by its corner count, before reading them: every count is checked
+// against the bytes that would hold it. Faces are scanned only after plain 3D vertices (12 bytes
+// each, "OFF BINARY").
+void check_binary_off(const std::filesystem::path& file, std::istream& in, std::uintmax_t size,
+                      bool plain, bool dimension) {
+  in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  if (dimension) big_endian_int32(in);
+  const std::int64_t vertices = big_endian_int32(in);
+  const std::int64_t faces = big_endian_int32(in);
+  big_endian_int32(in);  // edges
+  if (!in) return;       // too short: CGAL's parser says so
+  if (vertices < 0 || faces < 0 || static_cast<std::uintmax_t>(vertices) > size / 12 ||
+      static_cast<std::uintmax_t>(faces) > size / 4) {
+    refuse_off(file, "its binary header declares " + std::to_string(vertices) + " vertices and " +
+                         std::to_string(faces) + " faces, not counts its " + std::to_string(size) +
+                         " bytes can hold");
+  }
+  if (!plain) return;
+  in.seekg(vertices * 12, std::ios::cur);
+  for (std::int64_t f = 0; f < faces && in; ++f) {
+    const std::int64_t corners = big_endian_int32(in);
+    const std::uintmax_t left = size - std::min<std::uintmax_t>(size, in.tellg());
+    if (in && (corners < 0 || static_cast<std::uintmax_t>(corners) > left / 4)) {
+      refuse_off(file, "face " + std::to_string(f + 1) + " declares " + std::to_string(corners) +
+                           " corners, more than the " + std::to_string(left) +
+                           " bytes after it can hold");
+    }
+    in.seekg(corners * 4, std::ios::cur);
+  }
+}
+
+// ASCII OFF faces are one line each: a corner count, then that many vertex indices (and maybe
+// a color). CGAL sizes a face by its count before it reads an index, so a count beyond what
+// the line lists is refused here. Vertices are read as CGAL reads them: `coordinates`
+// numbers, then the rest of the line.
+void check_ascii_off_faces(const std::filesystem::path& file, std::istream& in, long long vertices,
+                           long long faces, int coordinates) {
+  in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  for (long long v = 0; v < vertices; ++v) {
+    for (int c = 0; c < coordinates; ++c) {
+      if (next_off_word(in).empty()) return;
+    }
+    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  std::string line;
+  for (long long f = 0; f < faces;) {
+    if (!std::getline(in, line)) return;
+    line = line.substr(0, line.find('#'));
+    std::istringstream words(line);
+    std::vector<double> numbers;
+    for (double x = 0; words >> x;) numbers.push_back(x);
+    if (numbers.empty()) continue;
+    ++f;
+    const double corners = numbers.front();
+    if (!(corners >= 0 && corners <= static_cast<double>(numbers.size() - 1))) {
+      char count[32];
+      const bool whole = corners == std::floor(corners) && std::abs(corners) < 1e19;
+      std::snprintf(count, sizeof count, whole ? "%.0f" : "%g", corners);
+      refuse_off(file, "face " + std::to_string(f) + " declares " + count +
+                           " corners but its line lists " + std::to_string(numbers.size() - 1) +
+                           " numbers after the count");
+    }
+  }
+}
+
 // CGAL sizes its arrays by an OFF header's counts before it reads a vertex, so a file of a few
 // bytes that claims a billion vertices would make it allocate gigabytes. Each vertex takes at
-// least 6 bytes ("0 0 0\n") and each face 2.
-void check_off_counts(const std::filesystem::path& file, std::uintmax_t size) {
+// least 6 bytes ("0 0 0\n") and each face 2. Then each face's corner count is checked too.
+void check_off(const std::filesystem::path& file, std::uintmax_t size) {
   std::ifstream in(file, std::ios::binary);
   std::string word = next_off_word(in);
+  int coordinates = 3;
   if (word.size() >= 3 && word.compare(word.size() - 3, 3, "OFF") == 0) {
-    if (word[0] == 'n') next_off_word(in);  // nOFF: the dimension
-    word = next_off_word(in);
-    if (word == "BINARY") return;  // binary counts are not checked here
-  }
-  const auto count = [](const std::string& text) {
-    try {
-      std::size_t end = 0;
-      const long long value = std::stoll(text, &end);
-      return end == text.size() && value > 0 ? static_cast<std::uintmax_t>(value) : 0;
-    } catch (const std::logic_error&) {
-      return std::uintmax_t{0};  // not a count: CGAL's parser says what is wrong
+    const std::string prefix = word.substr(0, word.size() - 3);
+    const bool homogeneous = prefix.find('4') != std::string::npos;
+    const bool dimension = prefix.find('n') != std::string::npos;
+    if (dimension) {  // nOFF: the dimension
+      coordinates =
+          static_cast<int>(std::clamp(off_count(next_off_word(in)).value_or(3), 1LL, 64LL));
     }
-  };
-  const std::uintmax_t vertices = count(word);
-  const std::uintmax_t faces = count(next_off_word(in));
-  if (vertices > size / 6 || faces > size / 2) {
-    throw std::runtime_error("cannot read '" + file.string() + "': its header declares " +
-                             std::to_string(vertices) + " vertices and " + std::to_string(faces) +
-                             " faces, more than its " + std::to_string(size) + " bytes can hold");
+    coordinates += homogeneous ? 1 : 0;
+    const std::streampos header = in.tellg();
+    if (next_off_word(in) == "BINARY") {
+      return check_binary_off(file, in, size, prefix.empty(), dimension);
+    }
+    in.seekg(header);
+    word = next_off_word(in);
   }
+  const long long vertices = off_count(word).value_or(0);
+  const long long faces = off_count(next_off_word(in)).value_or(0);
+  const auto fits = [](long long count, std::uintmax_t most) {
+    return count <= 0 || static_cast<std::uintmax_t>(count) <= most;
+  };
+  if (!fits(vertices, size / 6) || !fits(faces, size / 2)) {
+    refuse_off(file, "its header declares " + std::to_string(vertices) + " vertices and " +
+                         std::to_string(faces) + " faces, more than its " + std::to_string(size) +
+                         " bytes can hold");
+  }
+  if (vertices > 0 && faces > 0) check_ascii_off_faces(file, in, vertices, faces, coordinates);
 }
 
 // CGAL's PLY reader adds each property to the last element declared, reading past an empty
@@ -137,7 +240,7 @@ SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
   if (size == 0) {
     throw std::runtime_error("mesh '" + file.string() + "' is empty: the file has no data");
   }
-  if (ext == ".off") check_off_counts(file, size);
+  if (ext == ".off") check_off(file, size);
   if (ext == ".ply") check_ply_header(file, size);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
