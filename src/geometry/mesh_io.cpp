@@ -43,30 +43,37 @@ void finish_writing(std::ofstream& out, const std::filesystem::path& file) {
   }
 }
 
-// The next word of an OFF file, skipping '#' comments; empty at the end.
-std::string next_off_word(std::istream& in) {
-  std::string word;
-  while (in >> word) {
-    if (word[0] != '#') return word;
-    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
-  }
-  return {};
+// Skips blanks and '#' comment lines, as CGAL's OFF reader does before a keyword, a vertex and a
+// face.
+void skip_off_comments(std::istream& in) {
+  char c = 0;
+  while (in >> c && c == '#') in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  if (in) in.unget();
 }
 
 [[noreturn]] void refuse_off(const std::filesystem::path& file, const std::string& problem) {
   throw std::runtime_error("cannot read '" + file.string() + "': " + problem);
 }
 
-// A count as CGAL's OFF header reads it, or nothing when the word is not one (CGAL's parser
-// then says what is wrong).
-std::optional<long long> off_count(const std::string& text) {
-  try {
-    std::size_t end = 0;
-    const long long value = std::stoll(text, &end);
-    if (end == text.size()) return value;
-  } catch (const std::logic_error&) {
+// An OFF keyword as CGAL reads one (after blanks and '#' comments): its first character, then
+// letters and digits; the character that ends it is consumed.
+std::string off_keyword(std::istream& in) {
+  skip_off_comments(in);
+  std::string word;
+  char c = 0;
+  if (!in.get(c)) return word;
+  word += c;
+  while (in.get(c) && std::isalnum(static_cast<unsigned char>(c))) word += c;
+  if (c == '\n') in.unget();  // BINARY's data start after the end of its line
+  return word;
+}
+
+// CGAL doubles the edge count a header declares in an int: one past 2^30 overflows it.
+void check_off_edges(const std::filesystem::path& file, long long edges, std::uintmax_t size) {
+  if (edges < 0 || static_cast<std::uintmax_t>(edges) > size) {
+    refuse_off(file, "its header declares " + std::to_string(edges) + " edges, not a count its " +
+                         std::to_string(size) + " bytes can hold");
   }
-  return std::nullopt;
 }
 
 std::int64_t big_endian_int32(std::istream& in) {
@@ -88,8 +95,9 @@ void check_binary_off(const std::filesystem::path& file, std::istream& in, std::
   if (dimension) big_endian_int32(in);
   const std::int64_t vertices = big_endian_int32(in);
   const std::int64_t faces = big_endian_int32(in);
-  big_endian_int32(in);  // edges
-  if (!in) return;       // too short: CGAL's parser says so
+  const std::int64_t edges = big_endian_int32(in);
+  if (!in) return;  // too short: CGAL's parser says so
+  check_off_edges(file, edges, size);
   if (vertices < 0 || faces < 0 || static_cast<std::uintmax_t>(vertices) > size / 12 ||
       static_cast<std::uintmax_t>(faces) > size / 4) {
     refuse_off(file, "its binary header declares " + std::to_string(vertices) + " vertices and " +
@@ -98,10 +106,16 @@ void check_binary_off(const std::filesystem::path& file, std::istream& in, std::
   }
   if (!plain) return;
   in.seekg(vertices * 12, std::ios::cur);
-  for (std::int64_t f = 0; f < faces && in; ++f) {
+  for (std::int64_t f = 0; f < faces; ++f) {
     const std::int64_t corners = big_endian_int32(in);
-    const std::uintmax_t left = size - std::min<std::uintmax_t>(size, in.tellg());
-    if (in && (corners < 0 || static_cast<std::uintmax_t>(corners) > left / 4)) {
+    // CGAL goes on with a count the end of the file cut short.
+    if (!in) {
+      refuse_off(file, "the file ends before the corner count of face " + std::to_string(f + 1) +
+                           " of " + std::to_string(faces));
+    }
+    const auto at = static_cast<std::uintmax_t>(in.tellg());
+    const std::uintmax_t left = size - std::min(size, at);
+    if (corners < 0 || static_cast<std::uintmax_t>(corners) > left / 4) {
       refuse_off(file, "face " + std::to_string(f + 1) + " declares " + std::to_string(corners) +
                            " corners, more than the " + std::to_string(left) +
                            " bytes after it can hold");
@@ -110,28 +124,23 @@ void check_binary_off(const std::filesystem::path& file, std::istream& in, std::
   }
 }
 
-// ASCII OFF faces are one line each: a corner count, then that many vertex indices (and maybe
-// a color). CGAL sizes a face by its count before it reads an index, so a count beyond what
-// the line lists is refused here. Vertices are read as CGAL reads them: `coordinates`
-// numbers, then the rest of the line.
+// ASCII OFF vertices and faces are one line each (after blanks and comments); a face is its
+// corner count, then that many vertex indices (and maybe a color). CGAL sizes a face by its
+// count before it reads an index, so a count beyond the numbers its line lists is refused.
 void check_ascii_off_faces(const std::filesystem::path& file, std::istream& in, long long vertices,
-                           long long faces, int coordinates) {
-  in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
-  for (long long v = 0; v < vertices; ++v) {
-    for (int c = 0; c < coordinates; ++c) {
-      if (next_off_word(in).empty()) return;
-    }
-    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
-  }
+                           long long faces) {
   std::string line;
-  for (long long f = 0; f < faces;) {
+  for (long long v = 0; v < vertices; ++v) {
+    skip_off_comments(in);
+    if (!std::getline(in, line)) return;  // CGAL's parser says what is wrong
+  }
+  for (long long f = 1; f <= faces; ++f) {
+    skip_off_comments(in);
     if (!std::getline(in, line)) return;
-    line = line.substr(0, line.find('#'));
-    std::istringstream words(line);
+    std::istringstream words(line.substr(0, line.find('#')));
     std::vector<double> numbers;
     for (double x = 0; words >> x;) numbers.push_back(x);
-    if (numbers.empty()) continue;
-    ++f;
+    if (numbers.empty()) return;  // CGAL refuses the face
     const double corners = numbers.front();
     if (!(corners >= 0 && corners <= static_cast<double>(numbers.size() - 1))) {
       char count[32];
@@ -149,35 +158,38 @@ void check_ascii_off_faces(const std::filesystem::path& file, std::istream& in, 
 // least 6 bytes ("0 0 0\n") and each face 2. Then each face's corner count is checked too.
 void check_off(const std::filesystem::path& file, std::uintmax_t size) {
   std::ifstream in(file, std::ios::binary);
-  std::string word = next_off_word(in);
-  int coordinates = 3;
-  if (word.size() >= 3 && word.compare(word.size() - 3, 3, "OFF") == 0) {
-    const std::string prefix = word.substr(0, word.size() - 3);
-    const bool homogeneous = prefix.find('4') != std::string::npos;
-    const bool dimension = prefix.find('n') != std::string::npos;
-    if (dimension) {  // nOFF: the dimension
-      coordinates =
-          static_cast<int>(std::clamp(off_count(next_off_word(in)).value_or(3), 1LL, 64LL));
-    }
-    coordinates += homogeneous ? 1 : 0;
+  const std::string keyword = off_keyword(in);
+  long long dimension = 0;
+  if (keyword.size() >= 3 && keyword.compare(keyword.size() - 3, 3, "OFF") == 0) {
+    const std::string prefix = keyword.substr(0, keyword.size() - 3);
+    const bool dimensional = prefix.find('n') != std::string::npos;  // nOFF: the dimension first
     const std::streampos header = in.tellg();
-    if (next_off_word(in) == "BINARY") {
-      return check_binary_off(file, in, size, prefix.empty(), dimension);
+    if (off_keyword(in) == "BINARY") {
+      return check_binary_off(file, in, size, prefix.empty(), dimensional);
     }
+    in.clear();
     in.seekg(header);
-    word = next_off_word(in);
+    if (dimensional) in >> dimension;
+  } else {  // no keyword: the counts from the start
+    in.clear();
+    in.seekg(0);
+    skip_off_comments(in);
   }
-  const long long vertices = off_count(word).value_or(0);
-  const long long faces = off_count(next_off_word(in)).value_or(0);
-  const auto fits = [](long long count, std::uintmax_t most) {
-    return count <= 0 || static_cast<std::uintmax_t>(count) <= most;
-  };
-  if (!fits(vertices, size / 6) || !fits(faces, size / 2)) {
-    refuse_off(file, "its header declares " + std::to_string(vertices) + " vertices and " +
-                         std::to_string(faces) + " faces, more than its " + std::to_string(size) +
+  long long vertices = 0, faces = 0, edges = 0;
+  in >> vertices >> faces >> edges;  // as CGAL reads them
+  if (!in) return;                   // not counts: CGAL's parser says what is wrong
+  const std::string counts =
+      std::to_string(vertices) + " vertices and " + std::to_string(faces) + " faces";
+  if (vertices < 0 || faces < 0) {
+    refuse_off(file, "its header declares " + counts + "; a count cannot be negative");
+  }
+  if (static_cast<std::uintmax_t>(vertices) > size / 6 ||
+      static_cast<std::uintmax_t>(faces) > size / 2) {
+    refuse_off(file, "its header declares " + counts + ", more than its " + std::to_string(size) +
                          " bytes can hold");
   }
-  if (vertices > 0 && faces > 0) check_ascii_off_faces(file, in, vertices, faces, coordinates);
+  check_off_edges(file, edges, size);
+  check_ascii_off_faces(file, in, vertices, faces);
 }
 
 // CGAL's PLY reader adds each property to the last element declared, reading past an empty

@@ -171,14 +171,15 @@ TEST_F(GeometryMeshIoTest, FaceIndicesAndElementCountsOutOfRangeAreErrors) {
 
 // A binary OFF file (big-endian int32 and float32) of the unit tetrahedron's vertices and
 // faces, each face with `corners` as its count.
-std::string binary_off(std::int32_t vertices, std::int32_t faces, std::int32_t corners) {
+std::string binary_off(std::int32_t vertices, std::int32_t faces, std::int32_t corners,
+                       std::int32_t edges = 0) {
   std::string bytes = "OFF BINARY\n";
   const auto put = [&](std::uint32_t word) {
     for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>(word >> shift);
   };
   put(static_cast<std::uint32_t>(vertices));
   put(static_cast<std::uint32_t>(faces));
-  put(0);
+  put(static_cast<std::uint32_t>(edges));
   const float one = 1.0f;
   std::uint32_t one_bits = 0;
   std::memcpy(&one_bits, &one, sizeof one);
@@ -198,7 +199,8 @@ std::string binary_off(std::int32_t vertices, std::int32_t faces, std::int32_t c
 
 // Found by fuzz/fuzz_mesh: an ASCII face of 97,999,999,998,080 corners made CGAL size the face
 // by that count (std::bad_alloc, or an out-of-memory report under ASan). Binary OFF counts and
-// corner counts were not checked at all. Each is refused before CGAL allocates.
+// corner counts were not checked at all, nor any edge count. Each is refused before CGAL
+// reads it.
 TEST_F(GeometryMeshIoTest, OffFaceCornerCountsAndBinaryCountsAreCheckedBeforeAllocating) {
   const fs::path ascii = write("corners.off",
                                "OFF\n4 2 0\n0 0 0\n1 0 0 # a comment\n0 1 0\n\n0 0 1\n"
@@ -206,6 +208,17 @@ TEST_F(GeometryMeshIoTest, OffFaceCornerCountsAndBinaryCountsAreCheckedBeforeAll
   EXPECT_EQ(error(ascii), "cannot read '" + ascii.string() +
                               "': face 2 declares 97999999998080 corners but its line lists 3 "
                               "numbers after the count");
+  // Found by fuzz_mesh: a vertex line "3 0-3" holds three numbers (CGAL reads a vertex per line),
+  // so the next line is a face, of 21111111111 corners.
+  EXPECT_NE(error(write("vertex_line.off",
+                        "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0-3\n"
+                        "21111111111 0 1 2\n"))
+                .find("face 1 declares 21111111111 corners but its line lists 3 numbers"),
+            std::string::npos);
+  // Found by fuzz_mesh: with no vertex the face was not checked.
+  EXPECT_NE(error(write("no_vertex.off", "OFF\n\n0 1 0\n97999999-998080 0 1 2\n"))
+                .find("face 1 declares 97999999 corners but its line lists 4 numbers"),
+            std::string::npos);
   EXPECT_NE(error(write("negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 1 2\n"))
                 .find("face 1 declares -1 corners"),
             std::string::npos);
@@ -216,6 +229,17 @@ TEST_F(GeometryMeshIoTest, OffFaceCornerCountsAndBinaryCountsAreCheckedBeforeAll
                                "': its binary header declares 99999999 vertices and 4 faces, not "
                                "counts its 135 bytes can hold");
   EXPECT_NE(error(write("negative_binary.off", binary_off(4, -4, 3))).find("-4 faces"),
+            std::string::npos);
+  // CGAL doubles the edge count in an int (signed overflow, found by fuzz_mesh in binary OFF).
+  EXPECT_NE(error(write("edges.off", "OFF\n4 4 2000000000\n0 0 0\n")).find("2000000000 edges"),
+            std::string::npos);
+  EXPECT_NE(error(write("edges_binary.off", binary_off(4, 4, 3, 1919774464)))
+                .find("its header declares 1919774464 edges, not a count its 135 bytes can hold"),
+            std::string::npos);
+  // Found by fuzz_mesh: CGAL read a face count cut short by the end of the file as if whole.
+  const std::string whole = binary_off(4, 4, 3);
+  EXPECT_NE(error(write("cut_binary.off", whole.substr(0, 11 + 12 + 48 + 2)))
+                .find("the file ends before the corner count of face 1 of 4"),
             std::string::npos);
   const fs::path corners = write("corners_binary.off", binary_off(4, 4, 2000000000));
   EXPECT_EQ(error(corners), "cannot read '" + corners.string() +
