@@ -223,6 +223,10 @@ void check_ply_header(const std::filesystem::path& file, std::uintmax_t size) {
     // CGAL reads a coordinate of another type through a null pointer.
     std::string type, property;
     words >> type >> property;
+    if (type == "list") {  // property list COUNT_TYPE ITEM_TYPE NAME: a list coordinate too
+      std::string item;
+      words >> item >> property;
+    }
     if (word == "property" && vertex && (property == "x" || property == "y" || property == "z") &&
         type != "float" && type != "double" && type != "float32" && type != "float64") {
       throw std::runtime_error("cannot read '" + file.string() + "': vertex coordinate '" +

@@ -161,6 +161,12 @@ TEST_F(GeometryMeshIoTest, FaceIndicesAndElementCountsOutOfRangeAreErrors) {
                         "property float y\nproperty float z\nend_header\n"))
                 .find("vertex coordinate 'x' is of type 'int'"),
             std::string::npos);
+  // Found by fuzz_mesh: a list-typed coordinate went through the same null pointer.
+  EXPECT_NE(error(write("list.ply",
+                        "ply\nformat ascii 1.0\nelement vertex 3\nproperty list uchar float x\n"
+                        "property float y\nproperty float z\nend_header\n"))
+                .find("vertex coordinate 'x' is of type 'list'"),
+            std::string::npos);
   // A face of 2^61 corners made CGAL's OFF reader throw std::length_error.
   EXPECT_NE(error(write("corners.off",
                         "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n"
