@@ -18,6 +18,7 @@
 #include "io/dataset_error.hpp"
 #include "io/dataset_writer.hpp"
 #include "src/config/config.hpp"
+#include "src/grippers/gripper_registry.hpp"
 
 namespace grip::farm {
 namespace {
@@ -114,6 +115,34 @@ class RunnerCache {
       runners_;
 };
 
+// Rank 0 checks the dataset to resume; its refusal is every rank's.
+void check_dataset(const FarmOptions& options, const std::filesystem::path& dataset,
+                   MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string error;
+  if (rank == 0 && options.check_dataset && std::filesystem::exists(dataset)) {
+    try {
+      options.check_dataset(dataset);
+    } catch (const io::DatasetError& e) {
+      error = e.what();
+    }
+  }
+  broadcast(error, 0, comm);
+  if (!error.empty()) throw io::DatasetError(error);
+}
+
+// What failed, for the message: the rank, the candidates and their object and gripper.
+std::string trial_failure(int rank, const WorkUnit& unit, const FarmPlan& plan, const Job& job,
+                          const char* what) {
+  return "rank " + std::to_string(rank) + ": the trials of candidates " +
+         std::to_string(unit.ids.front()) + " to " + std::to_string(unit.ids.back()) + " (" +
+         plan.dataset.objects[unit.object].name + " with " +
+         std::string(grippers::gripper_type(job.grippers[unit.gripper].kind).name) +
+         ") failed: " + what +
+         "; the results committed so far are kept (grip farm --resume continues)";
+}
+
 }  // namespace
 
 FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
@@ -158,7 +187,10 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
                            "another output (--output or the job's [job] output)");
   }
   std::optional<io::DatasetWriter> writer;
-  if (options.resume) writer = io::DatasetWriter::resume(report.dataset, provenance, comm);
+  if (options.resume) {
+    check_dataset(options, report.dataset, comm);
+    writer = io::DatasetWriter::resume(report.dataset, provenance, comm);
+  }
   if (writer && !writer->damaged().empty()) {  // rank 0 only
     const io::Damage& first = writer->damaged().front();
     spdlog::warn(
@@ -215,7 +247,8 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
     const std::uint64_t first = round * per_round;
     const std::uint64_t count = std::min<std::uint64_t>(per_round, units.size() - first);
     std::vector<io::CandidateResult> results;
-    while (!stop_requested()) {
+    std::string error;
+    while (error.empty() && !stop_requested()) {
       const std::uint64_t k = claims.claim(round);
       if (k >= count) break;
       const WorkUnit& unit = units[first + k];
@@ -228,17 +261,26 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
         counted = ended;
         progress.poll();
       };
-      for (trial::TrialOutcome& outcome :
-           runners.get(unit.object, unit.gripper)
-               .run(candidates, unit.ids, report.threads, trajectory, after_step)) {
-        io::CandidateResult& result = outcome.result;
-        if (!plan.dataset.candidates[result.record.id].stress) result.stress.reset();
-        results.push_back(std::move(result));
+      try {
+        for (trial::TrialOutcome& outcome :
+             runners.get(unit.object, unit.gripper)
+                 .run(candidates, unit.ids, report.threads, trajectory, after_step)) {
+          io::CandidateResult& result = outcome.result;
+          if (!plan.dataset.candidates[result.record.id].stress) result.stress.reset();
+          results.push_back(std::move(result));
+        }
+      } catch (const std::exception& e) {
+        error = trial_failure(rank, unit, plan, job, e.what());
       }
       progress.add(LiveProgress::kTrials, unit.ids.size() - counted);
     }
     progress.wait_for_ranks();
     writer->write(results);
+    // A rank whose trial failed took no further work unit; now, after the commit, every rank
+    // learns the lowest failing rank's error, so none waits in a collective for it.
+    if (const std::string failed = first_error(error, comm); !failed.empty()) {
+      throw TrialError(failed);
+    }
     std::uint64_t committed = results.size();
     MPI_Allreduce(MPI_IN_PLACE, &committed, 1, MPI_UINT64_T, MPI_SUM, comm);
     report.done += committed;

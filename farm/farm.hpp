@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <stdexcept>
 #include <string>
 
 namespace grip::farm {
@@ -20,6 +22,9 @@ struct FarmOptions {
   double progress_interval = -1;  // s between progress lines; < 0: 1 on a terminal, else 5
   std::string grip_version;       // recorded in the dataset's provenance
   std::string git_revision;
+  // Rank 0 calls it on the dataset to resume before anything opens it; it throws
+  // io::DatasetError for a file HDF5 cannot read (grip's: src/app/dataset_probe.hpp).
+  std::function<void(const std::filesystem::path&)> check_dataset;
 };
 
 struct FarmReport {
@@ -35,9 +40,17 @@ struct FarmReport {
   bool interrupted = false;       // stopped by SIGINT or SIGTERM before the end
 };
 
+// A trial that failed on some rank (an exception of the solver, e.g. CHOLMOD out of memory),
+// thrown on every rank alike once the round it failed in is committed.
+class TrialError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // Collective over `comm`. Throws config::ConfigError for a bad job file, io::DatasetError for
 // a dataset that exists without --resume (or is missing, or from another job, with it), on
-// every rank alike; nothing already written is touched.
+// every rank alike; nothing already written is touched. Throws TrialError, on every rank alike,
+// when a trial failed on any rank: the results committed until then are kept.
 FarmReport run_farm(const FarmOptions& options, MPI_Comm comm);
 
 }  // namespace grip::farm

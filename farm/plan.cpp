@@ -37,15 +37,8 @@ std::vector<synth::Candidate> synthesize_for(const Job& job, const FarmObject& o
 // A rank whose own share failed must not leave the others waiting in the broadcasts that
 // follow: every rank learns the lowest failing rank's error and throws it, so all stop alike.
 void throw_if_any_failed(const std::string& error, MPI_Comm comm) {
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  int failed = error.empty() ? size : rank;
-  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MIN, comm);
-  if (failed == size) return;
-  std::string shared = error;
-  broadcast(shared, failed, comm);
-  throw config::ConfigError(shared);
+  const std::string shared = first_error(error, comm);
+  if (!shared.empty()) throw config::ConfigError(shared);
 }
 
 }  // namespace

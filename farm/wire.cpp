@@ -167,4 +167,16 @@ void broadcast(std::string& bytes, int root, MPI_Comm comm) {
   }
 }
 
+std::string first_error(const std::string& error, MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  int failed = error.empty() ? size : rank;
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MIN, comm);
+  if (failed == size) return {};
+  std::string shared = error;
+  broadcast(shared, failed, comm);
+  return shared;
+}
+
 }  // namespace grip::farm

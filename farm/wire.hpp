@@ -22,4 +22,8 @@ std::vector<synth::Candidate> unpack_candidates(std::string_view bytes);
 // Collective: every rank of `comm` ends with root's `bytes`.
 void broadcast(std::string& bytes, int root, MPI_Comm comm);
 
+// Collective: the error of the lowest rank whose `error` is not empty, on every rank ("" when
+// none failed), so that all ranks stop alike rather than leave others waiting in a collective.
+std::string first_error(const std::string& error, MPI_Comm comm);
+
 }  // namespace grip::farm

@@ -1,5 +1,6 @@
 #include "farm/work_unit_claims.hpp"
 
+#include <exception>
 #include <stdexcept>
 
 namespace grip::farm {
@@ -16,6 +17,7 @@ WorkUnitClaims::WorkUnitClaims(MPI_Comm comm, std::uint64_t rounds) : rounds_(ro
 }
 
 WorkUnitClaims::~WorkUnitClaims() {
+  if (std::uncaught_exceptions() > 0) return;
   MPI_Win_unlock_all(window_);
   MPI_Win_free(&window_);
 }

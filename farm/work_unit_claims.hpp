@@ -13,7 +13,9 @@ class WorkUnitClaims {
  public:
   // Collective over `comm`: every counter starts at 0.
   WorkUnitClaims(MPI_Comm comm, std::uint64_t rounds);
-  ~WorkUnitClaims();  // collective
+  // Collective, except on a rank unwinding from an exception that only it threw (the caller
+  // aborts every rank; MPI_Finalize frees the window): such a rank must not wait here.
+  ~WorkUnitClaims();
   WorkUnitClaims(const WorkUnitClaims&) = delete;
   WorkUnitClaims& operator=(const WorkUnitClaims&) = delete;
 

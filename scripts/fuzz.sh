@@ -3,7 +3,10 @@
 # in build-fuzz/ and runs each for SECONDS (default 30) from its seed corpus fuzz/corpus/<target>/.
 # A crash, a sanitizer report or an input slower than 10 s fails the run; libFuzzer writes the
 # input to build-fuzz/findings/. New inputs go to build-fuzz/corpus/<target>/, not the repository.
-# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
+# With GRIP_FUZZ_RUNS=N (CI's short run) each target starts from seed 1 and the committed corpus
+# alone (new inputs go to a folder emptied first) and runs at most N inputs (0: the seed corpus
+# alone) within SECONDS.
+# Usage: [GRIP_FUZZ_RUNS=N] scripts/fuzz.sh [SECONDS] [TARGET...]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="$root/build-fuzz"
@@ -30,12 +33,19 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$root/scri
 mkdir -p "$build/findings" "$build/tmp"
 export TMPDIR="$build/tmp"  # where the targets write each input as a file
 failed=()
+runs=()
+corpus="$build/corpus"
+if [[ -n "${GRIP_FUZZ_RUNS:-}" ]]; then
+  runs=(-seed=1 -runs="$GRIP_FUZZ_RUNS")
+  corpus="$build/corpus-short"
+  rm -rf "$corpus"
+fi
 for target in "${targets[@]}"; do
-  mkdir -p "$build/corpus/$target"
-  echo "fuzz: $target for $seconds s" >&2
-  if ! "$build/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 \
-       -artifact_prefix="$build/findings/$target-" -print_final_stats=1 \
-       "$build/corpus/$target" "$root/fuzz/corpus/$target" 2>"$build/$target.log"; then
+  mkdir -p "$corpus/$target"
+  echo "fuzz: $target for $seconds s ${runs[*]}" >&2
+  if ! "$build/fuzz/$target" -max_total_time="$seconds" "${runs[@]}" -timeout=10 \
+       -rss_limit_mb=4096 -artifact_prefix="$build/findings/$target-" -print_final_stats=1 \
+       "$corpus/$target" "$root/fuzz/corpus/$target" 2>"$build/$target.log"; then
     failed+=("$target")
     tail -n 40 "$build/$target.log" >&2
   fi

@@ -11,8 +11,10 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <string>
 
 #include "src/app/commands.hpp"
+#include "src/app/dataset_probe.hpp"
 #include "src/app/logging.hpp"
 #include "src/app/output_paths.hpp"
 #include "src/app/petsc_args.hpp"
@@ -80,6 +82,9 @@ const CLI::Validator kOutputFolder(
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == grip::kProbeDatasetMode) {
+    return grip::probe_dataset(argv[2]);
+  }
   const grip::SplitArguments split = grip::split_petsc_arguments(argc, argv);
 
   CLI::App app{
@@ -526,8 +531,12 @@ int main(int argc, char** argv) {
       "inspect", "Print a dataset's provenance and summary (success rates, D1/D2, failures)");
   inspect->add_option("dataset", inspect_dataset, "The dataset (.h5)")->required();
   inspect->add_flag("--job", inspect_job, "Also print the job file text stored in the dataset");
-  inspect->callback(
-      [&] { run = [&] { return grip::commands::inspect(inspect_dataset, inspect_job); }; });
+  inspect->callback([&] {
+    run = [&] {
+      grip::check_dataset_readable(inspect_dataset);
+      return grip::commands::inspect(inspect_dataset, inspect_job);
+    };
+  });
 
   std::vector<const char*> grip_argv;
   for (const auto& arg : split.grip) grip_argv.push_back(arg.c_str());

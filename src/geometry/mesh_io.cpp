@@ -8,13 +8,18 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace grip::geometry {
 namespace {
@@ -38,43 +43,153 @@ void finish_writing(std::ofstream& out, const std::filesystem::path& file) {
   }
 }
 
-// The next word of an OFF file, skipping '#' comments; empty at the end.
-std::string next_off_word(std::istream& in) {
+// Skips blanks and '#' comment lines, as CGAL's OFF reader does before a keyword, a vertex and a
+// face.
+void skip_off_comments(std::istream& in) {
+  char c = 0;
+  while (in >> c && c == '#') in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  if (in) in.unget();
+}
+
+[[noreturn]] void refuse_off(const std::filesystem::path& file, const std::string& problem) {
+  throw std::runtime_error("cannot read '" + file.string() + "': " + problem);
+}
+
+// An OFF keyword as CGAL reads one (after blanks and '#' comments): its first character, then
+// letters and digits; the character that ends it is consumed.
+std::string off_keyword(std::istream& in) {
+  skip_off_comments(in);
   std::string word;
-  while (in >> word) {
-    if (word[0] != '#') return word;
-    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  char c = 0;
+  if (!in.get(c)) return word;
+  word += c;
+  while (in.get(c) && std::isalnum(static_cast<unsigned char>(c))) word += c;
+  if (c == '\n') in.unget();  // BINARY's data start after the end of its line
+  return word;
+}
+
+// CGAL doubles the edge count a header declares in an int: one past 2^30 overflows it.
+void check_off_edges(const std::filesystem::path& file, long long edges, std::uintmax_t size) {
+  if (edges < 0 || static_cast<std::uintmax_t>(edges) > size) {
+    refuse_off(file, "its header declares " + std::to_string(edges) + " edges, not a count its " +
+                         std::to_string(size) + " bytes can hold");
   }
-  return {};
+}
+
+std::int64_t big_endian_int32(std::istream& in) {
+  unsigned char bytes[4] = {};
+  in.read(reinterpret_cast<char*>(bytes), 4);
+  const std::uint32_t value = (std::uint32_t{bytes[0]} << 24) | (std::uint32_t{bytes[1]} << 16) |
+                              (std::uint32_t{bytes[2]} << 8) | std::uint32_t{bytes[3]};
+  return static_cast<std::int32_t>(value);
+}
+
+// Binary OFF: big-endian int32 counts, float32 vertices, each face its corner count and
+// indices (int32; CGAL's polygon soup reader reads no face color after them). CGAL sizes its arrays
+// by the counts, and each face by its corner count, before reading them: every count is checked
+// against the bytes that would hold it. Faces are scanned only after plain 3D vertices (12 bytes
+// each, "OFF BINARY").
+void check_binary_off(const std::filesystem::path& file, std::istream& in, std::uintmax_t size,
+                      bool plain, bool dimension) {
+  in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  if (dimension) big_endian_int32(in);
+  const std::int64_t vertices = big_endian_int32(in);
+  const std::int64_t faces = big_endian_int32(in);
+  const std::int64_t edges = big_endian_int32(in);
+  if (!in) return;  // too short: CGAL's parser says so
+  check_off_edges(file, edges, size);
+  if (vertices < 0 || faces < 0 || static_cast<std::uintmax_t>(vertices) > size / 12 ||
+      static_cast<std::uintmax_t>(faces) > size / 4) {
+    refuse_off(file, "its binary header declares " + std::to_string(vertices) + " vertices and " +
+                         std::to_string(faces) + " faces, not counts its " + std::to_string(size) +
+                         " bytes can hold");
+  }
+  if (!plain) return;
+  in.seekg(vertices * 12, std::ios::cur);
+  for (std::int64_t f = 0; f < faces; ++f) {
+    const std::int64_t corners = big_endian_int32(in);
+    // CGAL goes on with a count the end of the file cut short.
+    if (!in) {
+      refuse_off(file, "the file ends before the corner count of face " + std::to_string(f + 1) +
+                           " of " + std::to_string(faces));
+    }
+    const auto at = static_cast<std::uintmax_t>(in.tellg());
+    const std::uintmax_t left = size - std::min(size, at);
+    if (corners < 0 || static_cast<std::uintmax_t>(corners) > left / 4) {
+      refuse_off(file, "face " + std::to_string(f + 1) + " declares " + std::to_string(corners) +
+                           " corners, more than the " + std::to_string(left) +
+                           " bytes after it can hold");
+    }
+    in.seekg(corners * 4, std::ios::cur);
+  }
+}
+
+// ASCII OFF vertices and faces are one line each (after blanks and comments); a face is its
+// corner count, then that many vertex indices (and maybe a color). CGAL sizes a face by its
+// count before it reads an index, so a count beyond the numbers its line lists is refused.
+void check_ascii_off_faces(const std::filesystem::path& file, std::istream& in, long long vertices,
+                           long long faces) {
+  std::string line;
+  for (long long v = 0; v < vertices; ++v) {
+    skip_off_comments(in);
+    if (!std::getline(in, line)) return;  // CGAL's parser says what is wrong
+  }
+  for (long long f = 1; f <= faces; ++f) {
+    skip_off_comments(in);
+    if (!std::getline(in, line)) return;
+    std::istringstream words(line.substr(0, line.find('#')));
+    std::vector<double> numbers;
+    for (double x = 0; words >> x;) numbers.push_back(x);
+    if (numbers.empty()) return;  // CGAL refuses the face
+    const double corners = numbers.front();
+    if (!(corners >= 0 && corners <= static_cast<double>(numbers.size() - 1))) {
+      char count[32];
+      const bool whole = corners == std::floor(corners) && std::abs(corners) < 1e19;
+      std::snprintf(count, sizeof count, whole ? "%.0f" : "%g", corners);
+      refuse_off(file, "face " + std::to_string(f) + " declares " + count +
+                           " corners but its line lists " + std::to_string(numbers.size() - 1) +
+                           " numbers after the count");
+    }
+  }
 }
 
 // CGAL sizes its arrays by an OFF header's counts before it reads a vertex, so a file of a few
 // bytes that claims a billion vertices would make it allocate gigabytes. Each vertex takes at
-// least 6 bytes ("0 0 0\n") and each face 2.
-void check_off_counts(const std::filesystem::path& file, std::uintmax_t size) {
+// least 6 bytes ("0 0 0\n") and each face 2. Then each face's corner count is checked too.
+void check_off(const std::filesystem::path& file, std::uintmax_t size) {
   std::ifstream in(file, std::ios::binary);
-  std::string word = next_off_word(in);
-  if (word.size() >= 3 && word.compare(word.size() - 3, 3, "OFF") == 0) {
-    if (word[0] == 'n') next_off_word(in);  // nOFF: the dimension
-    word = next_off_word(in);
-    if (word == "BINARY") return;  // binary counts are not checked here
-  }
-  const auto count = [](const std::string& text) {
-    try {
-      std::size_t end = 0;
-      const long long value = std::stoll(text, &end);
-      return end == text.size() && value > 0 ? static_cast<std::uintmax_t>(value) : 0;
-    } catch (const std::logic_error&) {
-      return std::uintmax_t{0};  // not a count: CGAL's parser says what is wrong
+  const std::string keyword = off_keyword(in);
+  long long dimension = 0;
+  if (keyword.size() >= 3 && keyword.compare(keyword.size() - 3, 3, "OFF") == 0) {
+    const std::string prefix = keyword.substr(0, keyword.size() - 3);
+    const bool dimensional = prefix.find('n') != std::string::npos;  // nOFF: the dimension first
+    const std::streampos header = in.tellg();
+    if (off_keyword(in) == "BINARY") {
+      return check_binary_off(file, in, size, prefix.empty(), dimensional);
     }
-  };
-  const std::uintmax_t vertices = count(word);
-  const std::uintmax_t faces = count(next_off_word(in));
-  if (vertices > size / 6 || faces > size / 2) {
-    throw std::runtime_error("cannot read '" + file.string() + "': its header declares " +
-                             std::to_string(vertices) + " vertices and " + std::to_string(faces) +
-                             " faces, more than its " + std::to_string(size) + " bytes can hold");
+    in.clear();
+    in.seekg(header);
+    if (dimensional) in >> dimension;
+  } else {  // no keyword: the counts from the start
+    in.clear();
+    in.seekg(0);
+    skip_off_comments(in);
   }
+  long long vertices = 0, faces = 0, edges = 0;
+  in >> vertices >> faces >> edges;  // as CGAL reads them
+  if (!in) return;                   // not counts: CGAL's parser says what is wrong
+  const std::string counts =
+      std::to_string(vertices) + " vertices and " + std::to_string(faces) + " faces";
+  if (vertices < 0 || faces < 0) {
+    refuse_off(file, "its header declares " + counts + "; a count cannot be negative");
+  }
+  if (static_cast<std::uintmax_t>(vertices) > size / 6 ||
+      static_cast<std::uintmax_t>(faces) > size / 2) {
+    refuse_off(file, "its header declares " + counts + ", more than its " + std::to_string(size) +
+                         " bytes can hold");
+  }
+  check_off_edges(file, edges, size);
+  check_ascii_off_faces(file, in, vertices, faces);
 }
 
 // CGAL's PLY reader adds each property to the last element declared, reading past an empty
@@ -108,6 +223,10 @@ void check_ply_header(const std::filesystem::path& file, std::uintmax_t size) {
     // CGAL reads a coordinate of another type through a null pointer.
     std::string type, property;
     words >> type >> property;
+    if (type == "list") {  // property list COUNT_TYPE ITEM_TYPE NAME: a list coordinate too
+      std::string item;
+      words >> item >> property;
+    }
     if (word == "property" && vertex && (property == "x" || property == "y" || property == "z") &&
         type != "float" && type != "double" && type != "float32" && type != "float64") {
       throw std::runtime_error("cannot read '" + file.string() + "': vertex coordinate '" +
@@ -137,7 +256,7 @@ SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
   if (size == 0) {
     throw std::runtime_error("mesh '" + file.string() + "' is empty: the file has no data");
   }
-  if (ext == ".off") check_off_counts(file, size);
+  if (ext == ".off") check_off(file, size);
   if (ext == ".ply") check_ply_header(file, size);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;

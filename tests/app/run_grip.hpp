@@ -23,14 +23,12 @@ inline std::string slurp(const std::filesystem::path& file) {
   return text.str();
 }
 
-// `arguments` is appended to the command line as is (quote what needs quoting).
-inline GripRun run_grip(const std::string& arguments) {
+// A shell command line (such as `mpirun ... grip ...`), its exit code and output.
+inline GripRun run_command(const std::string& command) {
   const auto dir = std::filesystem::temp_directory_path();
   const auto out = dir / ("grip_test_out_" + std::to_string(::getpid()));
   const auto err = dir / ("grip_test_err_" + std::to_string(::getpid()));
-  const std::string command =
-      std::string(GRIP_EXECUTABLE) + " " + arguments + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(command.c_str());
+  const int status = std::system((command + " >" + out.string() + " 2>" + err.string()).c_str());
   GripRun run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   run.out = slurp(out);
@@ -38,6 +36,29 @@ inline GripRun run_grip(const std::string& arguments) {
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return run;
+}
+
+// `arguments` is appended to the command line as is (quote what needs quoting).
+inline GripRun run_grip(const std::string& arguments) {
+  return run_command(std::string(GRIP_EXECUTABLE) + " " + arguments);
+}
+
+// A path in single quotes for the shell (the tests' paths hold no single quote). Built by
+// appending: "'" + string + "'" draws a false -Wrestrict warning from GCC 12.
+inline std::string quoted(const std::filesystem::path& path) {
+  std::string text = "'";
+  text += path.string();
+  text += '\'';
+  return text;
+}
+
+// How often `part` occurs in `text`.
+inline int count_of(const std::string& text, const std::string& part) {
+  int count = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) {
+    ++count;
+  }
+  return count;
 }
 
 // The same with GRIP_CHECK_ARGS=1: grip only parses and validates its command line.

@@ -30,15 +30,6 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
-// Quoted for the shell that run_grip starts (the paths here hold no single quote).
-// Built by appending: "'" + string + "'" draws a false -Wrestrict warning from GCC 12.
-std::string quoted(const fs::path& path) {
-  std::string text = "'";
-  text += path.string();
-  text += '\'';
-  return text;
-}
-
 const std::string kBox =
     "[[body]]\nname = \"b\"\ntype = \"affine\"\nshape = \"box\"\nsize = [0.1, 0.1, 0.1]\n";
 
@@ -469,28 +460,8 @@ TEST(HostileInput, ContradictoryJobValuesAreRefusedWhenTheJobIsRead) {
 GripRun run_farm_on_two_ranks(const std::string& arguments) {
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-  const fs::path dir = fs::temp_directory_path();
-  const fs::path out = dir / ("grip_mpi_out_" + std::to_string(::getpid()));
-  const fs::path err = dir / ("grip_mpi_err_" + std::to_string(::getpid()));
-  const std::string command = std::string(GRIP_MPIEXEC) + " -np 2 --oversubscribe " +
-                              GRIP_EXECUTABLE + " farm " + arguments + " >" + out.string() + " 2>" +
-                              err.string();
-  const int status = std::system(command.c_str());
-  GripRun run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = slurp(out);
-  run.err = slurp(err);
-  fs::remove(out);
-  fs::remove(err);
-  return run;
-}
-
-int count_of(const std::string& text, const std::string& part) {
-  int count = 0;
-  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) {
-    ++count;
-  }
-  return count;
+  return run_command(std::string(GRIP_MPIEXEC) + " -np 2 --oversubscribe " + GRIP_EXECUTABLE +
+                     " farm " + arguments);
 }
 
 TEST(HostileInput, ABadJobUnderMpirunIsOneMessageAndEveryRankExits) {

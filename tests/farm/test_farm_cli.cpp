@@ -1,10 +1,12 @@
 // `grip farm` and `grip bench scaling` as a user runs them: a bad job file or an existing
 // dataset is one message naming the file and the fix with exit status 1, progress lines come
-// while the trials run, the scaling benchmark writes its table for every setting, and their
-// JSON keeps any path as it is.
+// while the trials run, a trial failing on one rank of two is one message and resumable, the
+// scaling benchmark writes its table for every setting, and their JSON keeps any path as it is.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -28,13 +30,7 @@ class FarmCli : public ::testing::Test {
   fs::path dir_;
 };
 
-// For run_grip's shell (the path holds no single quote).
-std::string quoted(const fs::path& path) {
-  std::string text = path.string();
-  text.insert(text.begin(), '\'');
-  text.push_back('\'');
-  return text;
-}
+using grip::testing::quoted;
 
 TEST_F(FarmCli, BadJobIsOneMessageNamingFileLineAndKey) {
   testing::write_file(dir_ / "bad.toml",
@@ -143,6 +139,49 @@ TEST_F(FarmCli, BadProgressIntervalIsAUsageError) {
   EXPECT_NE(run.err.find("GRIP_PROGRESS_INTERVAL: must be a number of seconds >= 0, not 'soon'"),
             std::string::npos)
       << run.err;
+}
+
+// A trial that throws on rank 1 alone (CHOLMOD fails there: a preload library on that rank
+// only): rank 0 says so once, every rank exits 1 without MPI_Abort or a hang, the rounds
+// committed before are kept, and --resume completes the same dataset as a clean run.
+TEST_F(FarmCli, ATrialFailingOnOneRankIsOneMessageAndResumable) {
+  testing::write_file(dir_ / "job.toml", testing::small_job(1, 4, false));
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  const std::string farm = std::string(GRIP_EXECUTABLE) + " farm " + quoted(dir_ / "job.toml") +
+                           " --output " + quoted(dir_ / "data.h5") + " --threads 1 --batch 1";
+  const std::string err = (dir_ / "mpirun.err").string();
+  const std::string command = std::string(GRIP_MPIEXEC) + " --oversubscribe -np 1 " + farm +
+                              " : -np 1 -x LD_PRELOAD=" + GRIP_FAIL_CHOLMOD + " " + farm +
+                              " >/dev/null 2>" + err;
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string text = grip::testing::slurp(err);
+  const std::size_t at = text.find("[error] rank 1: the trials of candidates ");
+  EXPECT_NE(at, std::string::npos) << text;
+  EXPECT_EQ(text.find("[error]", at + 1), std::string::npos) << "one message: " << text;
+  EXPECT_NE(text.find(" (cylinder-0 with parallel-jaw) failed: CHOLMOD analysis failed; the "
+                      "results committed so far are kept (grip farm --resume continues)"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("MPI_ABORT"), std::string::npos) << text;
+  {
+    const io::DatasetReader reader(dir_ / "data.h5");
+    const std::vector<std::uint8_t> done = reader.done();
+    const auto committed = std::count(done.begin(), done.end(), 1);
+    EXPECT_GE(committed, 1) << "rank 0's work unit of the failed round is committed";
+    EXPECT_LT(committed, 4);
+  }
+
+  const auto resume =
+      grip::testing::run_grip("farm " + quoted(dir_ / "job.toml") + " --output " +
+                              quoted(dir_ / "data.h5") + " --threads 1 --batch 1 --resume");
+  ASSERT_EQ(resume.exit_code, 0) << resume.err;
+  const auto clean = grip::testing::run_grip("farm " + quoted(dir_ / "job.toml") + " --output " +
+                                             quoted(dir_ / "clean.h5") + " --threads 1");
+  ASSERT_EQ(clean.exit_code, 0) << clean.err;
+  testing::expect_same_dataset(dir_ / "clean.h5", dir_ / "data.h5");
 }
 
 }  // namespace

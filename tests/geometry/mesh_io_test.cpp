@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -129,17 +132,19 @@ TEST_F(GeometryMeshIoTest, PlyPropertyBeforeAnyElementIsAnError) {
   }
 }
 
+// read_surface_mesh's error message for `file`, or "no error".
+std::string error(const fs::path& file) {
+  try {
+    read_surface_mesh(file);
+  } catch (const std::runtime_error& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
+
 // Found by fuzz/fuzz_mesh: a face index outside the vertices read past them, and a PLY element
 // count of -1 kept CGAL's reader going for ever.
 TEST_F(GeometryMeshIoTest, FaceIndicesAndElementCountsOutOfRangeAreErrors) {
-  const auto error = [](const fs::path& file) {
-    try {
-      read_surface_mesh(file);
-    } catch (const std::runtime_error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   EXPECT_NE(
       error(write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 0 2\n")).find("refers to vertex"),
       std::string::npos);
@@ -156,12 +161,96 @@ TEST_F(GeometryMeshIoTest, FaceIndicesAndElementCountsOutOfRangeAreErrors) {
                         "property float y\nproperty float z\nend_header\n"))
                 .find("vertex coordinate 'x' is of type 'int'"),
             std::string::npos);
+  // Found by fuzz_mesh: a list-typed coordinate went through the same null pointer.
+  EXPECT_NE(error(write("list.ply",
+                        "ply\nformat ascii 1.0\nelement vertex 3\nproperty list uchar float x\n"
+                        "property float y\nproperty float z\nend_header\n"))
+                .find("vertex coordinate 'x' is of type 'list'"),
+            std::string::npos);
   // A face of 2^61 corners made CGAL's OFF reader throw std::length_error.
   EXPECT_NE(error(write("corners.off",
                         "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n"
                         "2305843009213693952 0 1 2\n"))
-                .find("not a valid off mesh"),
+                .find("face 1 declares 2305843009213693952 corners but its line lists 3 numbers"),
             std::string::npos);
+}
+
+// A binary OFF file (big-endian int32 and float32) of the unit tetrahedron's vertices and
+// faces, each face with `corners` as its count.
+std::string binary_off(std::int32_t vertices, std::int32_t faces, std::int32_t corners,
+                       std::int32_t edges = 0) {
+  std::string bytes = "OFF BINARY\n";
+  const auto put = [&](std::uint32_t word) {
+    for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>(word >> shift);
+  };
+  put(static_cast<std::uint32_t>(vertices));
+  put(static_cast<std::uint32_t>(faces));
+  put(static_cast<std::uint32_t>(edges));
+  const float one = 1.0f;
+  std::uint32_t one_bits = 0;
+  std::memcpy(&one_bits, &one, sizeof one);
+  for (const std::array<std::uint32_t, 3> v : {std::array<std::uint32_t, 3>{0, 0, 0},
+                                               {one_bits, 0, 0},
+                                               {0, one_bits, 0},
+                                               {0, 0, one_bits}}) {
+    for (const std::uint32_t c : v) put(c);
+  }
+  for (const std::array<std::uint32_t, 3> f :
+       {std::array<std::uint32_t, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) {
+    put(static_cast<std::uint32_t>(corners));
+    for (const std::uint32_t i : f) put(i);
+  }
+  return bytes;
+}
+
+// Found by fuzz/fuzz_mesh: an ASCII face of 97,999,999,998,080 corners made CGAL size the face
+// by that count (std::bad_alloc, or an out-of-memory report under ASan). Binary OFF counts and
+// corner counts were not checked at all, nor any edge count. Each is refused before CGAL
+// reads it.
+TEST_F(GeometryMeshIoTest, OffFaceCornerCountsAndBinaryCountsAreCheckedBeforeAllocating) {
+  const fs::path ascii = write("corners.off",
+                               "OFF\n4 2 0\n0 0 0\n1 0 0 # a comment\n0 1 0\n\n0 0 1\n"
+                               "3 0 2 1\n# a comment\n97999999998080 0 1 3\n");
+  EXPECT_EQ(error(ascii), "cannot read '" + ascii.string() +
+                              "': face 2 declares 97999999998080 corners but its line lists 3 "
+                              "numbers after the count");
+  // Found by fuzz_mesh: a vertex line "3 0-3" holds three numbers (CGAL reads a vertex per line),
+  // so the next line is a face, of 21111111111 corners.
+  EXPECT_NE(error(write("vertex_line.off",
+                        "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0-3\n"
+                        "21111111111 0 1 2\n"))
+                .find("face 1 declares 21111111111 corners but its line lists 3 numbers"),
+            std::string::npos);
+  // Found by fuzz_mesh: with no vertex the face was not checked.
+  EXPECT_NE(error(write("no_vertex.off", "OFF\n\n0 1 0\n97999999-998080 0 1 2\n"))
+                .find("face 1 declares 97999999 corners but its line lists 4 numbers"),
+            std::string::npos);
+  EXPECT_NE(error(write("negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 1 2\n"))
+                .find("face 1 declares -1 corners"),
+            std::string::npos);
+
+  EXPECT_EQ(read_surface_mesh(write("tet_binary.off", binary_off(4, 4, 3))).triangles.rows(), 4);
+  const fs::path counts = write("counts.off", binary_off(99999999, 4, 3));
+  EXPECT_EQ(error(counts), "cannot read '" + counts.string() +
+                               "': its binary header declares 99999999 vertices and 4 faces, not "
+                               "counts its 135 bytes can hold");
+  EXPECT_NE(error(write("negative_binary.off", binary_off(4, -4, 3))).find("-4 faces"),
+            std::string::npos);
+  // CGAL doubles the edge count in an int (signed overflow, found by fuzz_mesh in binary OFF).
+  EXPECT_NE(error(write("edges.off", "OFF\n4 4 2000000000\n0 0 0\n")).find("2000000000 edges"),
+            std::string::npos);
+  EXPECT_NE(error(write("edges_binary.off", binary_off(4, 4, 3, 1919774464)))
+                .find("its header declares 1919774464 edges, not a count its 135 bytes can hold"),
+            std::string::npos);
+  // Found by fuzz_mesh: CGAL read a face count cut short by the end of the file as if whole.
+  const std::string whole = binary_off(4, 4, 3);
+  EXPECT_NE(error(write("cut_binary.off", whole.substr(0, 11 + 12 + 48 + 2)))
+                .find("the file ends before the corner count of face 1 of 4"),
+            std::string::npos);
+  const fs::path corners = write("corners_binary.off", binary_off(4, 4, 2000000000));
+  EXPECT_EQ(error(corners), "cannot read '" + corners.string() +
+                                "': face 1 declares 2000000000 corners, more than the 60 bytes "
+                                "after it can hold");
 }
 
 TEST_F(GeometryMeshIoTest, UnknownExtensionIsAnError) {

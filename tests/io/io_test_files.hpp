@@ -1,6 +1,6 @@
 #pragma once
-// File helpers for the io tests: a per-test scratch folder every rank agrees on, and whole-file
-// bytes to prove a refused resume changed nothing.
+// File helpers for the io tests: this process's rank, a per-test scratch folder every rank agrees
+// on, and whole-file bytes to prove a refused resume changed nothing.
 #include <mpi.h>
 
 #include <unistd.h>
@@ -10,6 +10,12 @@
 #include <string>
 
 namespace grip::io::testing {
+
+inline int world_rank() {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
 
 inline std::string file_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

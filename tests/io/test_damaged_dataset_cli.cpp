@@ -21,16 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using grip::testing::GripRun;
+using grip::testing::quoted;
 using grip::testing::run_grip;
 using grip::testing::slurp;
-
-// For run_grip's shell (the paths hold no single quote).
-std::string quoted(const fs::path& path) {
-  std::string text = "'";
-  text += path.string();
-  text += '\'';
-  return text;
-}
 
 std::size_t hash_of(const fs::path& file) { return std::hash<std::string>{}(slurp(file)); }
 

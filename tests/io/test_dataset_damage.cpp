@@ -23,15 +23,10 @@ namespace grip::io {
 namespace {
 
 using testing::file_bytes;
+using testing::world_rank;
 
 constexpr std::uint64_t kSeed = 5;
 const std::string kJob = "[job]\nname = \"damaged\"\n";
-
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
 
 Provenance provenance() { return testing::synthetic_provenance(kJob, kSeed); }
 
@@ -40,7 +35,7 @@ void write_rounds(DatasetWriter& writer, const std::vector<std::vector<std::uint
   for (const auto& round : rounds) {
     std::vector<CandidateResult> mine;
     for (const std::uint64_t id : round) {
-      if (static_cast<int>(id % 2) == rank()) {
+      if (static_cast<int>(id % 2) == world_rank()) {
         mine.push_back(testing::synthetic_result(writer.layout(), id, kSeed));
       }
     }
@@ -60,7 +55,7 @@ void make_dataset(const std::filesystem::path& path, std::uint32_t candidates,
 template <typename Damage>
 void on_rank_zero(Damage&& damage) {
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank() == 0) {
+  if (world_rank() == 0) {
     try {
       damage();
     } catch (const std::exception& e) {
@@ -100,7 +95,7 @@ void expect_refused(const std::filesystem::path& path, const std::string& messag
   MPI_Barrier(MPI_COMM_WORLD);
   EXPECT_TRUE(file_bytes(path) == before) << "a refused resume changed " << path;
   EXPECT_TRUE(file_bytes(Journal::path_for(path)) == journal_before);
-  if (rank() == 0) {
+  if (world_rank() == 0) {
     const std::string error = read_error(path);
     EXPECT_NE(error.find(path.string() + ": " + message), std::string::npos) << error;
   }
@@ -163,7 +158,7 @@ TEST_F(DamagedDataset, PlanColumnsChangedWithinRangeFailTheirChecksum) {
 TEST_F(DamagedDataset, MeshesChangedAfterCreationFailTheirChecksum) {
   const auto path = fresh("mesh");
   on_rank_zero([&] { testing::flip_byte(path, "/objects/000001/vertices", 17); });
-  if (rank() == 0) {
+  if (world_rank() == 0) {
     EXPECT_NE(read_error(path).find(path.string() +
                                     ": /objects/000001/vertices does not match the checksum "
                                     "written when the dataset was created"),
@@ -204,7 +199,7 @@ TEST_F(DamagedDataset, FlippedBytesInCommittedRowsAreReportedAndRedoneByResume) 
     }
     return true;
   };
-  if (rank() == 0) {
+  if (world_rank() == 0) {
     const DatasetReader reader(path);
     EXPECT_EQ(reader.done(), (std::vector<std::uint8_t>{1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 0}));
     EXPECT_TRUE(same(reader.damage(), expected));
@@ -222,13 +217,13 @@ TEST_F(DamagedDataset, FlippedBytesInCommittedRowsAreReportedAndRedoneByResume) 
   {
     DatasetWriter writer = DatasetWriter::resume(path, provenance(), MPI_COMM_WORLD);
     EXPECT_EQ(writer.pending(), (std::vector<std::uint64_t>{4, 7, 9, 10, 11}));
-    if (rank() == 0) {
+    if (world_rank() == 0) {
       EXPECT_TRUE(same(writer.damaged(), expected));
     }
     write_rounds(writer, {writer.pending()});
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank() == 0) {
+  if (world_rank() == 0) {
     const DatasetReader reader(path);
     EXPECT_TRUE(reader.damage().empty());
     EXPECT_EQ(summarize(reader).done, 12u);

@@ -22,15 +22,10 @@ using testing::file_bytes;
 using testing::synthetic_plan;
 using testing::synthetic_provenance;
 using testing::synthetic_result;
+using testing::world_rank;
 
 constexpr std::uint64_t kSeed = 7;
 const std::string kJob = "[job]\nname = \"synthetic\"\n";
-
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
 
 std::vector<CandidateResult> results_for(const DatasetLayout& layout,
                                          const std::vector<std::uint64_t>& ids) {
@@ -43,7 +38,7 @@ std::vector<CandidateResult> results_for(const DatasetLayout& layout,
 void write_batches(DatasetWriter& writer,
                    const std::vector<std::vector<std::vector<std::uint64_t>>>& batches) {
   for (const auto& batch : batches) {
-    writer.write(results_for(writer.layout(), batch[static_cast<std::size_t>(rank())]));
+    writer.write(results_for(writer.layout(), batch[static_cast<std::size_t>(world_rank())]));
   }
 }
 
@@ -88,7 +83,7 @@ TEST(DatasetWriter, CollectiveWriteReadsBackExactly) {
     EXPECT_EQ(writer.pending(), (std::vector<std::uint64_t>{28, 29}));
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank() != 0) return;
+  if (world_rank() != 0) return;
 
   std::vector<std::uint8_t> done(30, 1);
   done[28] = done[29] = 0;
@@ -150,7 +145,7 @@ TEST(DatasetWriter, BytesDoNotDependOnWhichRankWroteARecord) {
     write_batches(writer, {{range(12, 24), range(0, 5)}, {{}, range(5, 12)}});
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank() == 0) {
+  if (world_rank() == 0) {
     const std::string a = file_bytes(folder / "a.h5");
     EXPECT_FALSE(a.empty());
     EXPECT_TRUE(a == file_bytes(folder / "b.h5"));
@@ -164,18 +159,19 @@ TEST(DatasetWriter, RefusesBadBatchesOnEveryRankAndWritesARecordOnce) {
   DatasetWriter writer =
       DatasetWriter::create(path, plan, synthetic_provenance(kJob, kSeed), MPI_COMM_WORLD);
   // Rank 1 hands over a record with a joint missing: every rank throws.
-  std::vector<CandidateResult> results = results_for(writer.layout(), {rank() == 0 ? 0u : 1u});
-  if (rank() == 1) results[0].record.joints.pop_back();
+  std::vector<CandidateResult> results =
+      results_for(writer.layout(), {world_rank() == 0 ? 0u : 1u});
+  if (world_rank() == 1) results[0].record.joints.pop_back();
   EXPECT_THROW(writer.write(results), DatasetError);
   // Both ranks hand over candidate 3.
   EXPECT_THROW(writer.write(results_for(writer.layout(), {3})), DatasetError);
   EXPECT_EQ(writer.pending().size(), 12u);
   // A record is written once.
-  writer.write(results_for(
-      writer.layout(), rank() == 0 ? std::vector<std::uint64_t>{3} : std::vector<std::uint64_t>{}));
+  writer.write(results_for(writer.layout(), world_rank() == 0 ? std::vector<std::uint64_t>{3}
+                                                              : std::vector<std::uint64_t>{}));
   EXPECT_THROW(
-      writer.write(results_for(writer.layout(), rank() == 1 ? std::vector<std::uint64_t>{3}
-                                                            : std::vector<std::uint64_t>{})),
+      writer.write(results_for(writer.layout(), world_rank() == 1 ? std::vector<std::uint64_t>{3}
+                                                                  : std::vector<std::uint64_t>{})),
       DatasetError);
   EXPECT_EQ(writer.pending().size(), 11u);
   EXPECT_TRUE(writer.is_done(3));
@@ -198,13 +194,13 @@ TEST(DatasetWriter, ResumeSkipsCommittedCandidatesAndFinishesTheSet) {
     ASSERT_EQ(writer.pending(), want);
     std::vector<std::uint64_t> mine;
     for (std::size_t i = 0; i < want.size(); ++i) {
-      if (static_cast<int>(i % 2) == rank()) mine.push_back(want[i]);
+      if (static_cast<int>(i % 2) == world_rank()) mine.push_back(want[i]);
     }
     writer.write(results_for(writer.layout(), mine));
     EXPECT_TRUE(writer.pending().empty());
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank() == 0) expect_dataset(path, plan, std::vector<std::uint8_t>(20, 1));
+  if (world_rank() == 0) expect_dataset(path, plan, std::vector<std::uint8_t>(20, 1));
 }
 
 // A kill after a batch's done flags were flushed but before its journal line was complete:
@@ -219,11 +215,11 @@ TEST(DatasetWriter, ResumeRedoesCandidatesFlaggedButNotJournaled) {
   {
     DatasetWriter writer = DatasetWriter::create(path, plan, provenance, MPI_COMM_WORLD);
     write_batches(writer, {{{0}, {1}}});
-    if (rank() == 0) first_batch_end = std::filesystem::file_size(journal);
+    if (world_rank() == 0) first_batch_end = std::filesystem::file_size(journal);
     write_batches(writer, {{{2, 3}, {4}}});
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank() == 0) {
+  if (world_rank() == 0) {
     // Cut the second batch's line to a torn fragment, as a crash mid-append leaves it.
     std::filesystem::resize_file(journal, first_batch_end + 6);
   }
@@ -234,7 +230,7 @@ TEST(DatasetWriter, ResumeRedoesCandidatesFlaggedButNotJournaled) {
     write_batches(writer, {{{2, 4, 6}, {3, 5, 7}}});
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank() != 0) return;
+  if (world_rank() != 0) return;
   EXPECT_EQ(Journal::read(journal).done, (std::vector<std::uint64_t>{0, 1, 2, 3, 4, 5, 6, 7}));
   expect_dataset(path, plan, std::vector<std::uint8_t>(8, 1));
 }
@@ -282,7 +278,7 @@ TEST(DatasetWriter, RefusesToResumeATruncatedDataset) {
   const auto folder = testing::shared_scratch(MPI_COMM_WORLD, "truncated");
   const auto path = folder / "data.h5";
   make_partial_dataset(path);
-  if (rank() == 0) {
+  if (world_rank() == 0) {
     const std::string bytes = file_bytes(path);
     testing::write_bytes(path, bytes.substr(0, bytes.size() / 2));
   }
@@ -292,7 +288,7 @@ TEST(DatasetWriter, RefusesToResumeATruncatedDataset) {
 TEST(DatasetWriter, RefusesToResumeAFileThatIsNotHdf5) {
   const auto folder = testing::shared_scratch(MPI_COMM_WORLD, "not_hdf5");
   const auto path = folder / "data.h5";
-  if (rank() == 0) testing::write_bytes(path, "id,label\n1,cup\n");
+  if (world_rank() == 0) testing::write_bytes(path, "id,label\n1,cup\n");
   expect_refused(path, synthetic_provenance(kJob, kSeed), "not an HDF5 file");
 }
 
@@ -300,14 +296,14 @@ TEST(DatasetWriter, RefusesToResumeADatasetWithoutItsJournal) {
   const auto folder = testing::shared_scratch(MPI_COMM_WORLD, "no_journal");
   const auto path = folder / "data.h5";
   make_partial_dataset(path);
-  if (rank() == 0) std::filesystem::remove(Journal::path_for(path));
+  if (world_rank() == 0) std::filesystem::remove(Journal::path_for(path));
   expect_refused(path, synthetic_provenance(kJob, kSeed), "journal is missing");
 }
 
 TEST(DatasetWriter, CreateRefusesAnExistingFile) {
   const auto folder = testing::shared_scratch(MPI_COMM_WORLD, "exists");
   const auto path = folder / "data.h5";
-  if (rank() == 0) testing::write_bytes(path, "precious");
+  if (world_rank() == 0) testing::write_bytes(path, "precious");
   MPI_Barrier(MPI_COMM_WORLD);
   EXPECT_THROW(DatasetWriter::create(path, synthetic_plan(4), synthetic_provenance(kJob, kSeed),
                                      MPI_COMM_WORLD),

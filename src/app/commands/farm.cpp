@@ -14,6 +14,7 @@
 #include "farm/farm.hpp"
 #include "io/dataset_error.hpp"
 #include "src/app/commands.hpp"
+#include "src/app/dataset_probe.hpp"
 #include "src/app/version.hpp"
 #include "src/config/config.hpp"
 #include "src/json/json_text.hpp"
@@ -85,6 +86,7 @@ int farm(const FarmArgs& args) {
   options.progress_interval = *interval;
   options.grip_version = version();
   options.git_revision = git_revision();
+  options.check_dataset = check_dataset_readable;
   farm::FarmReport report;
   try {
     report = farm::run_farm(options, MPI_COMM_WORLD);
@@ -93,6 +95,9 @@ int farm(const FarmArgs& args) {
     if (rank == 0) spdlog::error("{}", e.what());
     return 1;
   } catch (const io::DatasetError& e) {
+    if (rank == 0) spdlog::error("{}", e.what());
+    return 1;
+  } catch (const farm::TrialError& e) {  // shared by every rank after the round's commit
     if (rank == 0) spdlog::error("{}", e.what());
     return 1;
   } catch (const std::exception& e) {
