@@ -1,6 +1,5 @@
 #include "farm/live_progress.hpp"
 
-#include <exception>
 #include <thread>
 
 namespace grip::farm {
@@ -12,20 +11,8 @@ constexpr std::chrono::milliseconds kWaitPoll{20};
 }  // namespace
 
 LiveProgress::LiveProgress(MPI_Comm comm, double interval)
-    : comm_(comm), line_(interval, ProgressLine::stderr_is_terminal()) {
+    : comm_(comm), counters_(comm, kCounters), line_(interval, ProgressLine::stderr_is_terminal()) {
   MPI_Comm_rank(comm, &rank_);
-  const MPI_Aint bytes = rank_ == 0 ? kCounters * sizeof(std::uint64_t) : 0;
-  std::uint64_t* counters = nullptr;
-  MPI_Win_allocate(bytes, sizeof(std::uint64_t), MPI_INFO_NULL, comm, &counters, &window_);
-  for (int c = 0; rank_ == 0 && c < kCounters; ++c) counters[c] = 0;
-  MPI_Barrier(comm);  // nothing added before rank 0 has zeroed the counters
-  MPI_Win_lock_all(MPI_MODE_NOCHECK, window_);
-}
-
-LiveProgress::~LiveProgress() {
-  if (std::uncaught_exceptions() > 0) return;
-  MPI_Win_unlock_all(window_);
-  MPI_Win_free(&window_);
 }
 
 void LiveProgress::start_plan(std::uint64_t objects, std::uint64_t pairs) {
@@ -42,8 +29,8 @@ void LiveProgress::start_trials(std::uint64_t trials) {
 
 void LiveProgress::add(Counter counter, std::uint64_t n) {
   if (n == 0) return;
-  MPI_Accumulate(&n, 1, MPI_UINT64_T, 0, counter, 1, MPI_UINT64_T, MPI_SUM, window_);
-  MPI_Win_flush(0, window_);
+  MPI_Accumulate(&n, 1, MPI_UINT64_T, 0, counter, 1, MPI_UINT64_T, MPI_SUM, counters_.window());
+  MPI_Win_flush(0, counters_.window());
 }
 
 void LiveProgress::poll() {
@@ -87,8 +74,8 @@ void LiveProgress::log_trials(std::uint64_t done) {
 std::array<std::uint64_t, LiveProgress::kCounters> LiveProgress::read() {
   std::array<std::uint64_t, kCounters> counts{};
   MPI_Get_accumulate(nullptr, 0, MPI_UINT64_T, counts.data(), kCounters, MPI_UINT64_T, 0, 0,
-                     kCounters, MPI_UINT64_T, MPI_NO_OP, window_);
-  MPI_Win_flush(0, window_);
+                     kCounters, MPI_UINT64_T, MPI_NO_OP, counters_.window());
+  MPI_Win_flush(0, counters_.window());
   return counts;
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "farm/progress_line.hpp"
+#include "farm/rank_zero_counters.hpp"
 
 namespace grip::farm {
 
@@ -20,12 +21,8 @@ class LiveProgress {
   enum Counter : int { kObjects, kPairs, kCandidates, kTrials, kCounters };
 
   // Collective over `comm`: every counter starts at 0. interval: ProgressLine's (< 0: default).
+  // Destruction is collective as RankZeroCounters' is.
   LiveProgress(MPI_Comm comm, double interval);
-  // Collective, except on a rank unwinding from an exception: a failure of one rank must not
-  // wait here for the others (the caller aborts them; MPI_Finalize frees the window).
-  ~LiveProgress();
-  LiveProgress(const LiveProgress&) = delete;
-  LiveProgress& operator=(const LiveProgress&) = delete;
 
   // Every rank: what there is to do, and its clock started.
   void start_plan(std::uint64_t objects, std::uint64_t pairs);
@@ -51,7 +48,7 @@ class LiveProgress {
 
   MPI_Comm comm_;
   int rank_ = 0;
-  MPI_Win window_ = MPI_WIN_NULL;
+  RankZeroCounters counters_;
   ProgressLine line_;
   Clock::time_point clock_start_ = Clock::now();
   bool trials_ = false;                                      // planning is over

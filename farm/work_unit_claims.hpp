@@ -7,24 +7,22 @@
 
 #include <cstdint>
 
+#include "farm/rank_zero_counters.hpp"
+
 namespace grip::farm {
 
 class WorkUnitClaims {
  public:
-  // Collective over `comm`: every counter starts at 0.
+  // Collective over `comm`: every counter starts at 0. Destruction is collective as
+  // RankZeroCounters' is.
   WorkUnitClaims(MPI_Comm comm, std::uint64_t rounds);
-  // Collective, except on a rank unwinding from an exception that only it threw (the caller
-  // aborts every rank; MPI_Finalize frees the window): such a rank must not wait here.
-  ~WorkUnitClaims();
-  WorkUnitClaims(const WorkUnitClaims&) = delete;
-  WorkUnitClaims& operator=(const WorkUnitClaims&) = delete;
 
   // The round's counter before this rank's increment: 0, 1, 2, ... over all ranks, each value
   // handed out once.
   std::uint64_t claim(std::uint64_t round);
 
  private:
-  MPI_Win window_ = MPI_WIN_NULL;
+  RankZeroCounters counters_;
   std::uint64_t rounds_ = 0;
 };
 

@@ -206,9 +206,8 @@ class Simulation {
     const double total = mean_force_[0] + mean_force_[1];
     const std::array<double, 2> weight = {mean_force_[0] / total, mean_force_[1] / total};
     const long phase_windows = std::lround(p_.phase_duration / p_.sim.dt);
-    for (int phase = 0; phase < 6; ++phase) {
-      Eigen::Vector3d g = Eigen::Vector3d::Zero();
-      g[phase / 2] = (phase % 2 == 0 ? 1.0 : -1.0) * p_.gravity_magnitude;
+    for (const Eigen::Vector3d& axis : trial::kGravityAxes) {
+      const Eigen::Vector3d g = p_.gravity_magnitude * axis;
       for (long k = 0; k < phase_windows; ++k) {
         if (!window(g, false)) return unstable(out);
       }

@@ -51,7 +51,8 @@ void skip_off_comments(std::istream& in) {
   if (in) in.unget();
 }
 
-[[noreturn]] void refuse_off(const std::filesystem::path& file, const std::string& problem) {
+// The reader's one error form: "cannot read 'FILE': PROBLEM".
+[[noreturn]] void refuse_mesh(const std::filesystem::path& file, const std::string& problem) {
   throw std::runtime_error("cannot read '" + file.string() + "': " + problem);
 }
 
@@ -71,8 +72,8 @@ std::string off_keyword(std::istream& in) {
 // CGAL doubles the edge count a header declares in an int: one past 2^30 overflows it.
 void check_off_edges(const std::filesystem::path& file, long long edges, std::uintmax_t size) {
   if (edges < 0 || static_cast<std::uintmax_t>(edges) > size) {
-    refuse_off(file, "its header declares " + std::to_string(edges) + " edges, not a count its " +
-                         std::to_string(size) + " bytes can hold");
+    refuse_mesh(file, "its header declares " + std::to_string(edges) + " edges, not a count its " +
+                          std::to_string(size) + " bytes can hold");
   }
 }
 
@@ -100,9 +101,9 @@ void check_binary_off(const std::filesystem::path& file, std::istream& in, std::
   check_off_edges(file, edges, size);
   if (vertices < 0 || faces < 0 || static_cast<std::uintmax_t>(vertices) > size / 12 ||
       static_cast<std::uintmax_t>(faces) > size / 4) {
-    refuse_off(file, "its binary header declares " + std::to_string(vertices) + " vertices and " +
-                         std::to_string(faces) + " faces, not counts its " + std::to_string(size) +
-                         " bytes can hold");
+    refuse_mesh(file, "its binary header declares " + std::to_string(vertices) + " vertices and " +
+                          std::to_string(faces) + " faces, not counts its " + std::to_string(size) +
+                          " bytes can hold");
   }
   if (!plain) return;
   in.seekg(vertices * 12, std::ios::cur);
@@ -110,15 +111,15 @@ void check_binary_off(const std::filesystem::path& file, std::istream& in, std::
     const std::int64_t corners = big_endian_int32(in);
     // CGAL goes on with a count the end of the file cut short.
     if (!in) {
-      refuse_off(file, "the file ends before the corner count of face " + std::to_string(f + 1) +
-                           " of " + std::to_string(faces));
+      refuse_mesh(file, "the file ends before the corner count of face " + std::to_string(f + 1) +
+                            " of " + std::to_string(faces));
     }
     const auto at = static_cast<std::uintmax_t>(in.tellg());
     const std::uintmax_t left = size - std::min(size, at);
     if (corners < 0 || static_cast<std::uintmax_t>(corners) > left / 4) {
-      refuse_off(file, "face " + std::to_string(f + 1) + " declares " + std::to_string(corners) +
-                           " corners, more than the " + std::to_string(left) +
-                           " bytes after it can hold");
+      refuse_mesh(file, "face " + std::to_string(f + 1) + " declares " + std::to_string(corners) +
+                            " corners, more than the " + std::to_string(left) +
+                            " bytes after it can hold");
     }
     in.seekg(corners * 4, std::ios::cur);
   }
@@ -146,9 +147,9 @@ void check_ascii_off_faces(const std::filesystem::path& file, std::istream& in, 
       char count[32];
       const bool whole = corners == std::floor(corners) && std::abs(corners) < 1e19;
       std::snprintf(count, sizeof count, whole ? "%.0f" : "%g", corners);
-      refuse_off(file, "face " + std::to_string(f) + " declares " + count +
-                           " corners but its line lists " + std::to_string(numbers.size() - 1) +
-                           " numbers after the count");
+      refuse_mesh(file, "face " + std::to_string(f) + " declares " + count +
+                            " corners but its line lists " + std::to_string(numbers.size() - 1) +
+                            " numbers after the count");
     }
   }
 }
@@ -181,12 +182,12 @@ void check_off(const std::filesystem::path& file, std::uintmax_t size) {
   const std::string counts =
       std::to_string(vertices) + " vertices and " + std::to_string(faces) + " faces";
   if (vertices < 0 || faces < 0) {
-    refuse_off(file, "its header declares " + counts + "; a count cannot be negative");
+    refuse_mesh(file, "its header declares " + counts + "; a count cannot be negative");
   }
   if (static_cast<std::uintmax_t>(vertices) > size / 6 ||
       static_cast<std::uintmax_t>(faces) > size / 2) {
-    refuse_off(file, "its header declares " + counts + ", more than its " + std::to_string(size) +
-                         " bytes can hold");
+    refuse_mesh(file, "its header declares " + counts + ", more than its " + std::to_string(size) +
+                          " bytes can hold");
   }
   check_off_edges(file, edges, size);
   check_ascii_off_faces(file, in, vertices, faces);
@@ -211,14 +212,13 @@ void check_ply_header(const std::filesystem::path& file, std::uintmax_t size) {
       vertex = name == "vertex";
       if (count.empty() || count.size() > 19 ||
           count.find_first_not_of("0123456789") != std::string::npos || std::stoull(count) > size) {
-        throw std::runtime_error("cannot read '" + file.string() + "': its header declares '" +
-                                 count + "' " + name + " elements, not a count its " +
-                                 std::to_string(size) + " bytes can hold");
+        refuse_mesh(file, "its header declares '" + count + "' " + name +
+                              " elements, not a count its " + std::to_string(size) +
+                              " bytes can hold");
       }
     }
     if (word == "property" && !element) {
-      throw std::runtime_error("cannot read '" + file.string() +
-                               "': its header declares a property before any element");
+      refuse_mesh(file, "its header declares a property before any element");
     }
     // CGAL reads a coordinate of another type through a null pointer.
     std::string type, property;
@@ -229,8 +229,8 @@ void check_ply_header(const std::filesystem::path& file, std::uintmax_t size) {
     }
     if (word == "property" && vertex && (property == "x" || property == "y" || property == "z") &&
         type != "float" && type != "double" && type != "float32" && type != "float64") {
-      throw std::runtime_error("cannot read '" + file.string() + "': vertex coordinate '" +
-                               property + "' is of type '" + type + "'; use float or double");
+      refuse_mesh(file, "vertex coordinate '" + property + "' is of type '" + type +
+                            "'; use float or double");
     }
   }
 }
@@ -242,15 +242,13 @@ SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext != ".obj" && ext != ".stl" && ext != ".ply" && ext != ".off") {
-    throw std::runtime_error("cannot read '" + file.string() + "': unknown mesh format '" + ext +
-                             "'; use .obj, .stl, .ply or .off");
+    refuse_mesh(file, "unknown mesh format '" + ext + "'; use .obj, .stl, .ply or .off");
   }
   if (std::filesystem::is_directory(file)) {
-    throw std::runtime_error("cannot read '" + file.string() +
-                             "': is a directory, not a mesh file");
+    refuse_mesh(file, "is a directory, not a mesh file");
   }
   if (!std::filesystem::is_regular_file(file)) {
-    throw std::runtime_error("cannot read '" + file.string() + "': no such file");
+    refuse_mesh(file, "no such file");
   }
   const std::uintmax_t size = std::filesystem::file_size(file);
   if (size == 0) {
@@ -267,15 +265,13 @@ SurfaceMesh read_surface_mesh(const std::filesystem::path& file) {
   } catch (const std::bad_alloc&) {
   }
   if (!read) {
-    throw std::runtime_error("cannot read '" + file.string() + "': not a valid " + ext.substr(1) +
-                             " mesh (the parser rejected it)");
+    refuse_mesh(file, "not a valid " + ext.substr(1) + " mesh (the parser rejected it)");
   }
   for (const auto& polygon : polygons) {
     for (const std::size_t index : polygon) {
       if (index >= points.size()) {
-        throw std::runtime_error("cannot read '" + file.string() + "': a face refers to vertex " +
-                                 std::to_string(index + 1) + " of " +
-                                 std::to_string(points.size()));
+        refuse_mesh(file, "a face refers to vertex " + std::to_string(index + 1) + " of " +
+                              std::to_string(points.size()));
       }
     }
   }

@@ -2,11 +2,18 @@
 // The grasp trial protocol's settings (GRIP, Sec. III-D): closing, settling, the six-axis
 // gravity test, the verdict's threshold, the recorded frames and the D1/D2 sampling.
 // docs/trial.md gives each default and why.
+#include <Eigen/Core>
+#include <array>
 #include <cstdint>
 
 #include "solver/scene.hpp"
 
 namespace grip::trial {
+
+// Gravity directions of the six validation phases, in order (world).
+inline const std::array<Eigen::Vector3d, 6> kGravityAxes = {
+    Eigen::Vector3d::UnitX(),  -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+    -Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),  -Eigen::Vector3d::UnitZ()};
 
 struct TrialParameters {
   // The solver's settings; `sim.gravity` is ignored (the protocol sets gravity per phase).

@@ -19,11 +19,6 @@ namespace grip::trial {
 
 namespace {
 
-// Gravity directions of the six validation phases, in order.
-const std::array<Eigen::Vector3d, 6> kGravityAxes = {
-    Eigen::Vector3d::UnitX(),  -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-    -Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),  -Eigen::Vector3d::UnitZ()};
-
 enum class Phase { kClosing, kSettling, kGravity, kDone };
 
 // Placement's broad-phase reach (m), its most moves per finger, and how close to the gap a

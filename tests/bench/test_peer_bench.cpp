@@ -87,7 +87,9 @@ TEST(PeerBench, DistancesAreTheTrialsAtTheSamePoses) {
     const metrics::DistanceMetrics peer = distances(fingers, Eigen::Isometry3d::Identity());
     EXPECT_NEAR(peer.d1, trial.d1, 1e-12) << "opening " << opening;
     EXPECT_NEAR(peer.d2, trial.d2, 1e-12) << "opening " << opening;
-    if (opening < 0.03) EXPECT_GT(trial.d1, 1e-3);
+    if (opening < 0.03) {
+      EXPECT_GT(trial.d1, 1e-3);
+    }
   }
 }
 
