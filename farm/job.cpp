@@ -143,9 +143,9 @@ void read_randomization(const Table& t, objects::RandomizationRanges& r) {
 
 void read_trial(const Table& t, trial::TrialParameters& p) {
   t.allow({"placement_gap", "squeeze_speed", "grip_force", "final_opening", "finger_stiffness",
-           "settle_speed", "settle_angular_speed", "force_tolerance", "settle_steps",
-           "settle_max_steps", "gravity", "phase_duration", "displacement_factor", "metric_samples",
-           "finger_friction"});
+           "hand_drive_stiffness", "settle_speed", "settle_angular_speed", "force_tolerance",
+           "settle_steps", "settle_max_steps", "gravity", "phase_duration", "displacement_factor",
+           "metric_samples", "finger_friction"});
   p.placement_gap = t.number_or("placement_gap", p.placement_gap);
   if (!(p.placement_gap >= 1.0)) t.fail("placement_gap", "must be at least 1 (times d_hat)");
   p.squeeze_speed = positive(t, "squeeze_speed", p.squeeze_speed);
@@ -153,6 +153,7 @@ void read_trial(const Table& t, trial::TrialParameters& p) {
   p.final_opening = t.number_or("final_opening", p.final_opening);
   if (!(p.final_opening >= 0)) t.fail("final_opening", "must be non-negative (m)");
   p.finger_stiffness = positive(t, "finger_stiffness", p.finger_stiffness);
+  p.hand_drive_stiffness = positive(t, "hand_drive_stiffness", p.hand_drive_stiffness);
   p.settle_speed = positive(t, "settle_speed", p.settle_speed);
   p.settle_angular_speed = positive(t, "settle_angular_speed", p.settle_angular_speed);
   p.force_tolerance = positive(t, "force_tolerance", p.force_tolerance);
@@ -347,6 +348,7 @@ std::vector<io::Parameter> resolved_parameters(const Job& job) {
   add("trial.grip_force", t.grip_force);
   add("trial.final_opening", t.final_opening);
   add("trial.finger_stiffness", t.finger_stiffness);
+  add("trial.hand_drive_stiffness", t.hand_drive_stiffness);
   add("trial.settle_speed", t.settle_speed);
   add("trial.settle_angular_speed", t.settle_angular_speed);
   add("trial.force_tolerance", t.force_tolerance);

@@ -212,7 +212,7 @@ void Environment::finish_part() {
   const double h = step_->h;
   state_.v = (state_.q - targets.q_start) / h;
   for (std::size_t b = 0; b < model_->bodies().size(); ++b) {
-    if (!is_kinematic(model_->bodies()[b])) continue;
+    if (!is_scripted(model_->bodies()[b])) continue;
     state_.kinematic_velocity[b] = (targets.pose_target[b].position - state_.poses[b].position) / h;
     state_.poses[b] = targets.pose_target[b];
   }

@@ -57,6 +57,7 @@ std::shared_ptr<const Model> Model::build(const SceneDescription& scene) {
   model->sim_ = scene.sim;
   model->build_bodies();
   model->build_pair_friction();
+  model->build_untouching();
   model->build_pins();
   model->ordering_ =
       std::make_shared<const std::vector<int>>(nested_dissection_ordering(block_graph(*model)));
@@ -75,10 +76,32 @@ void Model::build_bodies() {
     b.material = body.material;
     b.dof_offset = dofs;
     build_body(body, b);
+    if (body.drive_stiffness != 0.0) {
+      if (body.type != BodyType::kAffine || !(body.drive_stiffness > 0.0)) {
+        invalid_body(body, "drive_stiffness must be > 0, and only an affine body is driven");
+      }
+      b.drive_stiffness = body.drive_stiffness;
+    }
     dofs += b.dof_count;
     bodies_.push_back(std::move(b));
   }
   dof_count_ = dofs;
+}
+
+void Model::build_untouching() {
+  const std::size_t body_count = bodies_.size();
+  untouching_.assign(body_count, 0);
+  for (std::size_t b = 0; b < body_count; ++b) {
+    untouching_[b] = is_kinematic(bodies_[b]) || scene_.bodies[b].collision_group >= 0;
+  }
+  for (std::size_t a = 0; a < body_count; ++a) {
+    for (std::size_t b = 0; b < body_count; ++b) {
+      if (untouching_[a] && untouching_[b] && may_touch(static_cast<int>(a), static_cast<int>(b))) {
+        for (std::size_t c = 0; c < body_count; ++c) untouching_[c] = is_kinematic(bodies_[c]);
+        return;
+      }
+    }
+  }
 }
 
 // Which pairs may touch, and with what friction.
@@ -89,6 +112,8 @@ void Model::build_pair_friction() {
     for (int b = 0; b < body_count; ++b) {
       if (is_kinematic(bodies_[a]) && is_kinematic(bodies_[b])) continue;
       if (a == b && !can_self_collide(bodies_[a].type)) continue;
+      const int group = scene_.bodies[a].collision_group;
+      if (a != b && group >= 0 && group == scene_.bodies[b].collision_group) continue;
       pair_friction_[a * body_count + b] =
           std::sqrt(scene_.bodies[a].material.friction * scene_.bodies[b].material.friction);
     }

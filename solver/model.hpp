@@ -45,6 +45,7 @@ struct BodyModel {
   Eigen::Vector3d center_of_mass_offset = Eigen::Vector3d::Zero();  // in the description's frame
   double volume = 0.0;
   double orthogonality_stiffness = 0.0;
+  double drive_stiffness = 0.0;  // N/m; > 0: driven towards its script's pose
 };
 
 // The surface all contacts are found on: vertices of every body, and their edges and faces.
@@ -89,6 +90,11 @@ class Model {
     return pair_friction_[static_cast<std::size_t>(body_a) * bodies_.size() + body_b];
   }
   bool may_touch(int body_a, int body_b) const { return pair_friction(body_a, body_b) >= 0.0; }
+  // Whether the body is one of a set of bodies that never touch each other: the kinematic
+  // bodies, with the bodies of collision groups when no pair of the set may touch (a hand's
+  // driven links and its palm). The broad phase looks for their contacts only among the
+  // others' primitives.
+  bool among_untouching(int body) const { return untouching_[static_cast<std::size_t>(body)]; }
 
   // The initial description, for initial poses, velocities and scripts.
   const SceneDescription& scene() const { return scene_; }
@@ -102,6 +108,7 @@ class Model {
   // The steps of build(), in order.
   void build_bodies();
   void build_pair_friction();
+  void build_untouching();
   void build_pins();
   void build_collision_mesh();
   void build_rest_proximity();
@@ -113,6 +120,7 @@ class Model {
   std::vector<PinnedVertex> pins_;
   std::vector<char> prescribed_;
   std::vector<double> pair_friction_;
+  std::vector<char> untouching_;
   std::shared_ptr<const std::vector<int>> ordering_;
   int dof_count_ = 0;
 };

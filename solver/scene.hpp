@@ -63,6 +63,14 @@ struct BodyDescription {
   Material material;
   double orthogonality_stiffness = 1e9;  // affine only, Pa (docs/simulation.md says why)
   std::vector<Pin> pins;                 // FEM only
+  // Affine only; > 0 makes the body driven (N/m): a spring inside the step pulls it towards the
+  // pose its script gives (translation at this stiffness, rotation in proportion to the body's
+  // mass distribution), as a position-controlled drive with compliance would, and gravity does
+  // not act on it (the drive carries its weight). A trial's hand links.
+  double drive_stiffness = 0.0;
+  // Bodies of one group (>= 0) never touch each other: the links of one hand, which overlap at
+  // their joints.
+  int collision_group = -1;
 };
 
 // The friction coefficient of one pair of bodies, overriding the default combination

@@ -67,11 +67,16 @@ void build(const BodyDescription& description, BodyModel& body) {
   body.dof_count = 12;
 }
 
+void set_pose(const BodyModel& body, const Pose& pose, Eigen::VectorXd& q) {
+  const Eigen::Matrix3d r = pose.rotation.normalized().toRotationMatrix();
+  const Eigen::Vector3d com = pose.position + r * body.center_of_mass_offset;
+  q.segment<12>(body.dof_offset) = kernels::affine_body_dofs(r, com);
+}
+
 void initial_state(const BodyModel& body, const BodyDescription& description, Eigen::VectorXd& q,
                    Eigen::VectorXd& v) {
+  set_pose(body, description.pose, q);
   const Eigen::Matrix3d r = description.pose.rotation.normalized().toRotationMatrix();
-  const Eigen::Vector3d com = description.pose.position + r * body.center_of_mass_offset;
-  q.segment<12>(body.dof_offset) = kernels::affine_body_dofs(r, com);
   // dA/dt = [omega]x A; q is linear in (A, p), so the same map gives the DOF velocity.
   const Eigen::Vector3d& w = description.angular_velocity;
   Eigen::Matrix3d omega_cross;

@@ -18,6 +18,8 @@ void build(const BodyDescription& description, BodyModel& body);
 
 void initial_state(const BodyModel& body, const BodyDescription& description, Eigen::VectorXd& q,
                    Eigen::VectorXd& v);
+// The body's DOFs in q set to the rigid pose `pose` of its description's frame.
+void set_pose(const BodyModel& body, const Pose& pose, Eigen::VectorXd& q);
 void place(const BodyModel& body, const Eigen::Isometry3d& motion, Eigen::VectorXd& q,
            Eigen::VectorXd& v);
 

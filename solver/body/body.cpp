@@ -55,6 +55,9 @@ void place_body(const BodyModel& body, int index, const Eigen::Isometry3d& motio
     case BodyType::kFem:
       return fem::place(body, motion, state.q, state.v);
     case BodyType::kAffine:
+      if (is_driven(body)) {
+        kinematic::place(motion, state.poses[index], state.kinematic_velocity[index]);
+      }
       return affine::place(body, motion, state.q, state.v);
     case BodyType::kKinematic:
       return kinematic::place(motion, state.poses[index], state.kinematic_velocity[index]);
@@ -126,7 +129,33 @@ double max_displacement(const BodyModel& body, const Eigen::VectorXd& dq) {
 void add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h,
                  Eigen::VectorXd& q_tilde) {
   if (body.type == BodyType::kFem) fem::add_gravity(body, gravity, h, q_tilde);
-  if (body.type == BodyType::kAffine) affine::add_gravity(body, gravity, h, q_tilde);
+  if (body.type == BodyType::kAffine && !is_driven(body)) {
+    affine::add_gravity(body, gravity, h, q_tilde);
+  }
+}
+
+void add_drive_energy(const BodyModel& body, const Eigen::VectorXd& q,
+                      const Eigen::VectorXd& target, double& sum) {
+  if (!is_driven(body)) return;
+  const int o = body.dof_offset;
+  const Vector12d dq = q.segment<12>(o) - target.segment<12>(o);
+  sum += 0.5 * body.drive_stiffness / body_mass(body) * dq.dot(body.mass_matrix * dq);
+}
+
+void add_drive_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
+                           const Eigen::VectorXd& target, double scale, Eigen::VectorXd& gradient,
+                           std::vector<Eigen::Triplet<double>>& hessian) {
+  if (!is_driven(body)) return;
+  const int o = body.dof_offset;
+  const double s = scale * body.drive_stiffness / body_mass(body);
+  gradient.segment<12>(o) += s * (body.mass_matrix * (q.segment<12>(o) - target.segment<12>(o)));
+  for (int i = 0; i < 12; ++i) {
+    for (int j = 0; j <= i; ++j) hessian.emplace_back(o + i, o + j, s * body.mass_matrix(i, j));
+  }
+}
+
+void set_drive_target(const BodyModel& body, const Pose& pose, Eigen::VectorXd& dofs) {
+  affine::set_pose(body, pose, dofs);
 }
 
 double body_mass(const BodyModel& body) {

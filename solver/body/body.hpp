@@ -20,6 +20,10 @@ namespace grip::solver {
 Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& m);
 
 inline bool is_kinematic(const BodyModel& body) { return body.type == BodyType::kKinematic; }
+// A driven body follows its script's pose through a spring (BodyDescription::drive_stiffness).
+inline bool is_driven(const BodyModel& body) { return body.drive_stiffness > 0.0; }
+// Whose pose its script moves: a kinematic body's, or a driven body's drive target.
+inline bool is_scripted(const BodyModel& body) { return is_kinematic(body) || is_driven(body); }
 // Only a soft body can touch itself; a stiff or kinematic one keeps its shape.
 inline bool can_self_collide(BodyType type) { return type == BodyType::kFem; }
 
@@ -29,7 +33,7 @@ void build_body(const BodyDescription& description, BodyModel& body);
 // The body's start state (DOFs and velocities, or pose, script and frame velocity).
 void initial_body_state(const BodyModel& body, int index, const BodyDescription& description,
                         State& state);
-// Moves the body rigidly by `motion` (velocities turn with it).
+// Moves the body rigidly by `motion` (velocities turn with it; a driven body's target with it).
 void place_body(const BodyModel& body, int index, const Eigen::Isometry3d& motion, State& state);
 
 // A body vertex's world position at DOFs q; kinematic bodies are at `pose`.
@@ -49,6 +53,17 @@ void add_gravity(const BodyModel& body, const Eigen::Vector3d& gravity, double h
                  Eigen::VectorXd& q_tilde);
 // The body's mass (kg; 0 for a kinematic body).
 double body_mass(const BodyModel& body);
+// A driven body's drive: the energy 1/2 (k / m) |q - q_target|_M^2 of its spring (k the drive
+// stiffness, m the body's mass, M its mass matrix), added to `sum`, and `scale` times its
+// derivatives added to the gradient and lower-triangle triplets; `target` the DOFs of the
+// script's pose. Nothing for a body that is not driven.
+void add_drive_energy(const BodyModel& body, const Eigen::VectorXd& q,
+                      const Eigen::VectorXd& target, double& sum);
+void add_drive_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
+                           const Eigen::VectorXd& target, double scale, Eigen::VectorXd& gradient,
+                           std::vector<Eigen::Triplet<double>>& hessian);
+// The DOFs a driven body has at `pose` (its script's frame), written into `dofs`.
+void set_drive_target(const BodyModel& body, const Pose& pose, Eigen::VectorXd& dofs);
 
 Eigen::Vector3d center_of_mass(const BodyModel& body, int index, const State& state);
 Eigen::Vector3d center_of_mass_velocity(const BodyModel& body, int index, const State& state);

@@ -16,20 +16,21 @@ Eigen::Vector3d rest_position(const Model& model, int collision_vertex) {
       mesh.vertex_local[collision_vertex]);
 }
 
-bool on_kinematic_body(const Model& model, int collision_vertex) {
-  return is_kinematic(model.bodies()[model.collision().vertex_body[collision_vertex]]);
+bool on_untouching_body(const Model& model, int collision_vertex) {
+  return model.among_untouching(model.collision().vertex_body[collision_vertex]);
 }
 
-// Only kinematic bodies whose box reaches the free primitives' look among them.
+// Only untouching bodies (Model::among_untouching) whose box reaches the other primitives' look
+// among them.
 void add_point_triangle_candidates(const Model& model, const std::vector<Aabb>& vertex_boxes,
                                    const std::vector<char>& reaches, PrimitiveTrees& faces,
                                    std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
   for (int v = 0; v < mesh.size(); ++v) {
     const int body_v = mesh.vertex_body[v];
-    const bool kinematic = on_kinematic_body(model, v);
-    if (kinematic && !reaches[body_v]) continue;
-    faces.query(kinematic, vertex_boxes[v], [&](int f) {
+    const bool untouching = on_untouching_body(model, v);
+    if (untouching && !reaches[body_v]) continue;
+    faces.query(untouching, vertex_boxes[v], [&](int f) {
       const auto& t = mesh.faces[f];
       if (t[0] == v || t[1] == v || t[2] == v) return;
       const double mu = model.pair_friction(body_v, mesh.vertex_body[t[0]]);
@@ -41,16 +42,16 @@ void add_point_triangle_candidates(const Model& model, const std::vector<Aabb>& 
   }
 }
 
-// A free edge keeps only free partners (its kinematic ones are found from their side): one
+// A free edge keeps only free partners (its untouching ones are found from their side): one
 // whose body touches no free body's edges (a rigid object's among a hand's links) skips its query.
 void add_edge_edge_candidates(const Model& model, const std::vector<char>& reaches,
                               PrimitiveTrees& edges, std::vector<ContactCandidate>& candidates) {
   const CollisionMesh& mesh = model.collision();
-  auto kinematic = [&](int edge) { return on_kinematic_body(model, mesh.edges[edge][0]); };
+  auto untouching = [&](int edge) { return on_untouching_body(model, mesh.edges[edge][0]); };
   const int body_count = static_cast<int>(model.bodies().size());
   std::vector<char> has_free_edges(body_count, 0);
   for (const auto& e : mesh.edges) {
-    if (!on_kinematic_body(model, e[0])) has_free_edges[mesh.vertex_body[e[0]]] = 1;
+    if (!on_untouching_body(model, e[0])) has_free_edges[mesh.vertex_body[e[0]]] = 1;
   }
   std::vector<char> touches_free_edges(body_count, 0);
   for (int b = 0; b < body_count; ++b) {
@@ -61,12 +62,12 @@ void add_edge_edge_candidates(const Model& model, const std::vector<char>& reach
   for (int a = 0; a < static_cast<int>(mesh.edges.size()); ++a) {
     const auto& ea = mesh.edges[a];
     const int body_a = mesh.vertex_body[ea[0]];
-    if (!(kinematic(a) ? reaches[body_a] : touches_free_edges[body_a])) continue;
+    if (!(untouching(a) ? reaches[body_a] : touches_free_edges[body_a])) continue;
     // Each unordered pair once: found from its lower index when both trees hold the other
-    // edge, from the kinematic edge's side otherwise (only it looks in the smaller tree).
-    edges.query(kinematic(a), edges.box(a), [&](int b) {
+    // edge, from the untouching edge's side otherwise (only it looks in the smaller tree).
+    edges.query(untouching(a), edges.box(a), [&](int b) {
       if (b == a) return;
-      if (kinematic(a) == kinematic(b) ? b < a : kinematic(b)) return;
+      if (untouching(a) == untouching(b) ? b < a : untouching(b)) return;
       const auto& eb = mesh.edges[b];
       if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) return;
       const double mu = model.pair_friction(body_a, mesh.vertex_body[eb[0]]);
@@ -101,7 +102,7 @@ std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const 
     box.inflate(margin);
     body_boxes_[mesh.vertex_body[v]].expand(box);
   }
-  // Whether each body's box reaches the free primitives' boxes (it matters for kinematic ones).
+  // Whether each body's box reaches the free primitives' boxes (it matters for untouching ones).
   const auto reaching = [&](const PrimitiveTrees& trees, std::vector<char>& reaches) {
     reaches.resize(body_boxes_.size());
     for (std::size_t b = 0; b < body_boxes_.size(); ++b) {

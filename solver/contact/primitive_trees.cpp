@@ -1,7 +1,5 @@
 #include "solver/contact/primitive_trees.hpp"
 
-#include "solver/body/body.hpp"
-
 namespace grip::solver {
 
 void PrimitiveTrees::update(const Model& model, std::span<const Aabb> boxes,
@@ -13,7 +11,7 @@ void PrimitiveTrees::update(const Model& model, std::span<const Aabb> boxes,
   free_boxes_.clear();
   free_bounds_ = Aabb{};
   for (std::size_t i = 0; i < boxes_.size(); ++i) {
-    if (is_kinematic(model.bodies()[mesh.vertex_body[first_vertex[i]]])) continue;
+    if (model.among_untouching(mesh.vertex_body[first_vertex[i]])) continue;
     free_index_.push_back(static_cast<int>(i));
     free_boxes_.push_back(boxes_[i]);
     free_bounds_.expand(boxes_[i]);

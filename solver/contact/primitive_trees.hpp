@@ -1,8 +1,8 @@
 #pragma once
 // One kind of primitive of a collision mesh (faces or edges) in two trees, for the broad phase.
-// Kinematic bodies never touch each other (a hand's links, a gripper's jaws), and they can hold
-// most of the primitives: theirs look only among the other bodies' primitives, in a second,
-// smaller tree over those.
+// Untouching bodies never touch each other (Model::among_untouching: kinematic jaws, a hand's
+// links), and they can hold most of the primitives: theirs look only among the other bodies'
+// primitives, in a second, smaller tree over those (the free tree).
 #include <span>
 #include <vector>
 
@@ -19,13 +19,13 @@ class PrimitiveTrees {
               const std::vector<int>& first_vertex);
 
   const Aabb& box(int i) const { return boxes_[static_cast<std::size_t>(i)]; }
-  // The union of the free (not kinematic) primitives' boxes.
+  // The union of the free (not untouching) primitives' boxes.
   const Aabb& free_bounds() const { return free_bounds_; }
 
   // Calls visit(primitive index) for each box of the right tree that overlaps `box`.
   template <typename Visit>
-  void query(bool from_kinematic, const Aabb& box, Visit&& visit) {
-    if (from_kinematic) {
+  void query(bool from_untouching, const Aabb& box, Visit&& visit) {
+    if (from_untouching) {
       free_.query(box, [&](int k) { visit(free_index_[static_cast<std::size_t>(k)]); });
     } else {
       all_.query(box, visit);

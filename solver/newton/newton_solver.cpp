@@ -41,7 +41,14 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
     add_gravity(body, state.gravity, h, q_tilde);
     step.standard_weight += body_mass(body) * kStandardGravity;
   }
-  potential_.begin_step(q_tilde, start, state.kappa, h);
+  // Driven bodies: their DOFs at their scripts' poses at the end of the step.
+  Eigen::VectorXd q_drive = state.q;
+  for (std::size_t b = 0; b < model_.bodies().size(); ++b) {
+    if (is_driven(model_.bodies()[b])) {
+      set_drive_target(model_.bodies()[b], step.targets.pose_target[b], q_drive);
+    }
+  }
+  potential_.begin_step(q_tilde, std::move(q_drive), start, state.kappa, h);
   const std::vector<ContactCandidate>& candidates = near(step, start);
   const StageTimer timer(stages_.friction_lag);
   potential_.set_friction(

@@ -30,7 +30,7 @@ StepTargets step_targets(const Model& model, const State& state, double h) {
   targets.pose_target.resize(body_count);
   for (int b = 0; b < body_count; ++b) {
     targets.pose_target[b] =
-        is_kinematic(model.bodies()[b])
+        is_scripted(model.bodies()[b])
             ? kinematic::advance(state.scripts[b], state.poses[b], state.time + h, h)
             : state.poses[b];
   }

@@ -15,6 +15,17 @@ void InertiaTerm::add_derivatives(const PotentialPoint& at, double scale,
   }
 }
 
+void DriveTerm::add_energy(const PotentialPoint& at, double& sum) const {
+  for (const BodyModel& body : model_.bodies()) add_drive_energy(body, at.q, q_target_, sum);
+}
+
+void DriveTerm::add_derivatives(const PotentialPoint& at, double scale,
+                                PotentialDerivatives& out) const {
+  for (const BodyModel& body : model_.bodies()) {
+    add_drive_derivatives(body, at.q, q_target_, scale, out.gradient, out.hessian);
+  }
+}
+
 void ElasticityTerm::add_energy(const PotentialPoint& at, double& sum) const {
   for (const BodyModel& body : model_.bodies()) add_elastic_energy(body, at.q, sum);
 }

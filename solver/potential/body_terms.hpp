@@ -1,7 +1,7 @@
 #pragma once
 // The incremental potential's per-body terms: inertia, 1/2 |x - x_tilde|_M^2 about the step's
-// inertia target, and elasticity (stable Neo-Hookean for FEM bodies, the orthogonality energy
-// of affine ones). Kinematic bodies have neither.
+// inertia target, elasticity (stable Neo-Hookean for FEM bodies, the orthogonality energy
+// of affine ones) and the drives of driven bodies. Kinematic bodies have none.
 #include "solver/model.hpp"
 #include "solver/potential/potential_term.hpp"
 
@@ -20,6 +20,23 @@ class InertiaTerm : public PotentialTerm {
  private:
   const Model& model_;
   Eigen::VectorXd q_tilde_;
+};
+
+// The springs that pull driven bodies towards their scripts' poses at the end of the step.
+class DriveTerm : public PotentialTerm {
+ public:
+  explicit DriveTerm(const Model& model) : model_(model) {}
+  // The DOFs of each driven body at its script's pose at the end of the step (other entries
+  // unused).
+  void set_target(Eigen::VectorXd q_target) { q_target_ = std::move(q_target); }
+
+  void add_energy(const PotentialPoint& at, double& sum) const override;
+  void add_derivatives(const PotentialPoint& at, double scale,
+                       PotentialDerivatives& out) const override;
+
+ private:
+  const Model& model_;
+  Eigen::VectorXd q_target_;
 };
 
 class ElasticityTerm : public PotentialTerm {

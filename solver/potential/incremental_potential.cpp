@@ -3,12 +3,18 @@
 namespace grip::solver {
 
 IncrementalPotential::IncrementalPotential(const Model& model)
-    : model_(model), inertia_(model), elasticity_(model), barrier_(model), friction_(model) {}
+    : model_(model),
+      inertia_(model),
+      elasticity_(model),
+      drive_(model),
+      barrier_(model),
+      friction_(model) {}
 
-void IncrementalPotential::begin_step(Eigen::VectorXd q_tilde, Vertices start_positions,
-                                      double kappa, double h) {
+void IncrementalPotential::begin_step(Eigen::VectorXd q_tilde, Eigen::VectorXd q_drive,
+                                      Vertices start_positions, double kappa, double h) {
   h_ = h;
   inertia_.set_target(std::move(q_tilde));
+  drive_.set_target(std::move(q_drive));
   barrier_.set_kappa(kappa);
   friction_.begin_step(std::move(start_positions), h);
 }

@@ -54,6 +54,7 @@ double FingerServo::spring_increment(double max_step) const {
 }
 
 double FingerServo::next_increment(double max_step) const {
+  if (halted_) return 0.0;
   if (spring_stiffness_ > 0.0) return spring_increment(max_step);
   // Once the finger has touched, from a quarter of max_step: within d_hat the barrier's force
   // goes from zero to hundreds of newtons over a few tenths of a millimetre.

@@ -33,6 +33,9 @@ class FingerServo {
   // its force now, standing for its drive's compliance. next_increment then moves it (at most
   // max_step a step) so that its contact force matches the spring's.
   void hold_as_spring(double stiffness);
+  // After closing, for a finger whose drive is a spring inside the solve: it stays where its
+  // command stands.
+  void halt() { halted_ = true; }
 
   // Commits an increment returned by next_increment.
   void advance(double increment);
@@ -75,6 +78,7 @@ class FingerServo {
   int same_side_ = 0;  // observations in a row on one side of the target (or out of contact)
   double spring_stiffness_ = 0.0;  // N/m; 0: still closing
   double spring_rest_ = 0.0;       // the travel at which the spring's force is zero
+  bool halted_ = false;
 };
 
 }  // namespace grip::trial

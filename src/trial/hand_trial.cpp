@@ -66,6 +66,8 @@ class HandTrialGripper final : public TrialGripper {
     scene_.hold_finger(environment, finger);
   }
 
+  bool driven_fingers() const override { return true; }
+
   const Eigen::Isometry3d& pose(std::size_t k) const override { return grasps_[k].pose; }
 
   std::vector<double> joints(std::size_t k, const std::vector<double>& travel) const override {

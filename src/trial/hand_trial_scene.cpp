@@ -75,11 +75,19 @@ HandTrialScene::HandTrialScene(const TrialObject& object, grippers::HandModel ha
     if (link.surface.triangles.rows() == 0) continue;
     solver::BodyDescription body;
     body.name = link.name;
-    body.type = solver::BodyType::kKinematic;
     body.vertices = link.surface.vertices;
     body.triangles = link.surface.triangles;
     body.pose = to_pose(rest_link_poses_[l]);
     body.material.friction = parameters.rigid_finger_friction;
+    body.collision_group = 0;
+    // A finger's links are driven: each follows the pose its joints command through a spring
+    // of hand_drive_stiffness inside the step (the drive's compliance); the palm is kinematic.
+    if (link_finger_[l] >= 0) {
+      body.type = solver::BodyType::kAffine;
+      body.drive_stiffness = parameters.hand_drive_stiffness;
+    } else {
+      body.type = solver::BodyType::kKinematic;
+    }
     link_body_[l] = static_cast<int>(scene.bodies.size());
     if (link_finger_[l] >= 0) {
       fingers_[static_cast<std::size_t>(link_finger_[l])].bodies.push_back(link_body_[l]);

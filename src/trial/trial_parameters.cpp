@@ -30,6 +30,8 @@ void validate(const TrialParameters& p) {
   require(p.final_opening >= 0.0, "final_opening", ">= 0 (m)");
   require(p.finger_stiffness > 0.0 && std::isfinite(p.finger_stiffness), "finger_stiffness",
           "positive (N/m)");
+  require(p.hand_drive_stiffness > 0.0 && std::isfinite(p.hand_drive_stiffness),
+          "hand_drive_stiffness", "positive (N/m)");
   require(p.settle_speed > 0.0, "settle_speed", "positive (m/s)");
   require(p.settle_angular_speed > 0.0, "settle_angular_speed", "positive (rad/s)");
   require(p.force_tolerance > 0.0 && p.force_tolerance < 1.0, "force_tolerance",

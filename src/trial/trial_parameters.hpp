@@ -33,6 +33,12 @@ struct TrialParameters {
   double grip_force = 50.0;       // N per finger
   double final_opening = 0.002;   // m
   double finger_stiffness = 2e4;  // N/m: 50 N over 2.5 mm
+  // The hand's finger links are driven bodies (solver BodyDescription::drive_stiffness): each
+  // follows the pose its joint commands give through a spring of this stiffness inside the
+  // step, from the first step to the last, instead of being held a step behind. 2e5 N/m (50 N
+  // over 0.25 mm) is the stiffest of those measured that keeps the hand's verdicts at dt/2,
+  // newton_tol/10 and two friction lag iterations (docs/trial.md, "The hand's drive").
+  double hand_drive_stiffness = 2e5;  // N/m
 
   // Settling, gravity off, fingers held by their springs: done once the object moves slower than
   // settle_speed and turns slower than settle_angular_speed, and no finger's force changes by more

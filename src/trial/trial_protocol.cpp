@@ -364,7 +364,13 @@ class ProtocolRunner {
     }
     state.outcome.result.record.closing_forces = finger_forces(state);
     state.outcome.closed = true;
-    for (FingerServo& finger : state.fingers) finger.hold_as_spring(p_.finger_stiffness);
+    for (FingerServo& finger : state.fingers) {
+      if (gripper_.driven_fingers()) {
+        finger.halt();
+      } else {
+        finger.hold_as_spring(p_.finger_stiffness);
+      }
+    }
     env.release(gripper_.object_body());
     state.phase = Phase::kSettling;
     command(i);

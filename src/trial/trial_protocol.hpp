@@ -60,6 +60,10 @@ class TrialGripper {
   virtual void move_finger(solver::Environment& environment, std::size_t k, int finger,
                            double travel, double speed) const = 0;
   virtual void hold_finger(solver::Environment& environment, int finger) const = 0;
+  // The fingers' drives are springs inside the solve (driven bodies, BodyDescription::
+  // drive_stiffness): after closing, a finger is halted where its command stands. Otherwise it
+  // is kinematic and held as a spring by the protocol, a step behind.
+  virtual bool driven_fingers() const { return false; }
 
   // The candidate's pose (world from gripper) and joint values (the dataset's layout), and the
   // joint values when its fingers have travelled `travel`.

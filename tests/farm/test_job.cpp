@@ -37,6 +37,7 @@ dt = 0.005
 
 [trial]
 grip_force = 40
+hand_drive_stiffness = 1e5
 
 [outputs]
 validation_frames = 12
@@ -66,6 +67,8 @@ TEST(Job, ResolvesDefaultsAndOverrides) {
   EXPECT_EQ(job.grippers[0].candidates, 4);
   EXPECT_DOUBLE_EQ(job.trial.sim.dt, 0.005);
   EXPECT_DOUBLE_EQ(job.trial.grip_force, 40.0);
+  EXPECT_DOUBLE_EQ(job.trial.hand_drive_stiffness, 1e5);
+  EXPECT_DOUBLE_EQ(job.trial.finger_stiffness, 2e4);  // the default
   EXPECT_EQ(job.trial.validation_frames, 12);
   EXPECT_EQ(job.trial.closing_frames, 40);  // the default, as GRIP's released files
   EXPECT_EQ(job.text, kValid);              // verbatim, for the dataset's provenance
@@ -136,6 +139,7 @@ TEST(Job, MistakesNameTheFileLineAndKey) {
       {"candidates = 4", "candidates = 4\nbimanual = true", "not implemented yet"},
       {"validation_frames = 12", "validation_frames = 10", "multiple of 6"},
       {"dt = 0.005", "dt = -1", "physics.dt"},
+      {"hand_drive_stiffness = 1e5", "hand_drive_stiffness = 0", "hand_drive_stiffness"},
       {"friction = 0.8", "friction = 0.8\ndensity = 900", ""},  // allowed with randomize = false
       {"randomize = false", "randomize = true", "randomize = false"},  // friction is drawn
   };

@@ -189,5 +189,28 @@ TEST(ContactBroadPhase, KeptBetweenCallsFindsWhatAFreshOneFinds) {
   expect_kept_finds_what_fresh_finds(jaws_and_boxes(false));
 }
 
+// Driven jaws of one collision group are untouching, as kinematic ones are; with a kinematic
+// body outside the group that they may touch, only the kinematic one is. Both find what brute
+// force finds.
+TEST(ContactBroadPhase, ACollisionGroupLooksOnlyAmongTheOthers) {
+  SceneDescription scene = jaws_and_boxes(false);
+  for (int jaw : {0, 1}) {
+    scene.bodies[jaw].type = BodyType::kAffine;
+    scene.bodies[jaw].drive_stiffness = 1e5;
+    scene.bodies[jaw].collision_group = 0;
+  }
+  const std::shared_ptr<const Model> grouped = Model::build(scene);
+  EXPECT_TRUE(grouped->among_untouching(0) && grouped->among_untouching(1));
+  EXPECT_FALSE(grouped->among_untouching(2));
+  expect_kept_finds_what_fresh_finds(scene);
+
+  scene.bodies.push_back(
+      testing::rigid_box("floor", BodyType::kKinematic, {0.1, 0.1, 0.01}, {0, 0, -0.0155}));
+  const std::shared_ptr<const Model> mixed = Model::build(scene);
+  EXPECT_FALSE(mixed->among_untouching(0) || mixed->among_untouching(1));
+  EXPECT_TRUE(mixed->among_untouching(3));
+  expect_kept_finds_what_fresh_finds(scene);
+}
+
 }  // namespace
 }  // namespace grip::solver
