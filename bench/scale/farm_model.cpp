@@ -5,6 +5,7 @@
 #include <functional>
 #include <queue>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 namespace grip::bench {
@@ -101,20 +102,31 @@ ModelRun simulate_farm(const ModelJob& job, const FarmCosts& costs, int ranks,
   run.rounds = (units.size() + per_round - 1) / per_round;
 
   std::vector<SceneCache> scenes(ranks);
-  using Event = std::pair<double, int>;  // (time the rank claims, rank)
+  // (time, rank, what): a rank claims its next unit (0), or, barrier-free, writes its last (1).
+  using Event = std::tuple<double, int, int>;
   double now = 0;
   for (std::uint64_t round = 0; round < run.rounds; ++round) {
     const std::uint64_t first = round * per_round;
     const std::uint64_t count = std::min<std::uint64_t>(per_round, units.size() - first);
     std::priority_queue<Event, std::vector<Event>, std::greater<>> ready;
-    for (int r = 0; r < ranks; ++r) ready.push({now, r});
-    std::vector<double> finished(ranks, now);
+    for (int r = 0; r < ranks; ++r) ready.push({now, r, 0});
+    std::vector<double> finished(ranks, now), unwritten(ranks, 0.0);
     double counter_free = now;  // rank 0's counter serves one claim at a time
+    double file_free = now;     // the file takes one write's bytes at a time
     std::uint64_t next = 0;
     double bytes = 0;
     while (!ready.empty()) {
-      const auto [t, r] = ready.top();
+      const auto [t, r, what] = ready.top();
       ready.pop();
+      if (what == 1) {
+        const double start = std::max(t, file_free);
+        file_free =
+            start + (costs.commit.bandwidth > 0 ? unwritten[r] / costs.commit.bandwidth : 0.0);
+        const double written = file_free + costs.commit.latency;
+        run.committing += written - t;
+        ready.push({written, r, 0});
+        continue;
+      }
       const double start = std::max(t + 0.5 * costs.claim.latency, counter_free);
       counter_free = start + costs.claim.service;
       const double answered = counter_free + 0.5 * costs.claim.latency;
@@ -129,13 +141,8 @@ ModelRun simulate_farm(const ModelJob& job, const FarmCosts& costs, int ranks,
       const double unit_bytes = costs.bytes_per_candidate * static_cast<double>(unit.candidates);
       run.work += trials;
       bytes += unit_bytes;
-      double write = 0;
-      if (options.barrier_free) {
-        write = costs.commit.latency +
-                (costs.commit.bandwidth > 0 ? unit_bytes / costs.commit.bandwidth : 0.0);
-        run.committing += write;
-      }
-      ready.push({answered + trials + write, r});
+      unwritten[r] = unit_bytes;
+      ready.push({answered + trials, r, options.barrier_free ? 1 : 0});
     }
     const double end = *std::max_element(finished.begin(), finished.end());
     for (const double f : finished) run.idle += end - f;

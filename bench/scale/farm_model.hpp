@@ -57,7 +57,8 @@ struct ModelJob {
 struct ModelOptions {
   UnitOrder order = UnitOrder::kIds;
   // What-if: no barrier at a round's end; each rank commits its own rows after each unit
-  // independently (a write of latency + bytes/bandwidth, no log2 term) and runs on.
+  // independently and runs on: a write takes latency + bytes / bandwidth, no log2 term, and
+  // the file takes one write's bytes at a time (the bandwidth is shared).
   bool barrier_free = false;
 };
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "bench/common/subprocess.hpp"
@@ -40,21 +41,25 @@ std::vector<Scenario> scenarios(const ScaleOptions& o) {
   std::vector<Scenario> out = {{"farm", {}, o.batch, o.round_batches}};
   for (const std::string& w : o.what_if) {
     Scenario s{w, {}, o.batch, o.round_batches};
-    const std::size_t eq = w.find('=');
-    const std::string key = w.substr(0, eq),
-                      value = eq == std::string::npos ? "" : w.substr(eq + 1);
-    if (w == "heaviest-first") {
-      s.options.order = UnitOrder::kHeaviestFirst;
-    } else if (w == "barrier-free") {
-      s.options.barrier_free = true;
-    } else if (key == "round-batches" && eq != std::string::npos) {
-      s.round_batches = positive(key, value);
-    } else if (key == "batch" && eq != std::string::npos) {
-      s.batch = positive(key, value);
-    } else {
-      throw std::invalid_argument("--what-if: '" + w +
-                                  "' is not one of heaviest-first, barrier-free, "
-                                  "round-batches=N, batch=N");
+    std::stringstream parts(w);
+    std::string part;
+    while (std::getline(parts, part, '+')) {  // changes combine: barrier-free+batch=1
+      const std::size_t eq = part.find('=');
+      const std::string key = part.substr(0, eq);
+      const std::string value = eq == std::string::npos ? "" : part.substr(eq + 1);
+      if (part == "heaviest-first") {
+        s.options.order = UnitOrder::kHeaviestFirst;
+      } else if (part == "barrier-free") {
+        s.options.barrier_free = true;
+      } else if (key == "round-batches" && eq != std::string::npos) {
+        s.round_batches = positive(key, value);
+      } else if (key == "batch" && eq != std::string::npos) {
+        s.batch = positive(key, value);
+      } else {
+        throw std::invalid_argument("--what-if: '" + part +
+                                    "' is not one of heaviest-first, barrier-free, "
+                                    "round-batches=N, batch=N (joined by '+')");
+      }
     }
     out.push_back(s);
   }
@@ -149,11 +154,9 @@ MeasuredRun farm_run(const ScaleOptions& o, int ranks) {
 // (spread over its objects, soft ones alike: one run cannot tell them apart).
 void apply_one_rank_run(const MeasuredRun& one, FarmCosts& costs) {
   costs.startup = std::max(0.0, one.whole - one.plan - one.trials);
-  const double candidates = static_cast<double>(one.dataset.job.candidate_seconds.size());
   costs.synthesis = 0;
   costs.prepare_rigid = costs.prepare_soft =
       one.plan / static_cast<double>(one.dataset.job.object_soft.size());
-  costs.bytes_per_candidate = static_cast<double>(one.dataset.file_bytes) / candidates;
 }
 
 std::vector<ValidationRow> validate(const ScaleOptions& o, FarmCosts& costs) {

@@ -362,8 +362,9 @@ int main(int argc, char** argv) {
                    "batch=N")
       ->delimiter(',');
   const auto seconds = [&](const char* name, double& value, const char* what) {
-    bench_scale->add_option(name, value, what)->capture_default_str()->check(
-        CLI::NonNegativeNumber);
+    bench_scale->add_option(name, value, what)
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
   };
   seconds("--commit-latency", bench_scale_args.commit_latency, "s per commit (without --measure)");
   seconds("--commit-per-log2", bench_scale_args.commit_per_log2,
@@ -380,7 +381,7 @@ int main(int argc, char** argv) {
   seconds("--synthesis", bench_scale_args.synthesis, "s per candidate synthesized");
   seconds("--scene-build", bench_scale_args.scene_build, "s to build a trial scene");
   seconds("--bytes-per-candidate", bench_scale_args.bytes_per_candidate,
-          "Bytes committed per candidate (without --validate)");
+          "Bytes committed per candidate of the simulated job");
   seconds("--broadcast-per-log2", bench_scale_args.broadcast_per_log2,
           "s per planning broadcast per log2(ranks)");
   bench_scale
@@ -388,7 +389,8 @@ int main(int argc, char** argv) {
                    "Folder for scale.md, scale.csv, validation.csv, the plot and the runs")
       ->capture_default_str()
       ->check(kOutputFolder);
-  bench_scale->callback([&] { run = [&] { return grip::commands::bench_scale(bench_scale_args); }; });
+  bench_scale->callback(
+      [&] { run = [&] { return grip::commands::bench_scale(bench_scale_args); }; });
   grip::commands::BenchScaleProbeArgs bench_scale_probe_args;
   CLI::App* bench_scale_probe = bench->add_subcommand(
       "scale-probe", "Under mpirun: claim and commit costs for grip bench scale --measure");

@@ -142,8 +142,8 @@ struct BenchScaleArgs {
   std::vector<int> ranks{64, 128, 256, 512, 1024, 2048, 4096};
   int batch = 4;
   int round_batches = 4;
-  std::vector<int> measure;          // rank counts for the commit probe; empty: the constants
-  std::string validate;              // a job run at validate_ranks and compared
+  std::vector<int> measure;  // rank counts for the commit probe; empty: the constants
+  std::string validate;      // a job run at validate_ranks and compared
   std::vector<int> validate_ranks{1, 2, 3};
   std::vector<std::string> what_if;  // heaviest-first, barrier-free, round-batches=N, batch=N
   // The model's constants where no measurement replaces them (docs/farm.md gives their source).
@@ -157,7 +157,7 @@ struct BenchScaleArgs {
   double prepare_soft = 0.029;
   double synthesis = 0.0;
   double scene_build = 0.0;
-  double bytes_per_candidate = 2000;
+  double bytes_per_candidate = 400;
   double broadcast_per_log2 = 5e-6;
   std::string out = "out/bench-scale";
 };

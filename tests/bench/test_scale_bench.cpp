@@ -155,6 +155,21 @@ TEST(FarmModel, HeaviestFirstAndBarrierFreeHelpAHeavyTail) {
   EXPECT_EQ(simulate_farm(job, costs, 8, free).rounds, 1u);
 }
 
+TEST(FarmModel, BarrierFreeWritesShareTheFile) {
+  // Two ranks end a one-candidate unit each at t=1 and write 1 byte at 1 byte/s: the second
+  // write waits for the first (1-2, 2-3); the refused claims follow at 2 and 3.
+  const ModelJob job = one_pair_job({1, 1}, 1, 1);
+  FarmCosts costs;
+  costs.bytes_per_candidate = 1;
+  costs.commit = {0, 5.0, 1.0};  // the log2 term belongs to the collective commit only
+  ModelOptions free;
+  free.barrier_free = true;
+  const ModelRun run = simulate_farm(job, costs, 2, free);
+  EXPECT_DOUBLE_EQ(run.trial_phase, 3.0);
+  EXPECT_DOUBLE_EQ(run.committing, 1.0 + 2.0);
+  EXPECT_DOUBLE_EQ(run.idle, 1.0);
+}
+
 TEST(FarmModel, RefusesNonsense) {
   const ModelJob job = one_pair_job({1}, 1, 1);
   EXPECT_THROW(simulate_farm(job, FarmCosts{}, 0), std::invalid_argument);
