@@ -27,7 +27,7 @@ def main(csv_path, png_path):
     eff_ax.set_ylabel("parallel efficiency (%)")
     eff_ax.set_title("predicted efficiency")
     eff_ax.grid(alpha=0.3)
-    eff_ax.legend(fontsize=8)
+    eff_ax.legend(fontsize=8, loc="lower left")
 
     farm = [r for r in rows if r["scenario"] == scenarios[0]]
     ranks = [int(r["ranks"]) for r in farm]

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -85,22 +86,38 @@ void run_logged(const std::vector<std::string>& args, const fs::path& log,
   }
 }
 
+// Each rank count's probe three times, interleaved; per row size the least of the three
+// medians (another user's burst of disk writes can stall every commit of one probe).
 std::vector<ProbeResult> measure(const ScaleOptions& o) {
-  std::vector<ProbeResult> probes;
-  for (const int ranks : o.measure) {
-    const fs::path json = o.out / ("probe_" + std::to_string(ranks) + ".json");
-    const fs::path log = o.out / ("probe_" + std::to_string(ranks) + ".log");
-    run_logged({o.mpiexec.string(), "-np", std::to_string(ranks), "--oversubscribe", "--bind-to",
-                "none", o.grip.string(), "bench", "scale-probe", "--out", json.string(), "--folder",
-                o.out.string()},
-               log, "the commit probe on " + std::to_string(ranks) + " rank(s)");
-    probes.push_back(read_probe_json(json));
-    spdlog::info(
-        "probe on {} rank(s): claim {:.2f} us, commits {:.1f} ms ({:.0f} kB), {:.1f} ms "
-        "({:.0f} kB)",
-        ranks, 1e6 * probes.back().claim_seconds, 1e3 * probes.back().commits[0].seconds,
-        1e-3 * probes.back().commits[0].bytes, 1e3 * probes.back().commits[1].seconds,
-        1e-3 * probes.back().commits[1].bytes);
+  constexpr int kRepeats = 3;
+  std::vector<ProbeResult> probes(o.measure.size());
+  for (int repeat = 0; repeat < kRepeats; ++repeat) {
+    for (std::size_t k = 0; k < o.measure.size(); ++k) {
+      const std::string ranks = std::to_string(o.measure[k]);
+      const fs::path json = o.out / ("probe_" + ranks + "_" + std::to_string(repeat) + ".json");
+      const fs::path log = o.out / ("probe_" + ranks + "_" + std::to_string(repeat) + ".log");
+      run_logged({o.mpiexec.string(), "-np", ranks, "--oversubscribe", "--bind-to", "none",
+                  o.grip.string(), "bench", "scale-probe", "--out", json.string(), "--folder",
+                  o.out.string()},
+                 log, "the commit probe on " + ranks + " rank(s)");
+      const ProbeResult probe = read_probe_json(json);
+      spdlog::info(
+          "probe on {} rank(s): claim {:.2f} us, commits {:.1f} ms ({:.0f} kB), "
+          "{:.1f} ms ({:.0f} kB)",
+          ranks, 1e6 * probe.claim_seconds, 1e3 * probe.commits[0].seconds,
+          1e-3 * probe.commits[0].bytes, 1e3 * probe.commits[1].seconds,
+          1e-3 * probe.commits[1].bytes);
+      ProbeResult& best = probes[k];
+      if (repeat == 0) {
+        best = probe;
+        continue;
+      }
+      best.claim_seconds = std::min(best.claim_seconds, probe.claim_seconds);
+      best.claim_service = std::min(best.claim_service, probe.claim_service);
+      for (std::size_t c = 0; c < best.commits.size(); ++c) {
+        best.commits[c].seconds = std::min(best.commits[c].seconds, probe.commits[c].seconds);
+      }
+    }
   }
   return probes;
 }
@@ -112,7 +129,7 @@ void apply_probes(const std::vector<ProbeResult>& probes, FarmCosts& costs) {
     for (const CommitSample& c : p.commits) points.push_back({p.ranks, c.bytes, c.seconds});
   }
   costs.commit = fit_commit_model(points);
-  costs.claim.latency = probes.front().claim_seconds;
+  costs.claim.latency = probes.back().claim_seconds;
   costs.claim.service = probes.back().claim_service;
 }
 

@@ -61,10 +61,10 @@ int bench_scale(const BenchScaleArgs& args) {
         100 * (v.predicted_replay - v.measured) / v.measured, v.predicted_one,
         100 * (v.predicted_one - v.measured) / v.measured);
   }
-  std::printf("%-16s %6s %12s %12s %10s\n", "scenario", "ranks", "total (s)", "trials (s)",
+  std::printf("%-28s %6s %12s %12s %10s\n", "scenario", "ranks", "total (s)", "trials (s)",
               "efficiency");
   for (const bench::ScaleRow& r : result.rows) {
-    std::printf("%-16s %6d %12.1f %12.1f %9.1f%%\n", r.scenario.c_str(), r.run.ranks, r.run.total,
+    std::printf("%-28s %6d %12.1f %12.1f %9.1f%%\n", r.scenario.c_str(), r.run.ranks, r.run.total,
                 r.run.trial_phase, 100 * r.efficiency);
   }
   const std::filesystem::path out = args.out;
