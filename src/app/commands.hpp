@@ -147,14 +147,14 @@ struct BenchScaleArgs {
   std::vector<int> validate_ranks{1, 2, 3};
   std::vector<std::string> what_if;  // heaviest-first, barrier-free, round-batches=N, batch=N
   // The model's constants where no measurement replaces them (docs/farm.md gives their source).
-  double commit_latency = 0.0217;
-  double commit_per_log2 = 0.00093;
-  double commit_bandwidth = 112e6;
-  double claim_latency = 1.18e-6;
-  double claim_service = 0.53e-6;
-  double startup = 0.85;
-  double prepare_rigid = 0.041;
-  double prepare_soft = 0.041;
+  double commit_latency = 0.0348;
+  double commit_per_log2 = 0.00263;
+  double commit_bandwidth = 340e6;
+  double claim_latency = 2.59e-6;
+  double claim_service = 0.864e-6;
+  double startup = 0.794;
+  double prepare_rigid = 0.0501;
+  double prepare_soft = 0.0501;
   double synthesis = 0.0;
   double scene_build = 0.0;
   double bytes_per_candidate = 400;
