@@ -15,6 +15,7 @@
 #include "bench/common/subprocess.hpp"
 #include "bench/scale/commit_fit.hpp"
 #include "bench/scale/trial_costs.hpp"
+#include "farm/job.hpp"
 
 namespace grip::bench {
 namespace {
@@ -183,11 +184,13 @@ std::vector<ValidationRow> validate(const ScaleOptions& o, FarmCosts& costs) {
       std::find_if(runs.begin(), runs.end(), [](const auto& r) { return r.ranks == 1; });
   if (one == runs.end()) throw std::invalid_argument("--validate-ranks must include 1");
   apply_one_rank_run(*one, costs);
+  const int round_batches =
+      farm::parse_job(farm::read_job_text(o.validate_job), o.validate_job).round_work_units;
   std::vector<ValidationRow> rows;
   for (const MeasuredRun& run : runs) {
     ModelJob own = run.dataset.job, first = one->dataset.job;
     own.work_unit_size = first.work_unit_size = run.batch;
-    own.round_work_units = first.round_work_units = o.round_batches;
+    own.round_work_units = first.round_work_units = round_batches;
     FarmCosts c = costs;
     c.bytes_per_candidate = static_cast<double>(run.dataset.file_bytes) /
                             static_cast<double>(own.candidate_seconds.size());
