@@ -300,6 +300,109 @@ int main(int argc, char** argv) {
       ->check(kOutputFolder);
   bench_scaling->callback(
       [&] { run = [&] { return grip::commands::bench_scaling(bench_scaling_args); }; });
+  grip::commands::BenchScaleArgs bench_scale_args;
+  CLI::App* bench_scale = bench->add_subcommand(
+      "scale",
+      "The farm simulated at 64 to 4,096 ranks from measured costs, checked against real runs");
+  bench_scale
+      ->add_option("--costs", bench_scale_args.costs,
+                   "Trial costs: grip bench trial's trial.csv or a finished dataset (.h5)")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  bench_scale
+      ->add_option("--grippers", bench_scale_args.grippers,
+                   "Grippers of the simulated job (classes 'GRIPPER x rigid|soft' in the costs)")
+      ->delimiter(',')
+      ->capture_default_str();
+  bench_scale->add_option("--objects", bench_scale_args.objects, "Objects of the simulated job")
+      ->capture_default_str()
+      ->check(kPositiveCount);
+  bench_scale
+      ->add_option("--candidates", bench_scale_args.candidates, "Candidates of the simulated job")
+      ->capture_default_str()
+      ->check(kPositiveCount);
+  bench_scale
+      ->add_option("--soft-fraction", bench_scale_args.soft_fraction,
+                   "Fraction of the simulated job's objects that are soft")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  bench_scale
+      ->add_option("--seed", bench_scale_args.seed, "Seed drawing each candidate's trial cost")
+      ->capture_default_str();
+  bench_scale->add_option("--ranks", bench_scale_args.ranks, "Rank counts to predict")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(kPositiveCount);
+  bench_scale->add_option("--batch", bench_scale_args.batch, "Candidates per work unit")
+      ->capture_default_str()
+      ->check(kPositiveCount);
+  bench_scale
+      ->add_option("--round-batches", bench_scale_args.round_batches,
+                   "Work units per rank per round ([farm] round_batches)")
+      ->capture_default_str()
+      ->check(kPositiveCount);
+  bench_scale
+      ->add_option("--measure", bench_scale_args.measure,
+                   "Rank counts to measure claims and commits at under mpirun, e.g. 1,2,3")
+      ->delimiter(',')
+      ->check(kPositiveCount);
+  bench_scale
+      ->add_option("--validate", bench_scale_args.validate,
+                   "Job to run under mpirun and compare with the model (e.g. jobs/demo.toml)")
+      ->check(CLI::ExistingFile);
+  bench_scale
+      ->add_option("--validate-ranks", bench_scale_args.validate_ranks,
+                   "Rank counts of the validation runs (1 included)")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(kPositiveCount);
+  bench_scale
+      ->add_option("--what-if", bench_scale_args.what_if,
+                   "Scenarios beside the farm's: heaviest-first, barrier-free, round-batches=N, "
+                   "batch=N")
+      ->delimiter(',');
+  const auto seconds = [&](const char* name, double& value, const char* what) {
+    bench_scale->add_option(name, value, what)
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+  };
+  seconds("--commit-latency", bench_scale_args.commit_latency, "s per commit (without --measure)");
+  seconds("--commit-per-log2", bench_scale_args.commit_per_log2,
+          "s per commit per log2(ranks) (without --measure)");
+  seconds("--commit-bandwidth", bench_scale_args.commit_bandwidth,
+          "bytes/s of commits, 0: unlimited (without --measure)");
+  seconds("--claim-latency", bench_scale_args.claim_latency, "s, a claim's round trip");
+  seconds("--claim-service", bench_scale_args.claim_service, "s a claim holds rank 0's counter");
+  seconds("--startup", bench_scale_args.startup, "s of start-up (without --validate)");
+  seconds("--prepare-rigid", bench_scale_args.prepare_rigid,
+          "s to prepare a rigid object (without --validate)");
+  seconds("--prepare-soft", bench_scale_args.prepare_soft,
+          "s to prepare a soft object (without --validate)");
+  seconds("--synthesis", bench_scale_args.synthesis, "s per candidate synthesized");
+  seconds("--scene-build", bench_scale_args.scene_build, "s to build a trial scene");
+  seconds("--bytes-per-candidate", bench_scale_args.bytes_per_candidate,
+          "Bytes committed per candidate of the simulated job");
+  seconds("--broadcast-per-log2", bench_scale_args.broadcast_per_log2,
+          "s per planning broadcast per log2(ranks)");
+  bench_scale
+      ->add_option("--out", bench_scale_args.out,
+                   "Folder for scale.md, scale.csv, validation.csv, the plot and the runs")
+      ->capture_default_str()
+      ->check(kOutputFolder);
+  bench_scale->callback(
+      [&] { run = [&] { return grip::commands::bench_scale(bench_scale_args); }; });
+  grip::commands::BenchScaleProbeArgs bench_scale_probe_args;
+  CLI::App* bench_scale_probe = bench->add_subcommand(
+      "scale-probe", "Under mpirun: claim and commit costs for grip bench scale --measure");
+  bench_scale_probe->add_option("--out", bench_scale_probe_args.out, "JSON result (rank 0)")
+      ->required()
+      ->check(kOutputFile);
+  bench_scale_probe
+      ->add_option("--folder", bench_scale_probe_args.folder, "Folder for the scratch dataset")
+      ->required()
+      ->check(kOutputFolder);
+  bench_scale_probe->callback(
+      [&] { run = [&] { return grip::commands::bench_scale_probe(bench_scale_probe_args); }; });
   grip::commands::BenchAccuracyArgs bench_accuracy_args;
   CLI::App* bench_accuracy = bench->add_subcommand(
       "accuracy", "Work-precision of the solver's settings against a tight reference run");

@@ -129,6 +129,48 @@ struct BenchScalingArgs {
 };
 int bench_scaling(const BenchScalingArgs& args);
 
+// grip bench scale [--costs FILE] [--ranks 64,...] [--measure 1,2,3] [--validate JOB]
+// [--what-if ...] [--out DIR]: the farm's protocol simulated from measured costs to thousands
+// of ranks, checked against real runs (bench/scale/, docs/farm.md).
+struct BenchScaleArgs {
+  std::string costs = "docs/results/trial/trial.csv";  // grip bench trial's trial.csv or a dataset
+  std::vector<std::string> grippers{"fin-ray"};
+  std::uint64_t objects = 1200;
+  std::uint64_t candidates = 100000;
+  double soft_fraction = 0.5;
+  std::uint64_t seed = 1;
+  std::vector<int> ranks{64, 128, 256, 512, 1024, 2048, 4096};
+  int batch = 4;
+  int round_batches = 4;
+  std::vector<int> measure;  // rank counts for the commit probe; empty: the constants
+  std::string validate;      // a job run at validate_ranks and compared
+  std::vector<int> validate_ranks{1, 2, 3};
+  std::vector<std::string> what_if;  // heaviest-first, barrier-free, round-batches=N, batch=N
+  // The model's constants where no measurement replaces them (docs/farm.md gives their source).
+  double commit_latency = 0.0348;
+  double commit_per_log2 = 0.00263;
+  double commit_bandwidth = 340e6;
+  double claim_latency = 2.59e-6;
+  double claim_service = 0.864e-6;
+  double startup = 0.794;
+  double prepare_rigid = 0.0501;
+  double prepare_soft = 0.0501;
+  double synthesis = 0.0;
+  double scene_build = 0.0;
+  double bytes_per_candidate = 400;
+  double broadcast_per_log2 = 5e-6;
+  std::string out = "out/bench-scale";
+};
+int bench_scale(const BenchScaleArgs& args);
+
+// grip bench scale-probe --out FILE --folder DIR, under mpirun: the claim and commit costs
+// grip bench scale --measure fits its model to (bench/scale/commit_probe.hpp).
+struct BenchScaleProbeArgs {
+  std::string out;
+  std::string folder;
+};
+int bench_scale_probe(const BenchScaleProbeArgs& args);
+
 // grip bench linear [--cells 0.01,0.006,...] [--repeats N] [-- PETSc options]: CHOLMOD against
 // PETSc's KSP on Newton systems of growing size, on the ranks it runs with (bench/linear/,
 // docs/linear-solvers.md).

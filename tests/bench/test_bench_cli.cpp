@@ -4,10 +4,12 @@
 // labels` refuses an arm without its object model or an unknown category in one line, exit 2,
 // writing nothing, and `grip bench trial` an unknown gripper or no repeats; `grip bench peer`
 // refuses an unknown category the same way, and writes its files and JSON line (or, built without
-// MuJoCo, says how to install it in one line, exit 1).
+// MuJoCo, says how to install it in one line, exit 1); `grip bench scale` predicts from a cost
+// file and refuses an unknown what-if or a class without costs in one line, exit 2.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "tests/app/run_grip.hpp"
 
@@ -97,6 +99,30 @@ TEST(BenchCli, PeerRefusesAnUnknownCategoryAndRunsOrNamesMujoco) {
   EXPECT_NE(run.out.find("{\"benchmark\": \"peer\""), std::string::npos) << run.out;
   EXPECT_NE(slurp(out / "peer.csv").find("parallel-jaw,box,"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "peer.md"));
+  fs::remove_all(out);
+}
+
+TEST(BenchCli, ScalePredictsFromACostFileAndRefusesUnknownWhatIfs) {
+  const fs::path out = scratch("scale");
+  fs::create_directories(out);
+  const fs::path costs = out / "trial.csv";
+  std::ofstream(costs) << "arm,settings,wall_s\nfin-ray x rigid,defaults,4\n"
+                          "fin-ray x soft,defaults,12\nfin-ray x soft,reference,30\n";
+  const std::string common = "bench scale --costs " + costs.string() +
+                             " --objects 12 --candidates 120 --ranks 2,4 --out " + out.string();
+  const auto run = run_grip(common + " --what-if barrier-free,round-batches=8+heaviest-first");
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  const std::string csv = slurp(out / "scale.csv");
+  EXPECT_NE(csv.find("\nbarrier-free,4,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nround-batches=8+heaviest-first,2,"), std::string::npos) << csv;
+  EXPECT_NE(run.out.find("{\"trials\": 120"), std::string::npos) << run.out;
+  const auto bad = run_grip(common + " --what-if faster");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("'faster' is not one of"), std::string::npos) << bad.err;
+  const auto missing = run_grip(common + " --grippers leap");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("no measured trial cost for 'leap x"), std::string::npos)
+      << missing.err;
   fs::remove_all(out);
 }
 
