@@ -18,12 +18,6 @@ namespace {
 
 // Contact bits: the object collides with the links, the links not with each other.
 constexpr int kLinkBit = 1, kObjectBit = 2;
-// A finger pressing on the object moves its travel at squeeze_speed while its force is off by
-// more than this fraction of the grip force, proportionally less nearer (no hunting).
-constexpr double kServoBand = 0.2;
-// Closing ends only once every joint turns slower than this (rad/s).
-constexpr double kRestJointSpeed = 0.05;
-
 void write_link_bodies(std::ostringstream& x, const grippers::KinematicTree& tree, int link,
                        double friction, const MujocoSettings& s) {
   const grippers::KinematicLink& l = tree.links()[static_cast<std::size_t>(link)];
@@ -73,7 +67,7 @@ std::string scene_xml(const geometry::SurfaceMesh& object, double density, doubl
                       const MujocoSettings& s) {
   std::ostringstream x;
   x << std::setprecision(17);
-  x << "<mujoco model=\"peer_hand\">\n<compiler angle=\"radian\"/>\n<option timestep=\"" << s.timestep
+  x << "<mujoco model=\"peer_hand\">\n<compiler angle=\"radian\"/>\n<option integrator=\"implicit\" timestep=\"" << s.timestep
     << "\" gravity=\"0 0 0\"><flag multiccd=\"enable\"/></option>\n<default><geom solref=\""
     << s.contact_time_constant << " 1\" solimp=\"" << s.contact_impedance << ' '
     << s.contact_impedance << " 0.001\"/></default>\n<asset>";
@@ -108,6 +102,7 @@ struct FingerDrive {
   double end = 0.0;     // the travel at which a joint reaches its limit
   double travel = 0.0;  // m, of the path's fastest pushed point
   bool touched = false;
+  bool stopped = false;
   double force = 0.0;  // N, normal, with the object, mean over the last grip step
 };
 
@@ -142,10 +137,8 @@ class HandSimulation {
     for (int dof = 0; dof < tree.dof_count(); ++dof) {
       const std::string name = "dof" + std::to_string(dof);
       const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
-      dof_qpos_.push_back(m->jnt_qposadr[j]);
-      dof_qvel_.push_back(m->jnt_dofadr[j]);
       dof_actuator_.push_back(mj_name2id(m, mjOBJ_ACTUATOR, name.c_str()));
-      d->qpos[dof_qpos_.back()] = grasp.joints[dof];
+      d->qpos[m->jnt_qposadr[j]] = grasp.joints[dof];
       d->ctrl[dof_actuator_.back()] = grasp.joints[dof];
     }
     mj_forward(m, d);
@@ -156,9 +149,11 @@ class HandSimulation {
     MujocoHandOutcome out;
     const double tolerance = p_.force_tolerance * p_.grip_force;
     // Closing, the object held where the candidate found it, gravity off: each finger moves
-    // along its path at approach_speed until it first touches the object, then servos its travel
-    // (at most squeeze_speed) until its normal force is the grip force to within the tolerance,
-    // or its path ends; once every finger is there and the joints rest, the object is released.
+    // along its path at approach_speed until it first touches the object, then at
+    // squeeze_speed, and stops (its joint targets held) once its normal force with the object
+    // reaches the grip force less the tolerance, or its path ends. Once every finger has
+    // stopped, the object is released. (grip's fingers servo their force onto the grip force;
+    // here a finger that overshoots keeps its force.)
     double longest = 0.0;
     for (const FingerDrive& f : drives_) longest = std::max(longest, f.end);
     const double closing_time =
@@ -167,20 +162,16 @@ class HandSimulation {
     bool closed = false;
     for (long k = 0; k < closing_windows && !closed; ++k) {
       if (!window(Eigen::Vector3d::Zero(), true)) return unstable(out);
-      closed = joints_rest();
+      closed = true;
       for (FingerDrive& f : drives_) {
-        const double error = p_.grip_force - f.force;
         f.touched = f.touched || f.force > 0.0;
-        const bool on_target = std::abs(error) <= tolerance;
-        closed = closed && (on_target || f.travel >= f.end);
-        if (on_target) continue;
-        const double step =
-            f.touched ? p_.squeeze_speed * p_.sim.dt *
-                            std::clamp(error / (kServoBand * p_.grip_force), -1.0, 1.0)
-                      : s_.approach_speed * p_.sim.dt;
-        f.travel = std::clamp(f.travel + step, 0.0, f.end);
+        f.stopped = f.stopped || f.force >= p_.grip_force - tolerance || f.travel >= f.end;
+        if (f.stopped) continue;
+        closed = false;
+        const double speed = f.touched ? p_.squeeze_speed : s_.approach_speed;
+        f.travel = std::min(f.travel + speed * p_.sim.dt, f.end);
       }
-      if (!closed) drive();
+      drive();
     }
     if (!closed) {
       out.verdict = "unsettled";
@@ -256,13 +247,6 @@ class HandSimulation {
           scene_.finger_joints(grasp_.joints, drives_[f].direction, finger, drives_[f].travel);
       for (const int dof : scene_.fingers()[f].dofs) d_->ctrl[dof_actuator_[dof]] = q[dof];
     }
-  }
-
-  bool joints_rest() const {
-    for (const int v : dof_qvel_) {
-      if (std::abs(d_->qvel[v]) > kRestJointSpeed) return false;
-    }
-    return true;
   }
 
   // One grip step (p.sim.dt) of MuJoCo steps: each finger's force its mean over them,
@@ -391,7 +375,7 @@ class HandSimulation {
   int object_body_ = -1, object_geom_ = -1, object_qpos_ = -1, object_dof_ = -1;
   std::vector<int> link_body_;    // per kinematic link
   std::vector<int> body_finger_;  // per MuJoCo body: its finger, -1 the palm, -2 not a link
-  std::vector<int> dof_qpos_, dof_qvel_, dof_actuator_;  // per degree of freedom
+  std::vector<int> dof_actuator_;  // per degree of freedom
   std::vector<FingerDrive> drives_;
   std::vector<PatchPoint> patch_;
   bool touching_ = false;

@@ -32,9 +32,9 @@ struct MujocoSettings {
   // position servo gain, the rotor inertia it drives (armature) and its damping, near critical
   // (2 sqrt(kp armature)); a finger's speed along its path before it first touches the object.
   double link_mass = 0.05;          // kg
-  double joint_stiffness = 50.0;    // N m/rad
-  double joint_armature = 0.01;     // kg m^2
-  double joint_damping = 1.5;       // N m s/rad
+  double joint_stiffness = 300.0;   // N m/rad
+  double joint_armature = 0.005;    // kg m^2
+  double joint_damping = 2.5;       // N m s/rad
   double approach_speed = 0.05;     // m/s
 };
 
