@@ -29,9 +29,9 @@ void write_link_bodies(std::ostringstream& x, const grippers::KinematicTree& tre
         s.link_mass / 12.0 *
         Eigen::Vector3d(e.y() * e.y() + e.z() * e.z(), e.x() * e.x() + e.z() * e.z(),
                         e.x() * e.x() + e.y() * e.y());
-    x << "<inertial pos=\"" << c.x() << ' ' << c.y() << ' ' << c.z() << "\" mass=\""
-      << s.link_mass << "\" diaginertia=\"" << inertia.x() << ' ' << inertia.y() << ' '
-      << inertia.z() << "\"/><geom name=\"link" << link << "\" type=\"mesh\" mesh=\"link" << link
+    x << "<inertial pos=\"" << c.x() << ' ' << c.y() << ' ' << c.z() << "\" mass=\"" << s.link_mass
+      << "\" diaginertia=\"" << inertia.x() << ' ' << inertia.y() << ' ' << inertia.z()
+      << "\"/><geom name=\"link" << link << "\" type=\"mesh\" mesh=\"link" << link
       << "\" contype=\"" << kLinkBit << "\" conaffinity=\"" << kObjectBit << "\" friction=\""
       << friction << " 0.005 0.0001\"/>";
   } else {
@@ -67,7 +67,9 @@ std::string scene_xml(const geometry::SurfaceMesh& object, double density, doubl
                       const MujocoSettings& s) {
   std::ostringstream x;
   x << std::setprecision(17);
-  x << "<mujoco model=\"peer_hand\">\n<compiler angle=\"radian\"/>\n<option integrator=\"implicit\" timestep=\"" << s.timestep
+  x << "<mujoco model=\"peer_hand\">\n<compiler angle=\"radian\"/>\n<option "
+       "integrator=\"implicit\" timestep=\""
+    << s.timestep
     << "\" gravity=\"0 0 0\"><flag multiccd=\"enable\"/></option>\n<default><geom solref=\""
     << s.contact_time_constant << " 1\" solimp=\"" << s.contact_impedance << ' '
     << s.contact_impedance << " 0.001\"/></default>\n<asset>";
@@ -223,7 +225,8 @@ class HandSimulation {
       for (long k = 0; k < phase_windows; ++k) {
         if (!window(g, false)) return unstable(out);
       }
-      out.largest_slip = std::max(out.largest_slip, (object_center() - center - patch_moved()).norm());
+      out.largest_slip =
+          std::max(out.largest_slip, (object_center() - center - patch_moved()).norm());
     }
     out.verdict = !touching_                                       ? "lost_contact"
                   : out.largest_slip > p_.displacement_threshold() ? "displaced"
@@ -338,7 +341,8 @@ class HandSimulation {
 
   std::string forces_text() const {
     std::string text;
-    for (const FingerDrive& f : drives_) text += (text.empty() ? "" : ", ") + fmt::format("{:.1f}", f.force);
+    for (const FingerDrive& f : drives_)
+      text += (text.empty() ? "" : ", ") + fmt::format("{:.1f}", f.force);
     return text;
   }
 
@@ -373,8 +377,8 @@ class HandSimulation {
   const trial::TrialParameters& p_;
   const MujocoSettings& s_;
   int object_body_ = -1, object_geom_ = -1, object_qpos_ = -1, object_dof_ = -1;
-  std::vector<int> link_body_;    // per kinematic link
-  std::vector<int> body_finger_;  // per MuJoCo body: its finger, -1 the palm, -2 not a link
+  std::vector<int> link_body_;     // per kinematic link
+  std::vector<int> body_finger_;   // per MuJoCo body: its finger, -1 the palm, -2 not a link
   std::vector<int> dof_actuator_;  // per degree of freedom
   std::vector<FingerDrive> drives_;
   std::vector<PatchPoint> patch_;
@@ -413,8 +417,7 @@ MujocoHandOutcome run_mujoco_hand_trial(const geometry::SurfaceMesh& object, dou
 #else  // without MuJoCo
 
 MujocoHandOutcome run_mujoco_hand_trial(const geometry::SurfaceMesh&, double, double,
-                                        const trial::HandTrialScene&,
-                                        const trial::HandTrialGrasp&,
+                                        const trial::HandTrialScene&, const trial::HandTrialGrasp&,
                                         const trial::TrialParameters&, const MujocoSettings&) {
   MujocoHandOutcome out;
   out.verdict = "load_error";

@@ -18,8 +18,7 @@ void write_mesh_asset(std::ostream& x, const std::string& name, const geometry::
   }
   x << "\" face=\"";
   for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f) {
-    x << mesh.triangles(f, 0) << ' ' << mesh.triangles(f, 1) << ' ' << mesh.triangles(f, 2)
-      << ' ';
+    x << mesh.triangles(f, 0) << ' ' << mesh.triangles(f, 1) << ' ' << mesh.triangles(f, 2) << ' ';
   }
   x << "\"/>";
 }

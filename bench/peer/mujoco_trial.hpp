@@ -31,11 +31,11 @@ struct MujocoSettings {
   // The hand (mujoco_hand_trial.hpp): each link's mass (its weight cancelled); each joint's
   // position servo gain, the rotor inertia it drives (armature) and its damping, near critical
   // (2 sqrt(kp armature)); a finger's speed along its path before it first touches the object.
-  double link_mass = 0.05;          // kg
-  double joint_stiffness = 300.0;   // N m/rad
-  double joint_armature = 0.005;    // kg m^2
-  double joint_damping = 2.5;       // N m s/rad
-  double approach_speed = 0.05;     // m/s
+  double link_mass = 0.05;         // kg
+  double joint_stiffness = 300.0;  // N m/rad
+  double joint_armature = 0.005;   // kg m^2
+  double joint_damping = 2.5;      // N m s/rad
+  double approach_speed = 0.05;    // m/s
 };
 
 struct MujocoOutcome {

@@ -32,8 +32,8 @@ std::vector<std::string> categories_of(const PeerOptions& options) {
 
 // One shape with the parallel jaws: grip's trials, then MuJoCo's, candidate by candidate.
 void run_jaws_shape(const RobustnessSet& set, std::uint64_t seed,
-               const std::vector<synth::Candidate>& candidates, const PeerOptions& options,
-               PeerResult& result) {
+                    const std::vector<synth::Candidate>& candidates, const PeerOptions& options,
+                    PeerResult& result) {
   // The jaws RobustnessScene simulates, and the object as it prepares it.
   static const grippers::ParallelGripper jaws =
       grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw);
@@ -74,7 +74,6 @@ void run_jaws_shape(const RobustnessSet& set, std::uint64_t seed,
   }
 }
 
-
 // One shape with the hand, as run_jaws_shape: the hand RobustnessScene simulates (its coarse
 // links), built here since MuJoCo's scene and D1/D2 take its links. The first candidate of each
 // kind of disagreement is written as VTK if options.vtk is set.
@@ -107,8 +106,8 @@ void run_hand_shape(const RobustnessSet& set, std::uint64_t seed,
     t.grip_d2 = record.d2;
     t.grip_slip = robustness_trial(set, seed, k, outcome).largest_slip;
 
-    const MujocoHandOutcome m = run_mujoco_hand_trial(
-        object.surface, object.material.density, friction, scene, grasp, options.parameters);
+    const MujocoHandOutcome m = run_mujoco_hand_trial(object.surface, object.material.density,
+                                                      friction, scene, grasp, options.parameters);
     t.mujoco_verdict = m.verdict;
     t.mujoco_message = m.message;
     if (m.settled) {
@@ -166,8 +165,8 @@ PeerResult run_peer(const PeerOptions& options) {
   tbb::task_arena arena(result.threads);
   const auto start = std::chrono::steady_clock::now();
   for (const std::string& category : categories_of(options)) {
-    const RobustnessSet set{options.gripper, category, false, options.seeds, options.candidates,
-                            false};
+    const RobustnessSet set{options.gripper, category,           false,
+                            options.seeds,   options.candidates, false};
     int found = 0;
     const auto last_seed = static_cast<std::uint64_t>(kSeedsTriedPerShape * options.seeds);
     for (std::uint64_t seed = 1; seed <= last_seed && found < options.seeds; ++seed) {
@@ -197,7 +196,8 @@ PeerResult run_peer(const PeerOptions& options) {
         spdlog::warn("peer: {}", result.shortfalls.back());
         continue;
       }
-      spdlog::info("peer: {} x {}: {} candidate(s) in {:.1f} s", options.gripper, shape, candidates.size(),
+      spdlog::info("peer: {} x {}: {} candidate(s) in {:.1f} s", options.gripper, shape,
+                   candidates.size(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
     }
     if (found < options.seeds) {

@@ -24,9 +24,9 @@ inline const std::vector<std::string> kPeerGrippers = {"parallel-jaw", "leap"};
 struct PeerOptions {
   std::string gripper = "parallel-jaw";  // one of kPeerGrippers
   std::vector<std::string> categories;   // empty: kPeerCategories
-  int seeds = 4;                        // shapes per category
-  int candidates = 9;                   // per shape
-  int threads = 1;                      // grip's trial; MuJoCo runs on one
+  int seeds = 4;                         // shapes per category
+  int candidates = 9;                    // per shape
+  int threads = 1;                       // grip's trial; MuJoCo runs on one
   trial::TrialParameters parameters;
   std::filesystem::path out = "out/peer";
   // The hand's: if set, the first candidate of each kind of disagreement as VTK here

@@ -141,10 +141,9 @@ TEST(PeerBench, HandGraspOfACylinderIsHeldByBothEngines) {
   EXPECT_EQ(grip.result.record.failure, io::FailureKind::kNone) << grip.failure_reason;
 
   if (!mujoco_available()) GTEST_SKIP() << "built without MuJoCo: its half is not tested";
-  const MujocoHandOutcome m =
-      run_mujoco_hand_trial(object.surface, object.material.density,
-                            std::sqrt(object.material.friction * p.rigid_finger_friction), scene,
-                            grasp, p);
+  const MujocoHandOutcome m = run_mujoco_hand_trial(
+      object.surface, object.material.density,
+      std::sqrt(object.material.friction * p.rigid_finger_friction), scene, grasp, p);
   EXPECT_EQ(m.verdict, "success") << m.message;
   ASSERT_TRUE(m.settled);
   ASSERT_EQ(m.closing_forces.size(), scene.fingers().size());
