@@ -126,7 +126,7 @@ void run_hand_shape(const RobustnessSet& set, std::uint64_t seed,
         std::none_of(result.vtk.begin(), result.vtk.end(), written)) {
       const std::string stem =
           fmt::format("{}_{}_{}_seed{}_candidate{}", kind, set.gripper, set.category, seed, k);
-      write_peer_hand_vtk(options.vtk, stem, scene, grasp, m, options.threads);
+      write_peer_hand_vtk(options.vtk, stem, object, scene, grasp, m, options.threads);
       result.vtk.push_back(fmt::format("{}: grip {}, MuJoCo {}", stem, t.grip_verdict, m.verdict));
     }
     result.trials.push_back(std::move(t));

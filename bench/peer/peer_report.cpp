@@ -174,8 +174,9 @@ void write_peer_files(const fs::path& out, const PeerResult& result,
     md << "The hand: the LEAP hand's coarse links (8-sided capsules; MuJoCo collides their convex "
           "hulls, which they are), its root welded at the candidate's pose, each joint a "
           "position servo; each finger follows grip's closing path in joint space, at "
-       << MujocoSettings{}.approach_speed * 100 << " cm/s until it touches, then servoed to "
-       << p.grip_force << " N of normal force with the object.\n\n";
+       << MujocoSettings{}.approach_speed * 100 << " cm/s until it touches, then at "
+       << p.squeeze_speed * 100 << " cm/s until its normal force with the object reaches "
+       << p.grip_force << " N less the tolerance, then held there.\n\n";
   }
   write_peer_table(md, tallies);
   md << "\nVerdicts over the compared candidates:\n\n| gripper | category | refused by grip | "

@@ -8,6 +8,8 @@
 namespace grip::bench {
 namespace {
 
+constexpr int kClosingFrames = 4;
+
 geometry::Vertices placed(const geometry::Vertices& local, const Eigen::Isometry3d& pose) {
   geometry::Vertices world(local.rows(), 3);
   for (Eigen::Index v = 0; v < local.rows(); ++v) {
@@ -36,13 +38,19 @@ trial::BodyFrame mujoco_frame(const trial::HandTrialScene& scene, double time,
 }  // namespace
 
 void write_peer_hand_vtk(const std::filesystem::path& dir, const std::string& stem,
-                         const trial::HandTrialScene& scene, const trial::HandTrialGrasp& grasp,
-                         const MujocoHandOutcome& mujoco, int threads) {
+                         const trial::TrialObject& object, const trial::HandTrialScene& scene,
+                         const trial::HandTrialGrasp& grasp, const MujocoHandOutcome& mujoco,
+                         int threads) {
+  // Fewer frames than a dataset's (they are not part of the simulation).
+  trial::TrialParameters p = scene.parameters();
+  p.closing_frames = kClosingFrames;
+  p.validation_frames = 6;
+  const trial::HandTrialScene recording(object, scene.hand(), scene.name(), p);
   trial::TrialRunOptions options;
   options.threads = threads;
   options.trajectory = false;
   options.body_frames = true;
-  const trial::TrialOutcome grip = trial::run_hand_trials(scene, {grasp}, options).front();
+  const trial::TrialOutcome grip = trial::run_hand_trials(recording, {grasp}, options).front();
   trial::write_vtk_series(dir, stem + "_grip", *scene.model(), grip.body_frames);
   const std::vector<trial::BodyFrame> frames = {
       mujoco_frame(scene, 0.0, mujoco.links, mujoco.object),

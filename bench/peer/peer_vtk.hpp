@@ -10,11 +10,13 @@
 
 namespace grip::bench {
 
-// Runs grip's trial of `grasp` again, recording every body, and writes DIR/STEM_grip.pvd (its
-// frames) and DIR/STEM_mujoco.pvd (frame 0: MuJoCo's settled grasp, frame 1: its end), with
-// their .vtu files. Throws std::runtime_error naming a file it cannot write.
+// Runs grip's trial of `grasp` on `object` again, recording every body in a few frames of
+// closing and settling (the settled grasp among them) and one per gravity phase, and writes
+// DIR/STEM_grip.pvd and DIR/STEM_mujoco.pvd (frame 0: MuJoCo's settled grasp, frame 1: its end),
+// with their .vtu files. Throws std::runtime_error naming a file it cannot write.
 void write_peer_hand_vtk(const std::filesystem::path& dir, const std::string& stem,
-                         const trial::HandTrialScene& scene, const trial::HandTrialGrasp& grasp,
-                         const MujocoHandOutcome& mujoco, int threads);
+                         const trial::TrialObject& object, const trial::HandTrialScene& scene,
+                         const trial::HandTrialGrasp& grasp, const MujocoHandOutcome& mujoco,
+                         int threads);
 
 }  // namespace grip::bench
