@@ -3,9 +3,9 @@
 #include <spdlog/fmt/fmt.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
-#include <limits>
 #include <sstream>
 
 #include "bench/peer/mujoco_model.hpp"
