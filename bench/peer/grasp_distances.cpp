@@ -25,17 +25,45 @@ geometry::SurfaceMesh finger_pair(const grippers::ParallelGripper& gripper) {
 GraspDistances::GraspDistances(const grippers::ParallelGripper& gripper,
                                const geometry::SurfaceMesh& object,
                                const trial::TrialParameters& parameters)
-    : finger_(gripper.finger_surface.vertices),
+    : parts_{gripper.finger_surface.vertices, gripper.finger_surface.vertices},
       points_(finger_pair(gripper), parameters.metric_samples, parameters.metric_seed),
       object_(object) {}
 
+GraspDistances::GraspDistances(const trial::HandTrialScene& hand,
+                               const geometry::SurfaceMesh& object,
+                               const trial::TrialParameters& parameters)
+    : points_(hand.rest_surface(), parameters.metric_samples, parameters.metric_seed),
+      object_(object) {
+  // The links with a surface in link order, as HandTrialScene::hand_surface_vertices orders them.
+  const std::vector<grippers::KinematicLink>& links = hand.kinematics().links();
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    if (links[l].surface.triangles.rows() == 0) continue;
+    parts_.push_back(links[l].surface.vertices);
+    part_links_.push_back(static_cast<int>(l));
+  }
+}
+
 metrics::DistanceMetrics GraspDistances::operator()(const std::array<Eigen::Isometry3d, 2>& fingers,
                                                     const Eigen::Isometry3d& object) const {
-  const Eigen::Index n = finger_.rows();
-  geometry::Vertices world(2 * n, 3);
-  for (int j = 0; j < 2; ++j) {
-    for (Eigen::Index v = 0; v < n; ++v) {
-      world.row(j * n + v) = (fingers[j] * finger_.row(v).transpose()).transpose();
+  return at({fingers[0], fingers[1]}, object);
+}
+
+metrics::DistanceMetrics GraspDistances::operator()(const std::vector<Eigen::Isometry3d>& links,
+                                                    const Eigen::Isometry3d& object) const {
+  std::vector<Eigen::Isometry3d> poses;
+  for (const int l : part_links_) poses.push_back(links.at(static_cast<std::size_t>(l)));
+  return at(poses, object);
+}
+
+metrics::DistanceMetrics GraspDistances::at(const std::vector<Eigen::Isometry3d>& part_poses,
+                                            const Eigen::Isometry3d& object) const {
+  Eigen::Index rows = 0;
+  for (const geometry::Vertices& part : parts_) rows += part.rows();
+  geometry::Vertices world(rows, 3);
+  Eigen::Index row = 0;
+  for (std::size_t p = 0; p < parts_.size(); ++p) {
+    for (Eigen::Index v = 0; v < parts_[p].rows(); ++v) {
+      world.row(row++) = (part_poses[p] * parts_[p].row(v).transpose()).transpose();
     }
   }
   const geometry::Vertices points = points_.positions(world);

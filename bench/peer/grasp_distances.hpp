@@ -1,8 +1,10 @@
 #pragma once
-// D1/D2 of a rigid-jaw parallel gripper against a rigid object, both at given world poses, with
-// the trial's own points and code (trial::TrialScene::grasp_distances): how `grip bench peer`
-// measures another engine's settled grasp exactly as grip measures its own.
+// D1/D2 of a rigid-jaw parallel gripper or a dexterous hand against a rigid object, all at
+// given world poses, with the trial's own points and code (trial::TrialScene::grasp_distances,
+// trial::HandTrialScene::grasp_distances): how `grip bench peer` measures another engine's
+// settled grasp exactly as grip measures its own.
 #include <array>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -11,6 +13,7 @@
 #include "src/grippers/parallel_gripper.hpp"
 #include "src/metrics/distance_metrics.hpp"
 #include "src/metrics/surface_points.hpp"
+#include "src/trial/hand_trial_scene.hpp"
 #include "src/trial/trial_parameters.hpp"
 
 namespace grip::bench {
@@ -21,13 +24,25 @@ class GraspDistances {
   // gripper with soft fingers.
   GraspDistances(const grippers::ParallelGripper& gripper, const geometry::SurfaceMesh& object,
                  const trial::TrialParameters& parameters);
+  // The hand's links with a surface, points sampled on the scene's rest surface as it samples
+  // them; `object` as above.
+  GraspDistances(const trial::HandTrialScene& hand, const geometry::SurfaceMesh& object,
+                 const trial::TrialParameters& parameters);
 
   // fingers: world from finger frame, in grippers::Jaw order; object: world from object frame.
   metrics::DistanceMetrics operator()(const std::array<Eigen::Isometry3d, 2>& fingers,
                                       const Eigen::Isometry3d& object) const;
+  // links: world from link frame for every link of the hand's kinematic tree (as
+  // KinematicTree::link_poses gives them).
+  metrics::DistanceMetrics operator()(const std::vector<Eigen::Isometry3d>& links,
+                                      const Eigen::Isometry3d& object) const;
 
  private:
-  geometry::Vertices finger_;  // one finger, finger frame
+  metrics::DistanceMetrics at(const std::vector<Eigen::Isometry3d>& part_poses,
+                              const Eigen::Isometry3d& object) const;
+
+  std::vector<geometry::Vertices> parts_;  // each part's vertices in its own frame
+  std::vector<int> part_links_;            // the hand's: each part's link
   metrics::SurfacePoints points_;
   geometry::SignedDistance object_;
 };

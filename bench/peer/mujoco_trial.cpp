@@ -5,14 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <iomanip>
-#include <memory>
 #include <sstream>
 
-#if GRIP_HAVE_MUJOCO
-#include <mujoco/mujoco.h>
-#endif
+#include "bench/peer/mujoco_model.hpp"
 
 namespace grip::bench {
 
@@ -44,17 +40,9 @@ std::string scene_xml(const geometry::SurfaceMesh& object, double density, doubl
   x << "<mujoco model=\"peer\">\n<option timestep=\"" << s.timestep
     << "\" gravity=\"0 0 0\"><flag multiccd=\"enable\"/></option>\n<default><geom solref=\""
     << s.contact_time_constant << " 1\" solimp=\"" << s.contact_impedance << ' '
-    << s.contact_impedance << " 0.001\"/></default>\n<asset><mesh name=\"object\" vertex=\"";
-  for (Eigen::Index v = 0; v < object.vertices.rows(); ++v) {
-    x << object.vertices(v, 0) << ' ' << object.vertices(v, 1) << ' ' << object.vertices(v, 2)
-      << ' ';
-  }
-  x << "\" face=\"";
-  for (Eigen::Index f = 0; f < object.triangles.rows(); ++f) {
-    x << object.triangles(f, 0) << ' ' << object.triangles(f, 1) << ' ' << object.triangles(f, 2)
-      << ' ';
-  }
-  x << "\"/></asset>\n<worldbody>\n<body name=\"object\"><freejoint name=\"object\"/>"
+    << s.contact_impedance << " 0.001\"/></default>\n<asset>";
+  write_mesh_asset(x, "object", object);
+  x << "</asset>\n<worldbody>\n<body name=\"object\"><freejoint name=\"object\"/>"
        "<geom name=\"object\" type=\"mesh\" mesh=\"object\" density=\""
     << density << "\" friction=\"" << friction << " 0.005 0.0001\"/></body>\n";
   const Eigen::Vector3d lower = gripper.finger_surface.vertices.colwise().minCoeff();
@@ -85,35 +73,6 @@ std::string scene_xml(const geometry::SurfaceMesh& object, double density, doubl
   }
   x << "</actuator>\n</mujoco>\n";
   return x.str();
-}
-
-void ignore_warning(const char*) {}
-
-// The model from an MJCF string, through MuJoCo's in-memory file system.
-mjModel* load_model(const std::string& xml, std::string& message) {
-  static const bool quiet = [] {
-    mju_user_warning = ignore_warning;  // instabilities are read from mjData::warning
-    return true;
-  }();
-  (void)quiet;
-  const auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  mj_makeEmptyFileVFS(vfs.get(), "peer.xml", static_cast<int>(xml.size()));
-  const int file = mj_findFileVFS(vfs.get(), "peer.xml");
-  std::memcpy(vfs->filedata[file], xml.data(), xml.size());
-  char error[1000] = "";
-  mjModel* model = mj_loadXML("peer.xml", vfs.get(), error, sizeof error);
-  mj_deleteVFS(vfs.get());
-  if (!model) message = error;
-  return model;
-}
-
-Eigen::Isometry3d body_pose(const mjData* d, int body) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() =
-      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->xmat + 9 * body);
-  pose.translation() = Eigen::Map<const Eigen::Vector3d>(d->xpos + 3 * body);
-  return pose;
 }
 
 // One trial's simulation over a compiled model.

@@ -28,6 +28,14 @@ struct MujocoSettings {
   double contact_impedance = 0.99;
   double jaw_mass = 0.1;        // kg, gravity compensated
   double closing_margin = 1.0;  // s allowed beyond the jaws' travel at squeeze_speed
+  // The hand (mujoco_hand_trial.hpp): each link's mass (its weight cancelled); each joint's
+  // position servo gain, the rotor inertia it drives (armature) and its damping, near critical
+  // (2 sqrt(kp armature)); a finger's speed along its path before it first touches the object.
+  double link_mass = 0.05;         // kg
+  double joint_stiffness = 300.0;  // N m/rad
+  double joint_armature = 0.005;   // kg m^2
+  double joint_damping = 2.5;      // N m s/rad
+  double approach_speed = 0.05;    // m/s
 };
 
 struct MujocoOutcome {

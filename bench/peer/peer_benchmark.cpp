@@ -3,20 +3,23 @@
 #include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "bench/peer/grasp_distances.hpp"
+#include "bench/peer/mujoco_hand_trial.hpp"
 #include "bench/peer/mujoco_trial.hpp"
+#include "bench/peer/peer_vtk.hpp"
 #include "bench/robustness/robustness_trials.hpp"
+#include "src/grippers/coarse_leap_hand.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/objects/object_library.hpp"
+#include "src/trial/hand_trial.hpp"
 
 namespace grip::bench {
 namespace {
-
-constexpr const char* kGripper = "parallel-jaw";
 
 std::string verdict_text(const io::CandidateRecord& record) {
   return record.failure == io::FailureKind::kNone ? "success"
@@ -27,10 +30,10 @@ std::vector<std::string> categories_of(const PeerOptions& options) {
   return options.categories.empty() ? kPeerCategories : options.categories;
 }
 
-// One shape: grip's trials, then MuJoCo's, candidate by candidate.
-void run_shape(const RobustnessSet& set, std::uint64_t seed,
-               const std::vector<synth::Candidate>& candidates, const PeerOptions& options,
-               PeerResult& result) {
+// One shape with the parallel jaws: grip's trials, then MuJoCo's, candidate by candidate.
+void run_jaws_shape(const RobustnessSet& set, std::uint64_t seed,
+                    const std::vector<synth::Candidate>& candidates, const PeerOptions& options,
+                    PeerResult& result) {
   // The jaws RobustnessScene simulates, and the object as it prepares it.
   static const grippers::ParallelGripper jaws =
       grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw);
@@ -41,7 +44,7 @@ void run_shape(const RobustnessSet& set, std::uint64_t seed,
       std::sqrt(object.material.friction * options.parameters.rigid_finger_friction);
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     PeerTrial t;
-    t.gripper = kGripper;
+    t.gripper = set.gripper;
     t.category = set.category;
     t.seed = seed;
     t.candidate = k;
@@ -71,6 +74,65 @@ void run_shape(const RobustnessSet& set, std::uint64_t seed,
   }
 }
 
+// One shape with the hand, as run_jaws_shape: the hand RobustnessScene simulates (its coarse
+// links), built here since MuJoCo's scene and D1/D2 take its links. The first candidate of each
+// kind of disagreement is written as VTK if options.vtk is set.
+void run_hand_shape(const RobustnessSet& set, std::uint64_t seed,
+                    const std::vector<synth::Candidate>& candidates, const PeerOptions& options,
+                    PeerResult& result) {
+  static const grippers::HandModel hand = grippers::coarse_leap_hand();
+  const trial::TrialObject object = make_object(set, seed);
+  const trial::HandTrialScene scene(object, hand, set.gripper, options.parameters);
+  const GraspDistances distances(scene, object.surface, options.parameters);
+  const double friction =
+      std::sqrt(object.material.friction * options.parameters.rigid_finger_friction);
+  trial::TrialRunOptions run;
+  run.threads = options.threads;
+  run.trajectory = false;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    PeerTrial t;
+    t.gripper = set.gripper;
+    t.category = set.category;
+    t.seed = seed;
+    t.candidate = k;
+    const synth::HandGrasp& h = candidates[k].hands.front();
+    const trial::HandTrialGrasp grasp{h.pose, h.joints, h.contacts, h.contact_normals};
+    const double start = process_cpu_seconds();
+    const trial::TrialOutcome outcome = trial::run_hand_trials(scene, {grasp}, run).front();
+    t.grip_cpu_seconds = process_cpu_seconds() - start;
+    const io::CandidateRecord& record = outcome.result.record;
+    t.grip_verdict = verdict_text(record);
+    t.grip_d1 = record.d1;
+    t.grip_d2 = record.d2;
+    t.grip_slip = robustness_trial(set, seed, k, outcome).largest_slip;
+
+    const MujocoHandOutcome m = run_mujoco_hand_trial(object.surface, object.material.density,
+                                                      friction, scene, grasp, options.parameters);
+    t.mujoco_verdict = m.verdict;
+    t.mujoco_message = m.message;
+    if (m.settled) {
+      const metrics::DistanceMetrics d = distances(m.links, m.object);
+      t.mujoco_d1 = d.d1;
+      t.mujoco_d2 = d.d2;
+      t.mujoco_slip = m.largest_slip;
+    }
+    t.mujoco_cpu_seconds = m.cpu_seconds;
+    t.mujoco_compile_cpu_seconds = m.compile_cpu_seconds;
+
+    const bool grip_held = t.grip_verdict == "success", mujoco_held = m.verdict == "success";
+    const std::string kind = mujoco_held ? "mujoco_holds" : "grip_holds";
+    const auto written = [&](const std::string& v) { return v.rfind(kind, 0) == 0; };
+    if (!options.vtk.empty() && grip_held != mujoco_held && !refused_by_grip(t) &&
+        std::none_of(result.vtk.begin(), result.vtk.end(), written)) {
+      const std::string stem =
+          fmt::format("{}_{}_{}_seed{}_candidate{}", kind, set.gripper, set.category, seed, k);
+      write_peer_hand_vtk(options.vtk, stem, object, scene, grasp, m, options.threads);
+      result.vtk.push_back(fmt::format("{}: grip {}, MuJoCo {}", stem, t.grip_verdict, m.verdict));
+    }
+    result.trials.push_back(std::move(t));
+  }
+}
+
 }  // namespace
 
 bool refused_by_grip(const PeerTrial& trial) {
@@ -80,6 +142,11 @@ bool refused_by_grip(const PeerTrial& trial) {
 void check_peer_options(const PeerOptions& options) {
   if (options.seeds < 1 || options.candidates < 1) {
     throw std::invalid_argument("grip bench peer: --seeds and --candidates must be at least 1");
+  }
+  if (std::find(kPeerGrippers.begin(), kPeerGrippers.end(), options.gripper) ==
+      kPeerGrippers.end()) {
+    throw std::invalid_argument("grip bench peer: unknown gripper '" + options.gripper +
+                                "' (parallel-jaw or leap)");
   }
   try {
     for (const std::string& c : categories_of(options)) objects::parse_object_category(c);
@@ -91,13 +158,15 @@ void check_peer_options(const PeerOptions& options) {
 PeerResult run_peer(const PeerOptions& options) {
   check_peer_options(options);
   PeerResult result;
+  result.gripper = options.gripper;
   result.mujoco_version = mujoco_version();
   result.parameters = options.parameters;
   result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(result.threads);
   const auto start = std::chrono::steady_clock::now();
   for (const std::string& category : categories_of(options)) {
-    const RobustnessSet set{kGripper, category, false, options.seeds, options.candidates, false};
+    const RobustnessSet set{options.gripper, category,           false,
+                            options.seeds,   options.candidates, false};
     int found = 0;
     const auto last_seed = static_cast<std::uint64_t>(kSeedsTriedPerShape * options.seeds);
     for (std::uint64_t seed = 1; seed <= last_seed && found < options.seeds; ++seed) {
@@ -115,13 +184,20 @@ PeerResult run_peer(const PeerOptions& options) {
       }
       const auto begin = std::chrono::steady_clock::now();
       try {
-        arena.execute([&] { run_shape(set, seed, candidates, options, result); });
+        arena.execute([&] {
+          if (options.gripper == "leap") {
+            run_hand_shape(set, seed, candidates, options, result);
+          } else {
+            run_jaws_shape(set, seed, candidates, options, result);
+          }
+        });
       } catch (const std::exception& e) {
         result.shortfalls.push_back(shape + ": no trials (" + e.what() + ")");
         spdlog::warn("peer: {}", result.shortfalls.back());
         continue;
       }
-      spdlog::info("peer: {} x {}: {} candidate(s) in {:.1f} s", kGripper, shape, candidates.size(),
+      spdlog::info("peer: {} x {}: {} candidate(s) in {:.1f} s", options.gripper, shape,
+                   candidates.size(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
     }
     if (found < options.seeds) {

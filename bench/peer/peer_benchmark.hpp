@@ -1,8 +1,9 @@
 #pragma once
 // `grip bench peer`: the GRIP paper's simulator comparison (Table I: IPC against Isaac Gym)
-// reproduced against MuJoCo. The same synthesized parallel-jaw candidates on rigid objects run
-// through grip's trial and through the same scene in MuJoCo (mujoco_trial.hpp); per engine the
-// verdict, D1/D2 at its settled grasp (measured by the same code) and the CPU time.
+// reproduced against MuJoCo. The same synthesized parallel-jaw or LEAP-hand candidates on rigid
+// objects run through grip's trial and through the same scene in MuJoCo (mujoco_trial.hpp,
+// mujoco_hand_trial.hpp); per engine the verdict, D1/D2 at its settled grasp (measured by the
+// same code) and the CPU time.
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -13,17 +14,24 @@
 
 namespace grip::bench {
 
-// The default categories: six on which the parallel jaws find candidates.
+// The default categories: six on which the parallel jaws and the hand find candidates.
 inline const std::vector<std::string> kPeerCategories = {"box",    "cylinder", "capsule",
                                                          "bottle", "sphere",   "ellipsoid"};
+// The grippers compared: the rigid parallel jaws and the LEAP hand (its coarse links, as
+// `grip bench robustness` simulates it).
+inline const std::vector<std::string> kPeerGrippers = {"parallel-jaw", "leap"};
 
 struct PeerOptions {
-  std::vector<std::string> categories;  // empty: kPeerCategories
-  int seeds = 4;                        // shapes per category
-  int candidates = 9;                   // per shape
-  int threads = 1;                      // grip's trial; MuJoCo runs on one
+  std::string gripper = "parallel-jaw";  // one of kPeerGrippers
+  std::vector<std::string> categories;   // empty: kPeerCategories
+  int seeds = 4;                         // shapes per category
+  int candidates = 9;                    // per shape
+  int threads = 1;                       // grip's trial; MuJoCo runs on one
   trial::TrialParameters parameters;
   std::filesystem::path out = "out/peer";
+  // The hand's: if set, the first candidate of each kind of disagreement as VTK here
+  // (peer_vtk.hpp).
+  std::filesystem::path vtk;
 };
 
 // One candidate through both engines.
@@ -51,16 +59,18 @@ struct PeerTrial {
 bool refused_by_grip(const PeerTrial& trial);
 
 struct PeerResult {
+  std::string gripper;
   std::vector<PeerTrial> trials;
   std::vector<std::string> skipped;     // "box seed 3": no candidate on that shape
   std::vector<std::string> shortfalls;  // fewer shapes or candidates than asked
+  std::vector<std::string> vtk;         // the VTK series written, "STEM: why"
   std::string mujoco_version;
   int threads = 0;
   trial::TrialParameters parameters;
   double wall_seconds = 0.0;
 };
 
-// Throws std::invalid_argument for an unknown category or seeds or candidates below 1.
+// Throws std::invalid_argument for an unknown gripper or category or seeds or candidates below 1.
 void check_peer_options(const PeerOptions& options);
 
 // Requires MuJoCo (mujoco_available()). Logs one line per shape.

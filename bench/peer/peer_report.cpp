@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "bench/common/table_text.hpp"
+#include "bench/peer/mujoco_trial.hpp"
 #include "src/json/json_text.hpp"
 
 namespace grip::bench {
@@ -149,10 +150,15 @@ void write_peer_table(std::ostream& out, const std::vector<PeerTally>& tallies) 
   }
 }
 
+std::string peer_file_stem(const std::string& gripper) {
+  return gripper == "parallel-jaw" ? "peer" : "peer-" + gripper;
+}
+
 void write_peer_files(const fs::path& out, const PeerResult& result,
                       const std::vector<PeerTally>& tallies) {
   fs::create_directories(out);
-  std::ofstream md(out / "peer.md");
+  const std::string stem = peer_file_stem(result.gripper);
+  std::ofstream md(out / (stem + ".md"));
   const trial::TrialParameters& p = result.parameters;
   md << "# grip bench peer\n\nThe same synthesized candidates validated by grip (IPC, dt "
      << p.sim.dt << " s) and by MuJoCo " << result.mujoco_version
@@ -164,6 +170,14 @@ void write_peer_files(const fs::path& out, const PeerResult& result,
      << "Compared: every candidate grip simulates (its initial_penetration refusals are left "
      << "out). " << result.threads << " thread(s), " << fixed_or_dash(result.wall_seconds / 60, 1)
      << " min.\n\n";
+  if (result.gripper == "leap") {
+    md << "The hand: the LEAP hand's coarse links (8-sided capsules; MuJoCo collides their convex "
+          "hulls, which they are), its root welded at the candidate's pose, each joint a "
+          "position servo; each finger follows grip's closing path in joint space, at "
+       << MujocoSettings{}.approach_speed * 100 << " cm/s until it touches, then at "
+       << p.squeeze_speed * 100 << " cm/s until its normal force with the object reaches "
+       << p.grip_force << " N less the tolerance, then held there.\n\n";
+  }
   write_peer_table(md, tallies);
   md << "\nVerdicts over the compared candidates:\n\n| gripper | category | refused by grip | "
         "grip | MuJoCo |\n|---|---|---:|---|---|\n";
@@ -172,7 +186,8 @@ void write_peer_files(const fs::path& out, const PeerResult& result,
        << verdict_counts(t.grip.verdicts) << " | " << verdict_counts(t.mujoco.verdicts) << " |\n";
   }
   for (const std::string& s : result.shortfalls) md << "\nShortfall: " << s << "\n";
-  std::ofstream csv(out / "peer.csv");
+  for (const std::string& v : result.vtk) md << "\nVTK: " << v << "\n";
+  std::ofstream csv(out / (stem + ".csv"));
   csv << "gripper,category,seed,candidate,grip_verdict,mujoco_verdict,grip_d1_mm,mujoco_d1_mm,"
          "grip_d2_mm,mujoco_d2_mm,grip_slip_mm,mujoco_slip_mm,grip_cpu_s,mujoco_cpu_s,"
          "mujoco_compile_cpu_s,mujoco_message\n";

@@ -2,7 +2,7 @@
 // What `grip bench peer` reports: per gripper and category (and over all categories) each
 // engine's D1/D2 over the grasps it holds, the verdicts' agreement and the two kinds of
 // disagreement, and CPU time per trial; as a text table, peer.md, peer.csv (one row per
-// candidate) and one JSON line.
+// candidate; peer-leap.* for the hand) and one JSON line.
 #include <filesystem>
 #include <map>
 #include <ostream>
@@ -38,7 +38,12 @@ struct PeerTally {
 std::vector<PeerTally> peer_tallies(const PeerResult& result);
 
 void write_peer_table(std::ostream& out, const std::vector<PeerTally>& tallies);
-// peer.md (settings, tables) and peer.csv in `out`, created if missing.
+// The files' name without extension: "peer" for the parallel jaws (the first gripper
+// compared), "peer-GRIPPER" for another.
+std::string peer_file_stem(const std::string& gripper);
+
+// STEM.md (settings, tables) and STEM.csv in `out` (created if missing), STEM =
+// peer_file_stem(result.gripper).
 void write_peer_files(const std::filesystem::path& out, const PeerResult& result,
                       const std::vector<PeerTally>& tallies);
 void write_peer_json_line(std::ostream& out, const PeerResult& result,

@@ -530,7 +530,11 @@ int main(int argc, char** argv) {
   grip::commands::BenchPeerArgs bench_peer_args;
   CLI::App* bench_peer = bench->add_subcommand(
       "peer",
-      "The same parallel-jaw candidates validated by grip and by MuJoCo (D1, D2, verdicts)");
+      "The same parallel-jaw or LEAP-hand candidates validated by grip and by MuJoCo (D1, D2, "
+      "verdicts)");
+  bench_peer->add_option("--gripper", bench_peer_args.gripper, "parallel-jaw or leap")
+      ->check(CLI::IsMember({"parallel-jaw", "leap"}))
+      ->capture_default_str();
   bench_peer
       ->add_option("--categories", bench_peer_args.categories,
                    "Object categories (default: box,cylinder,capsule,bottle,sphere,ellipsoid)")
@@ -544,8 +548,14 @@ int main(int argc, char** argv) {
   bench_peer->add_option("--threads", bench_peer_args.threads, "Threads of grip's trial")
       ->check(kPositiveCount)
       ->capture_default_str();
-  bench_peer->add_option("--out", bench_peer_args.out, "Folder for peer.md and peer.csv")
+  bench_peer
+      ->add_option("--out", bench_peer_args.out,
+                   "Folder for peer.md and peer.csv (the hand's: peer-leap.md, peer-leap.csv)")
       ->capture_default_str()
+      ->check(kOutputFolder);
+  bench_peer
+      ->add_option("--vtk", bench_peer_args.vtk,
+                   "The hand: folder for the first candidate of each kind of disagreement as VTK")
       ->check(kOutputFolder);
   bench_peer->callback([&] { run = [&] { return grip::commands::bench_peer(bench_peer_args); }; });
   grip::commands::BenchTrialArgs bench_trial_args;

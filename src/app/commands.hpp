@@ -243,14 +243,17 @@ struct BenchLabelsArgs {
 };
 int bench_labels(const BenchLabelsArgs& args);
 
-// grip bench peer [--categories ...] [--seeds N] [--candidates N] [--threads N] [--out DIR]: the
-// same parallel-jaw candidates validated by grip and by MuJoCo (bench/peer/, docs/results.md).
+// grip bench peer [--gripper G] [--categories ...] [--seeds N] [--candidates N] [--threads N]
+// [--out DIR] [--vtk DIR]: the same parallel-jaw or LEAP-hand candidates validated by grip and
+// by MuJoCo (bench/peer/, docs/results.md).
 struct BenchPeerArgs {
+  std::string gripper = "parallel-jaw";  // or leap
   std::vector<std::string> categories;  // empty: box, cylinder, capsule, bottle, sphere, ellipsoid
   int seeds = 4;                        // shapes per category
   int candidates = 9;                   // per shape
   int threads = 1;                      // grip's trial
   std::string out = "out/peer";
+  std::string vtk;  // the hand's disagreement examples as VTK; empty: none
 };
 int bench_peer(const BenchPeerArgs& args);
 

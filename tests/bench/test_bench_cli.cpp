@@ -3,9 +3,10 @@
 // scene (there is none) or an unknown sweep is one message and exit status 1; `grip bench
 // labels` refuses an arm without its object model or an unknown category in one line, exit 2,
 // writing nothing, and `grip bench trial` an unknown gripper or no repeats; `grip bench peer`
-// refuses an unknown category the same way, and writes its files and JSON line (or, built without
-// MuJoCo, says how to install it in one line, exit 1); `grip bench scale` predicts from a cost
-// file and refuses an unknown what-if or a class without costs in one line, exit 2.
+// refuses an unknown category the same way, and writes its files and JSON line, for the jaws and
+// for the hand (or, built without MuJoCo, says how to install it in one line, exit 1); `grip bench
+// scale` predicts from a cost file and refuses an unknown what-if or a class without costs in one
+// line, exit 2.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -99,6 +100,11 @@ TEST(BenchCli, PeerRefusesAnUnknownCategoryAndRunsOrNamesMujoco) {
   EXPECT_NE(run.out.find("{\"benchmark\": \"peer\""), std::string::npos) << run.out;
   EXPECT_NE(slurp(out / "peer.csv").find("parallel-jaw,box,"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "peer.md"));
+  const std::string leap = "bench peer --gripper leap --categories box --seeds 1 --candidates 1";
+  const auto hand = run_grip(leap + " --out " + out.string());
+  EXPECT_EQ(hand.exit_code, 0) << hand.out << hand.err;
+  EXPECT_NE(slurp(out / "peer-leap.csv").find("leap,box,"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "peer-leap.md"));
   fs::remove_all(out);
 }
 

@@ -1,4 +1,4 @@
-// grip bench peer: the same parallel-jaw candidates validated by grip and by MuJoCo
+// grip bench peer: the same parallel-jaw or LEAP-hand candidates validated by grip and by MuJoCo
 // (bench/peer/peer_benchmark.hpp, docs/results.md).
 #include <spdlog/spdlog.h>
 
@@ -15,11 +15,13 @@ namespace grip::commands {
 
 int bench_peer(const BenchPeerArgs& args) {
   bench::PeerOptions options;
+  options.gripper = args.gripper;
   options.categories = args.categories;
   options.seeds = args.seeds;
   options.candidates = args.candidates;
   options.threads = args.threads;
   options.out = args.out;
+  options.vtk = args.vtk;
   try {
     bench::check_peer_options(options);
   } catch (const std::invalid_argument& e) {
@@ -37,7 +39,10 @@ int bench_peer(const BenchPeerArgs& args) {
   std::cout << "\n";
   bench::write_peer_table(std::cout, tallies);
   bench::write_peer_files(options.out, result, tallies);
-  std::printf("tables: %s/peer.md, candidates: %s/peer.csv\n", args.out.c_str(), args.out.c_str());
+  const std::string stem = bench::peer_file_stem(result.gripper);
+  std::printf("tables: %s/%s.md, candidates: %s/%s.csv\n", args.out.c_str(), stem.c_str(),
+              args.out.c_str(), stem.c_str());
+  for (const std::string& v : result.vtk) std::printf("VTK: %s/%s\n", args.vtk.c_str(), v.c_str());
   bench::write_peer_json_line(std::cout, result, tallies);
   return 0;
 }
