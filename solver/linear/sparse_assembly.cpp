@@ -9,15 +9,14 @@ const Eigen::SparseMatrix<double>& SparseAssembly::assemble(
   auto key = [n](const Eigen::Triplet<double>& t) {
     return static_cast<long long>(t.col()) * n + t.row();
   };
-  // One pass checks the pattern and sums the values; a changed pattern is built anew below.
-  if (matrix_.rows() == n && positions_.size() == triplets.size()) {
+  bool same = matrix_.rows() == n && positions_.size() == triplets.size();
+  for (std::size_t i = 0; same && i < triplets.size(); ++i)
+    same = positions_[i] == key(triplets[i]);
+  if (same) {
     double* values = matrix_.valuePtr();
     std::fill(values, values + matrix_.nonZeros(), 0.0);
-    std::size_t i = 0;
-    for (; i < triplets.size() && positions_[i] == key(triplets[i]); ++i) {
-      values[slot_[i]] += triplets[i].value();
-    }
-    if (i == triplets.size()) return matrix_;
+    for (std::size_t i = 0; i < triplets.size(); ++i) values[slot_[i]] += triplets[i].value();
+    return matrix_;
   }
   matrix_.resize(n, n);
   matrix_.setFromTriplets(triplets.begin(), triplets.end());
