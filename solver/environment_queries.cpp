@@ -5,12 +5,109 @@
 #include <limits>
 
 #include "solver/body/body.hpp"
-#include "solver/contact/candidates.hpp"
+#include "solver/contact/aabb.hpp"
+#include "solver/contact/bvh.hpp"
 #include "solver/environment.hpp"
 #include "solver/kernels/edge_edge_distance.hpp"
 #include "solver/kernels/point_triangle_distance.hpp"
 
 namespace grip::solver {
+
+namespace {
+
+// The nearest pair between two sets of bodies, found as find_contact_candidates finds pairs
+// (bodies that may touch, not both kinematic, no shared vertex) and with each pair's vertices
+// in its order (an edge-edge pair from the kinematic edge, else from the lower edge index), so
+// that each distance has the same bits. Boxes are the vertices' inflated by `margin`: a pair
+// whose boxes miss is farther than twice the margin, where the caller looks no more.
+struct SurfacePairs {
+  const Model& model;
+  const Vertices& x;
+  double margin;
+
+  int body(int v) const { return model.collision().vertex_body[static_cast<std::size_t>(v)]; }
+  bool kinematic(int v) const { return is_kinematic(model.bodies()[body(v)]); }
+  bool may_touch(int v, int w) const {
+    return !(kinematic(v) && kinematic(w)) && model.may_touch(body(v), body(w));
+  }
+  Eigen::Vector3d p(int v) const { return x.row(v).transpose(); }
+  Aabb vertex_box(int v) const {
+    Aabb box;
+    box.expand(p(v));
+    box.inflate(margin);
+    return box;
+  }
+  template <typename Primitive>
+  Aabb box(const Primitive& vertices) const {
+    Aabb box;
+    for (int v : vertices) box.expand(vertex_box(v));
+    return box;
+  }
+  // A tree over the primitives of the bodies `keep` selects; index maps its boxes back.
+  template <typename Primitives, typename Keep>
+  void tree(const Primitives& primitives, Keep keep, std::vector<int>& index,
+            std::vector<Aabb>& boxes, Bvh& tree) const {
+    for (int i = 0; i < static_cast<int>(primitives.size()); ++i) {
+      if (!keep(body(primitives[static_cast<std::size_t>(i)][0]))) continue;
+      index.push_back(i);
+      boxes.push_back(box(primitives[static_cast<std::size_t>(i)]));
+    }
+    tree.build(boxes);
+  }
+
+  // Squared distance of the nearest point-triangle pair, points of `points`, faces of `faces`.
+  template <typename Points, typename Faces>
+  double nearest_point_triangle_sq(Points points, Faces faces) const {
+    const auto& all = model.collision().faces;
+    std::vector<int> index;
+    std::vector<Aabb> boxes;
+    Bvh face_tree;
+    tree(all, faces, index, boxes, face_tree);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int v = 0; v < model.collision().size(); ++v) {
+      if (!points(body(v))) continue;
+      face_tree.query(vertex_box(v), [&](int k) {
+        const auto& t = all[static_cast<std::size_t>(index[static_cast<std::size_t>(k)])];
+        if (t[0] == v || t[1] == v || t[2] == v || !may_touch(v, t[0])) return;
+        nearest =
+            std::min(nearest, kernels::point_triangle_distance_sq(p(v), p(t[0]), p(t[1]), p(t[2])));
+      });
+    }
+    return nearest;
+  }
+
+  // Squared distance of the nearest edge-edge pair between the bodies of `first` and `second`.
+  template <typename First, typename Second>
+  double nearest_edge_edge_sq(First first, Second second) const {
+    const auto& edges = model.collision().edges;
+    std::vector<int> index;
+    std::vector<Aabb> boxes;
+    Bvh edge_tree;
+    tree(edges, second, index, boxes, edge_tree);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < static_cast<int>(edges.size()); ++a) {
+      if (!first(body(edges[static_cast<std::size_t>(a)][0]))) continue;
+      edge_tree.query(box(edges[static_cast<std::size_t>(a)]), [&](int k) {
+        int i = a, j = index[static_cast<std::size_t>(k)];
+        const bool kinematic_j = kinematic(edges[static_cast<std::size_t>(j)][0]);
+        if (kinematic(edges[static_cast<std::size_t>(i)][0]) == kinematic_j ? j < i : kinematic_j) {
+          std::swap(i, j);
+        }
+        const auto& ea = edges[static_cast<std::size_t>(i)];
+        const auto& eb = edges[static_cast<std::size_t>(j)];
+        if (i == j || ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1] ||
+            !may_touch(ea[0], eb[0])) {
+          return;
+        }
+        nearest = std::min(nearest,
+                           kernels::edge_edge_distance_sq(p(ea[0]), p(ea[1]), p(eb[0]), p(eb[1])));
+      });
+    }
+    return nearest;
+  }
+};
+
+}  // namespace
 
 Vertices Environment::collision_positions() const {
   return solver::collision_positions(*model_, state_.q, targets_at_rest(*model_, state_), 0.0);
@@ -43,26 +140,19 @@ VertexContactForces Environment::vertex_contact_forces() const {
   return solver::vertex_contact_forces(*model_, newton_.potential(), collision_positions());
 }
 
+// Only pairs between the set and `other` count, so only their primitives are searched
+// (SurfacePairs): the same pairs' distances as the whole broad phase's, the same bits.
 double Environment::surface_distance(const std::vector<int>& bodies, int other,
                                      double search) const {
   const Vertices x = collision_positions();
-  const std::vector<int>& vertex_body = model_->collision().vertex_body;
-  const auto in_set = [&](int v) {
-    return std::find(bodies.begin(), bodies.end(), vertex_body[v]) != bodies.end();
-  };
-  double nearest_sq = std::numeric_limits<double>::infinity();
-  for (const ContactCandidate& c : find_contact_candidates(*model_, x, x, search)) {
-    // Point-triangle: vertex 0 against 1-3; edge-edge: 0-1 against 2-3.
-    const int a = c.vertex[0], b = c.vertex[c.edge_edge ? 2 : 1];
-    const bool between =
-        (in_set(a) && vertex_body[b] == other) || (in_set(b) && vertex_body[a] == other);
-    if (!between) continue;
-    const auto p = [&](int k) -> Eigen::Vector3d { return x.row(c.vertex[k]).transpose(); };
-    const double d_sq = c.edge_edge ? kernels::edge_edge_distance_sq(p(0), p(1), p(2), p(3))
-                                    : kernels::point_triangle_distance_sq(p(0), p(1), p(2), p(3));
-    nearest_sq = std::min(nearest_sq, d_sq);
-  }
-  const double nearest = std::sqrt(nearest_sq);
+  std::vector<char> in_set(model_->bodies().size(), 0);
+  for (int b : bodies) in_set[static_cast<std::size_t>(b)] = 1;
+  const auto is_in_set = [&](int body) { return in_set[static_cast<std::size_t>(body)] != 0; };
+  const auto is_other = [&](int body) { return body == other; };
+  const SurfacePairs pairs{*model_, x, 0.5 * search * (1.0 + 1e-9)};
+  const double nearest = std::sqrt(std::min({pairs.nearest_point_triangle_sq(is_in_set, is_other),
+                                             pairs.nearest_point_triangle_sq(is_other, is_in_set),
+                                             pairs.nearest_edge_edge_sq(is_in_set, is_other)}));
   return nearest < search ? nearest : std::numeric_limits<double>::infinity();
 }
 

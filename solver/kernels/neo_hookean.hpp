@@ -237,6 +237,29 @@ GRIP_HD inline Vector12d tet_stable_neo_hookean_gradient(const Vector12d& x,
   return rest_volume * deformation_gradient_jacobian(rest_shape_inverse).transpose() * vec_p;
 }
 
+// B^T A B for a 9x9 A and B = dvec(F)/dx: B's 3x3 blocks are multiples of the identity,
+// B(3j + i, 3a + i) = D(a, j) with D the 4x3 matrix of the shape functions' gradients (rows
+// -sum of Dm^{-1}'s rows, then Dm^{-1}), so the product is summed block by block at about a
+// third of a dense product's multiplications.
+GRIP_HD inline Matrix12d deformation_gradient_congruence(const Eigen::Matrix3d& rest_shape_inverse,
+                                                         const Matrix9d& a) {
+  Eigen::Matrix<double, 4, 3> d;
+  d.row(0) = -rest_shape_inverse.colwise().sum();
+  d.bottomRows<3>() = rest_shape_inverse;
+  // A B, one 9x3 block column per vertex.
+  Eigen::Matrix<double, 9, 12> ab;
+  for (int v = 0; v < 4; ++v) {
+    ab.middleCols<3>(3 * v) =
+        a.middleCols<3>(0) * d(v, 0) + a.middleCols<3>(3) * d(v, 1) + a.middleCols<3>(6) * d(v, 2);
+  }
+  Matrix12d h;
+  for (int u = 0; u < 4; ++u) {
+    h.middleRows<3>(3 * u) = d(u, 0) * ab.middleRows<3>(0) + d(u, 1) * ab.middleRows<3>(3) +
+                             d(u, 2) * ab.middleRows<3>(6);
+  }
+  return h;
+}
+
 // d^2 energy / dx^2 = V B^T (dP/dF) B. With project_psd, dP/dF is replaced by its nearest
 // positive semi-definite matrix (negative eigenvalues clamped to zero), as projected Newton
 // needs. B (9 x 12) has full rank 9, so the 12x12 Hessian is PSD exactly when the 9x9 dP/dF
@@ -247,11 +270,10 @@ GRIP_HD inline Matrix12d tet_stable_neo_hookean_hessian(const Vector12d& x,
                                                         double rest_volume,
                                                         const StableNeoHookeanParameters& m,
                                                         bool project_psd) {
-  const Eigen::Matrix<double, 9, 12> b = deformation_gradient_jacobian(rest_shape_inverse);
   const Eigen::Matrix3d f = deformation_gradient(x, rest_shape_inverse);
   const Matrix9d dpdf = project_psd ? stable_neo_hookean_stress_derivative_psd(f, m)
                                     : stable_neo_hookean_stress_derivative(f, m);
-  return rest_volume * b.transpose() * dpdf * b;
+  return rest_volume * deformation_gradient_congruence(rest_shape_inverse, dpdf);
 }
 
 // Cauchy stress sigma = P F^T / J = (mu F F^T + (lambda (J - 1) - mu) J I) / J (Pa, symmetric);

@@ -302,6 +302,22 @@ TEST(NeoHookean, AnalyticProjectionMatchesTheNumericOne) {
   EXPECT_GT(inverted, 500);
 }
 
+// The block-wise B^T A B of the tet Hessian equals the dense product to rounding, for any
+// (not only symmetric) 9x9 A.
+TEST(NeoHookean, BlockwiseCongruenceMatchesTheDenseProduct) {
+  std::mt19937_64 rng(37);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const RestTet tet = random_rest_tet(rng, trial % 2 ? 1e-2 : 1e-3);
+    Matrix9d a;
+    for (int i = 0; i < 81; ++i) a(i) = 1e6 * unit(rng);
+    const Eigen::Matrix<double, 9, 12> b = deformation_gradient_jacobian(tet.dm_inv);
+    const Matrix12d dense = b.transpose() * a * b;
+    EXPECT_LT((deformation_gradient_congruence(tet.dm_inv, a) - dense).norm(),
+              1e-13 * dense.norm());
+  }
+}
+
 TEST(NeoHookean, VonMisesOfKnownStressStates) {
   // Uniaxial sigma: |sigma|; pure shear tau: sqrt(3) tau; hydrostatic: 0.
   const double s = 1.5e6;
