@@ -49,6 +49,7 @@ PLACEHOLDERS = {
     "DATASET.h5": "out/demo/dataset.h5",
     "FILE": "out/file",
     "FILE.csv": "out/file.csv",
+    "FILE.json": "out/file.json",
     "DIR": "out/dir",
     "IN": "mesh.obj",
     "SPEC": "cylinder",

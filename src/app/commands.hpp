@@ -248,10 +248,10 @@ int bench_labels(const BenchLabelsArgs& args);
 // by MuJoCo (bench/peer/, docs/results.md).
 struct BenchPeerArgs {
   std::string gripper = "parallel-jaw";  // or leap
-  std::vector<std::string> categories;  // empty: box, cylinder, capsule, bottle, sphere, ellipsoid
-  int seeds = 4;                        // shapes per category
-  int candidates = 9;                   // per shape
-  int threads = 1;                      // grip's trial
+  std::vector<std::string> categories;   // empty: box, cylinder, capsule, bottle, sphere, ellipsoid
+  int seeds = 4;                         // shapes per category
+  int candidates = 9;                    // per shape
+  int threads = 1;                       // grip's trial
   std::string out = "out/peer";
   std::string vtk;  // the hand's disagreement examples as VTK; empty: none
 };
