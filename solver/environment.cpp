@@ -118,7 +118,7 @@ Environment::Progress Environment::begin_step() {
   if (state_.time == 0.0) {
     const StepTargets now = targets_at_rest(*model_, state_);
     const Vertices start = solver::collision_positions(*model_, state_.q, now, 0.0);
-    near_ = find_contact_candidates(*model_, start, start, model_->sim().d_hat);
+    near_ = newton_.broad_phase().find(*model_, start, start, model_->sim().d_hat);
     for (const ContactCandidate& c : *near_) {
       if (!(newton_.potential().barrier().contact_force(c, start).distance > 0.0)) {
         return fail(Failure::kIntersectingStart,
@@ -234,7 +234,7 @@ void Environment::finish_step() {
 void Environment::record_diagnostics() {
   const StageTimer timer(newton_.stages().diagnostics);
   const Vertices x = solver::collision_positions(*model_, state_.q, step_->targets, 1.0);
-  if (!near_) near_ = find_contact_candidates(*model_, x, x, model_->sim().d_hat);
+  if (!near_) near_ = newton_.broad_phase().find(*model_, x, x, model_->sim().d_hat);
   diagnostics_.min_volume_ratio = min_volume_ratio();
   diagnostics_.friction_contacts =
       static_cast<int>(newton_.potential().friction().contacts().size());

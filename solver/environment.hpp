@@ -97,8 +97,9 @@ class Environment {
   // The exact distance between the surfaces of `bodies` and of body `other` now, if it is below
   // `search` (m); infinity otherwise. The broad phase's cost grows with `search`.
   double surface_distance(const std::vector<int>& bodies, int other, double search) const;
-  // The contact forces on every collision vertex at the current state (between steps).
-  VertexContactForces vertex_contact_forces() const;
+  // The contact forces on every collision vertex at the current state (between steps); the
+  // pairs come from the broad phase the environment keeps.
+  VertexContactForces vertex_contact_forces();
 
  private:
   // A step of dt is taken as parts: one part normally; a part that fails is rolled back to its

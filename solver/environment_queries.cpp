@@ -136,8 +136,11 @@ Eigen::Matrix3d Environment::rotation(int index) const {
 
 double Environment::min_volume_ratio() const { return solver::min_volume_ratio(*model_, state_.q); }
 
-VertexContactForces Environment::vertex_contact_forces() const {
-  return solver::vertex_contact_forces(*model_, newton_.potential(), collision_positions());
+VertexContactForces Environment::vertex_contact_forces() {
+  const Vertices x = collision_positions();
+  const std::vector<ContactCandidate> near =
+      newton_.broad_phase().find(*model_, x, x, model_->sim().d_hat);
+  return solver::vertex_contact_forces(*model_, newton_.potential(), x, near);
 }
 
 // Only pairs between the set and `other` count, so only their primitives are searched

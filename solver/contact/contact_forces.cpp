@@ -8,15 +8,15 @@
 namespace grip::solver {
 
 VertexContactForces vertex_contact_forces(const Model& model, const IncrementalPotential& potential,
-                                          const Vertices& positions) {
+                                          const Vertices& positions,
+                                          const std::vector<ContactCandidate>& near) {
   const CollisionMesh& mesh = model.collision();
   VertexContactForces forces{Vertices::Zero(mesh.size(), 3), Vertices::Zero(mesh.size(), 3)};
   auto add = [](Vertices& to, const std::array<int, 4>& vertex,
                 const Eigen::Matrix<double, 12, 1>& f) {
     for (int i = 0; i < 4; ++i) to.row(vertex[i]) += f.segment<3>(3 * i).transpose();
   };
-  for (const ContactCandidate& c :
-       find_contact_candidates(model, positions, positions, model.sim().d_hat)) {
+  for (const ContactCandidate& c : near) {
     const ContactForce force = potential.barrier().contact_force(c, positions);
     if (force.magnitude > 0.0) add(forces.normal, c.vertex, force.force);
   }

@@ -26,9 +26,11 @@ struct VertexContactForces {
 };
 
 // Barrier forces of the contacts at `positions` and the friction forces of the potential's
-// lagged contacts there.
+// lagged contacts there. `near` holds every pair within d_hat of `positions`, in
+// find_contact_candidates' order (the sums follow it).
 VertexContactForces vertex_contact_forces(const Model& model, const IncrementalPotential& potential,
-                                          const Vertices& positions);
+                                          const Vertices& positions,
+                                          const std::vector<ContactCandidate>& near);
 
 // Per pair of distinct bodies, the forces as above, in (body_a, body_b) order; also the
 // smallest distance over the contacts within d_hat (infinity without one). `near` holds every

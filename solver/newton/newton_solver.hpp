@@ -78,6 +78,9 @@ class NewtonSolver {
 
   const IncrementalPotential& potential() const { return potential_; }
 
+  // The broad phase this solver keeps; its owner's queries between steps may use it too.
+  ContactBroadPhase& broad_phase() { return broad_phase_; }
+
   // step.near, found first if need be; `x` are the current collision positions.
   const std::vector<ContactCandidate>& near(NewtonStep& step, const Vertices& x);
 

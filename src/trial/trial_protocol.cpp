@@ -270,7 +270,7 @@ class ProtocolRunner {
   }
 
   RecordedFrame frame(int i) {
-    const solver::Environment& env = batch_.environment(i);
+    solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
     const int object = gripper_.object_body();
     RecordedFrame f;
@@ -456,7 +456,7 @@ class ProtocolRunner {
 
   // The gripper's side of the settled grasp's contacts, against which slip is measured.
   void record_patch(int i) {
-    const solver::Environment& env = batch_.environment(i);
+    solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
     const solver::VertexContactForces forces = env.vertex_contact_forces();
     const solver::Vertices x = env.collision_positions();

@@ -16,7 +16,7 @@ struct BodySums {
   Eigen::Vector3d friction = Eigen::Vector3d::Zero();
 };
 
-BodySums sum_over_body(const Environment& env, int body) {
+BodySums sum_over_body(Environment& env, int body) {
   const VertexContactForces forces = env.vertex_contact_forces();
   const CollisionMesh& mesh = env.model().collision();
   BodySums sums;
