@@ -16,20 +16,18 @@ namespace grip::solver {
 namespace {
 
 // The nearest pair between two sets of bodies, found as find_contact_candidates finds pairs
-// (bodies that may touch, not both kinematic, no shared vertex) and with each pair's vertices
-// in its order (an edge-edge pair from the kinematic edge, else from the lower edge index), so
-// that each distance has the same bits. Boxes are the vertices' inflated by `margin`: a pair
-// whose boxes miss is farther than twice the margin, where the caller looks no more.
+// (bodies that may touch, no shared vertex) and with each pair's vertices in its order (an
+// edge-edge pair from the untouching edge, Model::among_untouching, else from the lower edge
+// index), so that each distance has the same bits. Boxes are the vertices' inflated by `margin`: a
+// pair whose boxes miss is farther than twice the margin, where the caller looks no more.
 struct SurfacePairs {
   const Model& model;
   const Vertices& x;
   double margin;
 
   int body(int v) const { return model.collision().vertex_body[static_cast<std::size_t>(v)]; }
-  bool kinematic(int v) const { return is_kinematic(model.bodies()[body(v)]); }
-  bool may_touch(int v, int w) const {
-    return !(kinematic(v) && kinematic(w)) && model.may_touch(body(v), body(w));
-  }
+  bool untouching(int v) const { return model.among_untouching(body(v)); }
+  bool may_touch(int v, int w) const { return model.may_touch(body(v), body(w)); }
   Eigen::Vector3d p(int v) const { return x.row(v).transpose(); }
   Aabb vertex_box(int v) const {
     Aabb box;
@@ -89,8 +87,9 @@ struct SurfacePairs {
       if (!first(body(edges[static_cast<std::size_t>(a)][0]))) continue;
       edge_tree.query(box(edges[static_cast<std::size_t>(a)]), [&](int k) {
         int i = a, j = index[static_cast<std::size_t>(k)];
-        const bool kinematic_j = kinematic(edges[static_cast<std::size_t>(j)][0]);
-        if (kinematic(edges[static_cast<std::size_t>(i)][0]) == kinematic_j ? j < i : kinematic_j) {
+        const bool untouching_j = untouching(edges[static_cast<std::size_t>(j)][0]);
+        if (untouching(edges[static_cast<std::size_t>(i)][0]) == untouching_j ? j < i
+                                                                              : untouching_j) {
           std::swap(i, j);
         }
         const auto& ea = edges[static_cast<std::size_t>(i)];

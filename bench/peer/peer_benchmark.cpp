@@ -30,6 +30,40 @@ std::vector<std::string> categories_of(const PeerOptions& options) {
   return options.categories.empty() ? kPeerCategories : options.categories;
 }
 
+// A row's grip half: candidate k of the shape, its verdict, D1/D2 and largest slip, and the
+// thread's CPU seconds `grip_cpu_seconds`.
+PeerTrial grip_row(const RobustnessSet& set, std::uint64_t seed, std::size_t k,
+                   const trial::TrialOutcome& outcome, double grip_cpu_seconds) {
+  PeerTrial t;
+  t.gripper = set.gripper;
+  t.category = set.category;
+  t.seed = seed;
+  t.candidate = k;
+  t.grip_cpu_seconds = grip_cpu_seconds;
+  const io::CandidateRecord& record = outcome.result.record;
+  t.grip_verdict = verdict_text(record);
+  t.grip_d1 = record.d1;
+  t.grip_d2 = record.d2;
+  t.grip_slip = robustness_trial(set, seed, k, outcome).largest_slip;
+  return t;
+}
+
+// A row's MuJoCo half (a jaws' or a hand's outcome): its verdict, and where it settled, D1/D2
+// from `settled_distances()` and its largest slip.
+template <typename Outcome, typename SettledDistances>
+void add_mujoco(const Outcome& m, SettledDistances&& settled_distances, PeerTrial& t) {
+  t.mujoco_verdict = m.verdict;
+  t.mujoco_message = m.message;
+  if (m.settled) {
+    const metrics::DistanceMetrics d = settled_distances();
+    t.mujoco_d1 = d.d1;
+    t.mujoco_d2 = d.d2;
+    t.mujoco_slip = m.largest_slip;
+  }
+  t.mujoco_cpu_seconds = m.cpu_seconds;
+  t.mujoco_compile_cpu_seconds = m.compile_cpu_seconds;
+}
+
 // One shape with the parallel jaws: grip's trials, then MuJoCo's, candidate by candidate.
 void run_jaws_shape(const RobustnessSet& set, std::uint64_t seed,
                     const std::vector<synth::Candidate>& candidates, const PeerOptions& options,
@@ -43,33 +77,15 @@ void run_jaws_shape(const RobustnessSet& set, std::uint64_t seed,
   const double friction =
       std::sqrt(object.material.friction * options.parameters.rigid_finger_friction);
   for (std::size_t k = 0; k < candidates.size(); ++k) {
-    PeerTrial t;
-    t.gripper = set.gripper;
-    t.category = set.category;
-    t.seed = seed;
-    t.candidate = k;
     const double start = process_cpu_seconds();
     const trial::TrialOutcome outcome = scene.run({candidates[k]}, options.threads).front();
-    t.grip_cpu_seconds = process_cpu_seconds() - start;
-    const io::CandidateRecord& record = outcome.result.record;
-    t.grip_verdict = verdict_text(record);
-    t.grip_d1 = record.d1;
-    t.grip_d2 = record.d2;
-    t.grip_slip = robustness_trial(set, seed, k, outcome).largest_slip;
+    PeerTrial t = grip_row(set, seed, k, outcome, process_cpu_seconds() - start);
 
     const synth::HandGrasp& hand = candidates[k].hands.front();
     const MujocoOutcome m = run_mujoco_trial(object.surface, object.material.density, friction,
                                              jaws, hand.pose, hand.joints[0], options.parameters);
-    t.mujoco_verdict = m.verdict;
-    t.mujoco_message = m.message;
-    if (m.settled) {
-      const metrics::DistanceMetrics d = distances(m.fingers, m.object);
-      t.mujoco_d1 = d.d1;
-      t.mujoco_d2 = d.d2;
-      t.mujoco_slip = m.largest_slip;
-    }
-    t.mujoco_cpu_seconds = m.cpu_seconds;
-    t.mujoco_compile_cpu_seconds = m.compile_cpu_seconds;
+    add_mujoco(
+        m, [&] { return distances(m.fingers, m.object); }, t);
     result.trials.push_back(std::move(t));
   }
 }
@@ -90,34 +106,16 @@ void run_hand_shape(const RobustnessSet& set, std::uint64_t seed,
   run.threads = options.threads;
   run.trajectory = false;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
-    PeerTrial t;
-    t.gripper = set.gripper;
-    t.category = set.category;
-    t.seed = seed;
-    t.candidate = k;
     const synth::HandGrasp& h = candidates[k].hands.front();
     const trial::HandTrialGrasp grasp{h.pose, h.joints, h.contacts, h.contact_normals};
     const double start = process_cpu_seconds();
     const trial::TrialOutcome outcome = trial::run_hand_trials(scene, {grasp}, run).front();
-    t.grip_cpu_seconds = process_cpu_seconds() - start;
-    const io::CandidateRecord& record = outcome.result.record;
-    t.grip_verdict = verdict_text(record);
-    t.grip_d1 = record.d1;
-    t.grip_d2 = record.d2;
-    t.grip_slip = robustness_trial(set, seed, k, outcome).largest_slip;
+    PeerTrial t = grip_row(set, seed, k, outcome, process_cpu_seconds() - start);
 
     const MujocoHandOutcome m = run_mujoco_hand_trial(object.surface, object.material.density,
                                                       friction, scene, grasp, options.parameters);
-    t.mujoco_verdict = m.verdict;
-    t.mujoco_message = m.message;
-    if (m.settled) {
-      const metrics::DistanceMetrics d = distances(m.links, m.object);
-      t.mujoco_d1 = d.d1;
-      t.mujoco_d2 = d.d2;
-      t.mujoco_slip = m.largest_slip;
-    }
-    t.mujoco_cpu_seconds = m.cpu_seconds;
-    t.mujoco_compile_cpu_seconds = m.compile_cpu_seconds;
+    add_mujoco(
+        m, [&] { return distances(m.links, m.object); }, t);
 
     const bool grip_held = t.grip_verdict == "success", mujoco_held = m.verdict == "success";
     const std::string kind = mujoco_held ? "mujoco_holds" : "grip_holds";
