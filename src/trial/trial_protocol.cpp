@@ -9,6 +9,7 @@
 
 #include "solver/batch/batch.hpp"
 #include "src/scene/invariants.hpp"
+#include "src/trial/contact_patch.hpp"
 #include "src/trial/finger_servo.hpp"
 #include "src/trial/frame_recorder.hpp"
 
@@ -39,14 +40,10 @@ struct TrialState {
   int phase_step = 0;
   Eigen::Vector3d start_center = Eigen::Vector3d::Zero();  // the object's, at the candidate's start
   Eigen::Vector3d settled_center = Eigen::Vector3d::Zero();
-  // The gripper's contact patch at the settled grasp: collision vertices that bear a contact
-  // force, where they were then, weighted by the force's magnitude.
-  struct PatchVertex {
-    int vertex = 0;
-    Eigen::Vector3d settled;
-    double weight = 0.0;
-  };
-  std::vector<PatchVertex> patch;
+  // The settled grasp's contact patches, the gripper's and (a soft object's) the object's,
+  // against which slip is measured.
+  ContactPatch gripper_patch;
+  ContactPatch object_patch;
   bool metrics_done = false;
   FrameRecorder recorder;
   TrialOutcome outcome;
@@ -454,7 +451,8 @@ class ProtocolRunner {
     env.set_gravity(p_.gravity_magnitude * kGravityAxes[0]);
   }
 
-  // The gripper's side of the settled grasp's contacts, against which slip is measured.
+  // The settled grasp's contact patches: the collision vertices that bear a contact force,
+  // weighted by its magnitude.
   void record_patch(int i) {
     solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
@@ -463,28 +461,30 @@ class ProtocolRunner {
     const std::vector<int>& body = env.model().collision().vertex_body;
     for (int v = 0; v < x.rows(); ++v) {
       const double force = forces.normal.row(v).norm();
-      if (body[v] == gripper_.object_body() || !(force > 0.0)) continue;
-      state.patch.push_back({v, x.row(v).transpose(), force});
+      if (!(force > 0.0)) continue;
+      ContactPatch& patch =
+          body[v] == gripper_.object_body() ? state.object_patch : state.gripper_patch;
+      patch.add(v, x.row(v).transpose(), force);
     }
   }
 
-  // How far the object slipped over the gripper since the settled grasp: its centre of mass's
-  // displacement less the force-weighted mean displacement of the contact patch, so that the
-  // fingers' own motion (a soft finger's sag, a finger's spring) is not counted as slip.
-  // Without a patch (no gripper vertex bore a force), the centre of mass's displacement.
+  // How far the object slipped in the gripper since the settled grasp: the distance between
+  // where the object's motion carried its settled centre of mass and where the gripper's contact
+  // patch, moving as one rigid piece (its best fit), would have carried it. A grasp whose
+  // contacts stick moves the object with the patch however the fingers bend, twist or yield on
+  // their drives (sag, not slip); a slide or a turn in the fingers moves it away. A soft
+  // object's motion is its contact patch's, so that its own sag is not slip either. Without a
+  // gripper patch, the centre of mass's displacement.
   double slip(int i) const {
     const solver::Environment& env = batch_.environment(i);
     const TrialState& state = states_[i];
-    const Eigen::Vector3d moved = env.center_of_mass(gripper_.object_body()) - state.settled_center;
-    if (state.patch.empty()) return moved.norm();
+    const Eigen::Vector3d& center = state.settled_center;
     const solver::Vertices x = env.collision_positions();
-    Eigen::Vector3d patch_moved = Eigen::Vector3d::Zero();
-    double weight = 0.0;
-    for (const TrialState::PatchVertex& p : state.patch) {
-      patch_moved += p.weight * (x.row(p.vertex).transpose() - p.settled);
-      weight += p.weight;
-    }
-    return (moved - patch_moved / weight).norm();
+    const Eigen::Vector3d by_object = gripper_.soft_object() && !state.object_patch.empty()
+                                          ? state.object_patch.motion(x)(center)
+                                          : env.center_of_mass(gripper_.object_body());
+    if (state.gripper_patch.empty()) return (by_object - center).norm();
+    return (by_object - state.gripper_patch.motion(x)(center)).norm();
   }
 
   static std::vector<double> finger_forces(const TrialState& state) {

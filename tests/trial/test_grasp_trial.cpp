@@ -1,6 +1,7 @@
 // Known outcomes of the grasp trial (GRIP, Sec. III-D) on a coarse fin-ray gripper and on
 // rigid jaws: a centred fin-ray grasp of a box stops on force and holds, its slip measured
-// apart from the fingers' sag, and is squeezed out without friction; a ball held with friction
+// apart from the fingers' sag, and is squeezed out without friction; an off-centre one turns
+// with the fingers without slipping unless the object is too heavy; a ball held with friction
 // is lost without it; a trial not steady in time is unsettled; a grasp closing on air fails; a
 // squeezed soft box is stressed under the fingers; IPC leaves D1 = 0 and D2 within d_hat; and
 // a batch matches solo runs for any thread count.
@@ -133,6 +134,35 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   // Both grasps squeezed to the grip force before gravity.
   ASSERT_EQ(r.closing_forces.size(), 2u);
   expect_grip_force(r.closing_forces, p);
+}
+
+TEST(GraspTrial, AnOffCentreFinRayGraspTurnsWithTheFingersAndSlipsOnlyWhenTooHeavy) {
+  // A 16 cm bar pinched 6 cm from its centre: its weight turns it about the pinch. At 0.14 kg
+  // the compliant fingers twist with it and the contacts stick: its centre of mass swings by
+  // more than the threshold, the slip stays far below it, and the grasp holds. Twice as heavy,
+  // the bar turns in the fingers (docs/trial.md, "Verdict").
+  TrialParameters p = fin_ray_parameters(0.04);
+  p.grip_force = 10.0;
+  ParallelGrasp grasp = centred(0.04);
+  grasp.pose.translation().x() = 0.06;
+  auto trial = [&](double density) {
+    TrialObject bar = rigid_cylinder(3.5);
+    bar.name = "bar";
+    bar.surface = geometry::make_box(Eigen::Vector3d(0.16, 0.03, 0.03));
+    bar.material.density = density;
+    return run_trials(TrialScene(bar, fin_ray(), p), {grasp}).front();
+  };
+  const TrialOutcome light = trial(1000.0);
+  const io::CandidateRecord& held = light.result.record;
+  EXPECT_EQ(held.failure, io::FailureKind::kNone)
+      << io::to_string(held.failure) << " " << light.failure_reason;
+  EXPECT_GT(largest(light.center_displacement), p.displacement_threshold());
+  EXPECT_LT(largest(held.displacement), 0.3 * p.displacement_threshold());
+
+  const TrialOutcome heavy = trial(2000.0);
+  EXPECT_EQ(heavy.result.record.failure, io::FailureKind::kDisplaced)
+      << io::to_string(heavy.result.record.failure) << " " << heavy.failure_reason;
+  EXPECT_GT(largest(heavy.result.record.displacement), p.displacement_threshold());
 }
 
 TEST(GraspTrial, RigidJawsHoldABallWithFrictionAndLoseItWithout) {
