@@ -88,8 +88,9 @@ std::int64_t big_endian_int32(std::istream& in) {
 // Binary OFF: big-endian int32 counts, float32 vertices, each face its corner count and
 // indices (int32; CGAL's polygon soup reader reads no face color after them). CGAL sizes its arrays
 // by the counts, and each face by its corner count, before reading them: every count is checked
-// against the bytes that would hold it. Faces are scanned only after plain 3D vertices (12 bytes
-// each, "OFF BINARY").
+// against the bytes that would hold it. Only plain 3D vertices (12 bytes each, "OFF BINARY") are
+// read: with a prefix (C, N, ST, 4, n) a vertex carries a variable number of extra floats, so
+// the faces could not be checked before CGAL sizes them.
 void check_binary_off(const std::filesystem::path& file, std::istream& in, std::uintmax_t size,
                       bool plain, bool dimension) {
   in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
@@ -105,7 +106,11 @@ void check_binary_off(const std::filesystem::path& file, std::istream& in, std::
                           std::to_string(faces) + " faces, not counts its " + std::to_string(size) +
                           " bytes can hold");
   }
-  if (!plain) return;
+  if (!plain) {
+    refuse_mesh(file,
+                "binary OFF with per-vertex colours, normals, texture coordinates or other "
+                "than 3 coordinates is not read; write it as plain 'OFF BINARY' or as ASCII OFF");
+  }
   in.seekg(vertices * 12, std::ios::cur);
   for (std::int64_t f = 0; f < faces; ++f) {
     const std::int64_t corners = big_endian_int32(in);
