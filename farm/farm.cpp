@@ -143,18 +143,13 @@ std::string trial_failure(int rank, const WorkUnit& unit, const FarmPlan& plan, 
          "; the results committed so far are kept (grip farm --resume continues)";
 }
 
-}  // namespace
-
-FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
-  int rank = 0, ranks = 1;
+// The run's settings: the dataset, ranks, threads per rank and work unit size.
+FarmReport start_report(const FarmOptions& options, const Job& job, MPI_Comm comm) {
+  int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
-  install_stop_handlers();
-
-  const Job job = read_job(options.job, comm);
   FarmReport report;
   report.dataset = options.output.empty() ? job.output : options.output;
-  report.ranks = ranks;
+  MPI_Comm_size(comm, &report.ranks);
   report.threads = options.threads > 0 ? options.threads : default_threads(comm);
   if (report.threads > usable_cores()) {
     spdlog::warn(
@@ -166,7 +161,10 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
   report.work_unit_size = options.work_unit_size > 0 ? options.work_unit_size
                           : job.work_unit_size > 0   ? job.work_unit_size
                                                      : 4 * report.threads;
+  return report;
+}
 
+io::Provenance provenance_of(const FarmOptions& options, const Job& job) {
   io::Provenance provenance;
   provenance.job_file = options.job.string();
   provenance.job_text = job.text;
@@ -174,126 +172,195 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
   provenance.grip_version = options.grip_version;
   provenance.git_revision = options.git_revision;
   provenance.parameters = resolved_parameters(job);
+  return provenance;
+}
 
-  // Refuse before the (long) planning what the writer would refuse after it. (grip farm checks
-  // --output on its command line; the job's own output is known only here.)
-  if (std::filesystem::is_directory(report.dataset)) {
-    throw config::ConfigError(options.job.string() + ": the dataset '" + report.dataset.string() +
+// Refuses before the (long) planning what the writer would refuse after it, and reopens the
+// dataset to resume. (grip farm checks --output on its command line; the job's own output is
+// known only here.)
+std::optional<io::DatasetWriter> reopen_to_resume(const FarmOptions& options,
+                                                  const std::filesystem::path& dataset,
+                                                  const io::Provenance& provenance, MPI_Comm comm) {
+  if (std::filesystem::is_directory(dataset)) {
+    throw config::ConfigError(options.job.string() + ": the dataset '" + dataset.string() +
                               "' is a directory; give a file path (--output or [job] output)");
   }
-  if (!options.resume && std::filesystem::exists(report.dataset)) {
-    throw io::DatasetError(report.dataset.string() +
+  if (!options.resume && std::filesystem::exists(dataset)) {
+    throw io::DatasetError(dataset.string() +
                            ": the dataset already exists; continue it with --resume, or choose "
                            "another output (--output or the job's [job] output)");
   }
-  std::optional<io::DatasetWriter> writer;
-  if (options.resume) {
-    check_dataset(options, report.dataset, comm);
-    writer = io::DatasetWriter::resume(report.dataset, provenance, comm);
-  }
-  if (writer && !writer->damaged().empty()) {  // rank 0 only
-    const io::Damage& first = writer->damaged().front();
+  if (!options.resume) return std::nullopt;
+  check_dataset(options, dataset, comm);
+  io::DatasetWriter writer = io::DatasetWriter::resume(dataset, provenance, comm);
+  if (!writer.damaged().empty()) {  // rank 0 only
+    const io::Damage& first = writer.damaged().front();
     spdlog::warn(
         "{}: {} committed rows do not match their checksums; their candidates are redone "
         "(first: candidate {}, {})",
-        report.dataset.string(), writer->damaged().size(), first.candidate, first.dataset);
+        dataset.string(), writer.damaged().size(), first.candidate, first.dataset);
   }
+  return writer;
+}
 
-  LiveProgress progress(comm, options.progress_interval);
+FarmPlan plan_job(const FarmOptions& options, const Job& job, FarmReport& report,
+                  LiveProgress& progress, MPI_Comm comm) {
   const Clock::time_point plan_start = Clock::now();
-  const FarmPlan plan = make_plan(job, comm, report.threads, progress);
+  FarmPlan plan = make_plan(job, comm, report.threads, progress);
   report.plan_seconds = seconds_since(plan_start);
   if (plan.candidates.empty()) {  // every rank has the same plan, so all fail alike
     throw config::ConfigError(options.job.string() +
                               ": no candidate was synthesized for any object; the objects may not "
                               "fit the grippers ([randomization] scale, [[objects]])");
   }
-  if (writer) {
-    if (writer->layout().candidate_count != plan.candidates.size()) {
-      throw io::DatasetError(report.dataset.string() +
+  return plan;
+}
+
+// The resumed dataset's writer, checked against the plan, or a new dataset's.
+io::DatasetWriter writer_for(std::optional<io::DatasetWriter> resumed, const FarmPlan& plan,
+                             const std::filesystem::path& dataset, const io::Provenance& provenance,
+                             MPI_Comm comm) {
+  if (resumed) {
+    if (resumed->layout().candidate_count != plan.candidates.size()) {
+      throw io::DatasetError(dataset.string() +
                              ": the job now plans a different number of candidates than the "
                              "dataset holds (was it made by another grip version?); start a new "
                              "dataset instead of resuming");
     }
-  } else {
-    if (rank == 0 && report.dataset.has_parent_path()) {
-      std::filesystem::create_directories(report.dataset.parent_path());
-    }
-    MPI_Barrier(comm);
-    writer = io::DatasetWriter::create(report.dataset, plan.dataset, provenance, comm);
+    return std::move(*resumed);
   }
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0 && dataset.has_parent_path()) {
+    std::filesystem::create_directories(dataset.parent_path());
+  }
+  MPI_Barrier(comm);
+  return io::DatasetWriter::create(dataset, plan.dataset, provenance, comm);
+}
 
-  const std::vector<std::uint64_t> pending = writer->pending();
+// Where a rank's trial phase goes: claiming, running and committing work units.
+struct UnitRun {
+  const FarmPlan& plan;
+  const Job& job;
+  int threads = 1;
+  RunnerCache& runners;
+  LiveProgress& progress;
+  io::DatasetWriter& writer;
+  MPI_Comm comm;
+};
+
+// One work unit's trials, its results as the dataset keeps them; each solver step adds the
+// trials that ended to the progress, and rank 0 polls the progress and the journal.
+std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, const UnitRun& run) {
+  std::vector<const synth::Candidate*> candidates;
+  for (std::uint64_t id : unit.ids) candidates.push_back(&run.plan.candidates[id]);
+  const bool trajectory = run.plan.dataset.candidates[unit.ids.front()].frames;
+  std::size_t counted = 0;  // of this work unit's trials, added to the progress
+  const auto after_step = [&](std::size_t ended) {
+    run.progress.add(LiveProgress::kTrials, ended - counted);
+    counted = ended;
+    run.progress.poll();
+    run.writer.poll_journal();
+  };
+  std::vector<io::CandidateResult> results;
+  for (trial::TrialOutcome& outcome :
+       run.runners.get(unit.object, unit.gripper)
+           .run(candidates, unit.ids, run.threads, trajectory, after_step)) {
+    io::CandidateResult& result = outcome.result;
+    if (!run.plan.dataset.candidates[result.record.id].stress) result.stress.reset();
+    results.push_back(std::move(result));
+  }
+  run.progress.add(LiveProgress::kTrials, unit.ids.size() - counted);
+  return results;
+}
+
+struct RankTrials {
+  std::uint64_t committed = 0;  // candidates this rank committed
+  std::string error;            // its failed trial's message, if one failed
+};
+
+// This rank's share: claim a work unit, run it, commit it alone, claim the next, until the
+// units are handed out. A stop request or a failed trial here ends the handing out for every
+// rank, each finishing the work unit it runs.
+RankTrials run_claimed_units(const std::vector<WorkUnit>& units, const UnitRun& run,
+                             WorkUnitClaims& claims, int rank) {
+  RankTrials mine;
+  while (!stop_requested()) {
+    const std::uint64_t k = claims.claim();
+    if (k >= units.size()) break;
+    std::vector<io::CandidateResult> results;
+    try {
+      results = run_unit(units[k], run);
+    } catch (const std::exception& e) {
+      mine.error = trial_failure(rank, units[k], run.plan, run.job, e.what());
+      break;
+    }
+    try {
+      run.writer.commit_unit(results);
+    } catch (const std::exception& e) {
+      // The other ranks would wait for this one at the end (and its writer's collective close
+      // for them): stop them all. The units committed so far are kept.
+      spdlog::error(
+          "rank {}: committing candidates {} to {} failed: {}; the results committed so far "
+          "are kept (grip farm --resume continues)",
+          rank, units[k].ids.front(), units[k].ids.back(), e.what());
+      MPI_Abort(run.comm, 1);
+    }
+    mine.committed += results.size();
+  }
+  if (stop_requested() || !mine.error.empty()) claims.hand_out_no_more(units.size());
+  return mine;
+}
+
+// The trial phase: every pending candidate's trial, each work unit committed by the rank that
+// ran it as soon as it ends; no rank waits for another until the last unit is handed out.
+void run_trials(const FarmPlan& plan, const Job& job, io::DatasetWriter& writer,
+                LiveProgress& progress, FarmReport& report, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const std::vector<std::uint64_t> pending = writer.pending();
   report.candidates = plan.candidates.size();
   report.done_before = report.candidates - pending.size();
   const std::vector<WorkUnit> units = make_work_units(plan.dataset, pending, report.work_unit_size);
-  // A round holds a few work units per rank, claimed as ranks go; its results are committed
-  // together at its end. More work units per round balance better; fewer commit more often.
-  const std::uint64_t per_round =
-      static_cast<std::uint64_t>(job.round_work_units) * static_cast<std::uint64_t>(ranks);
-  const std::uint64_t rounds = (units.size() + per_round - 1) / per_round;
   if (rank == 0) {
     // "batches" is the user's word for work units (--batch, [farm] batch).
     spdlog::info("{} of {} candidates pending: {} batches of up to {} on {} rank(s) x {} thread(s)",
-                 pending.size(), report.candidates, units.size(), report.work_unit_size, ranks,
-                 report.threads);
+                 pending.size(), report.candidates, units.size(), report.work_unit_size,
+                 report.ranks, report.threads);
   }
-
   const Clock::time_point trial_start = Clock::now();
   progress.start_trials(pending.size());
   RunnerCache runners(plan, job);
-  WorkUnitClaims claims(comm, std::max<std::uint64_t>(rounds, 1));
-  for (std::uint64_t round = 0; round < rounds; ++round) {
-    const std::uint64_t first = round * per_round;
-    const std::uint64_t count = std::min<std::uint64_t>(per_round, units.size() - first);
-    std::vector<io::CandidateResult> results;
-    std::string error;
-    while (error.empty() && !stop_requested()) {
-      const std::uint64_t k = claims.claim(round);
-      if (k >= count) break;
-      const WorkUnit& unit = units[first + k];
-      std::vector<const synth::Candidate*> candidates;
-      for (std::uint64_t id : unit.ids) candidates.push_back(&plan.candidates[id]);
-      const bool trajectory = plan.dataset.candidates[unit.ids.front()].frames;
-      std::size_t counted = 0;  // of this work unit's trials, added to the progress
-      const auto after_step = [&](std::size_t ended) {
-        progress.add(LiveProgress::kTrials, ended - counted);
-        counted = ended;
-        progress.poll();
-      };
-      try {
-        for (trial::TrialOutcome& outcome :
-             runners.get(unit.object, unit.gripper)
-                 .run(candidates, unit.ids, report.threads, trajectory, after_step)) {
-          io::CandidateResult& result = outcome.result;
-          if (!plan.dataset.candidates[result.record.id].stress) result.stress.reset();
-          results.push_back(std::move(result));
-        }
-      } catch (const std::exception& e) {
-        error = trial_failure(rank, unit, plan, job, e.what());
-      }
-      progress.add(LiveProgress::kTrials, unit.ids.size() - counted);
-    }
-    progress.wait_for_ranks();
-    writer->write(results);
-    // A rank whose trial failed took no further work unit; now, after the commit, every rank
-    // learns the lowest failing rank's error, so none waits in a collective for it.
-    if (const std::string failed = first_error(error, comm); !failed.empty()) {
-      throw TrialError(failed);
-    }
-    std::uint64_t committed = results.size();
-    MPI_Allreduce(MPI_IN_PLACE, &committed, 1, MPI_UINT64_T, MPI_SUM, comm);
-    report.done += committed;
-    progress.log_trials(report.done);
-    int stop = stop_requested() ? 1 : 0;
-    MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, comm);
-    if (stop) {
-      report.interrupted = report.done < pending.size();
-      break;
-    }
+  WorkUnitClaims claims(comm);
+  const UnitRun run{plan, job, report.threads, runners, progress, writer, comm};
+  const RankTrials mine = run_claimed_units(units, run, claims, rank);
+  writer.end_units([&] { progress.poll(); });
+  // A rank whose trial failed took no further work unit; now, with every commit journaled,
+  // every rank learns the lowest failing rank's error, so none waits in a collective for it.
+  if (const std::string failed = first_error(mine.error, comm); !failed.empty()) {
+    throw TrialError(failed);
   }
-  writer->close();
+  MPI_Allreduce(&mine.committed, &report.done, 1, MPI_UINT64_T, MPI_SUM, comm);
+  progress.log_trials(report.done);
+  report.interrupted = report.done < pending.size();
   report.trial_seconds = seconds_since(trial_start);
+}
+
+}  // namespace
+
+FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
+  install_stop_handlers();
+  end_with_launcher();
+  const Job job = read_job(options.job, comm);
+  FarmReport report = start_report(options, job, comm);
+  const io::Provenance provenance = provenance_of(options, job);
+  std::optional<io::DatasetWriter> resumed =
+      reopen_to_resume(options, report.dataset, provenance, comm);
+  LiveProgress progress(comm, options.progress_interval);
+  const FarmPlan plan = plan_job(options, job, report, progress, comm);
+  io::DatasetWriter writer = writer_for(std::move(resumed), plan, report.dataset, provenance, comm);
+  run_trials(plan, job, writer, progress, report, comm);
+  writer.close();
   return report;
 }
 

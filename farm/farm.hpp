@@ -1,8 +1,9 @@
 #pragma once
 // `grip farm JOB.toml`: plan the job (objects prepared and candidates synthesized in parallel
 // across ranks), create or resume its dataset, then run every pending candidate's trial in
-// work units that ranks claim as they go, committing the finished ones collectively once per
-// round. One process with threads, or many MPI ranks: the same dataset (docs/farm.md).
+// work units that ranks claim as they go, each rank committing each of its units as it ends,
+// without waiting for the others. One process with threads, or many MPI ranks: the same
+// dataset (docs/farm.md).
 #include <mpi.h>
 
 #include <cstdint>
@@ -41,7 +42,7 @@ struct FarmReport {
 };
 
 // A trial that failed on some rank (an exception of the solver, e.g. CHOLMOD out of memory),
-// thrown on every rank alike once the round it failed in is committed.
+// thrown on every rank alike once every rank's work units in flight are committed.
 class TrialError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

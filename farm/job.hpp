@@ -52,8 +52,6 @@ struct Job {
   bool record_stress = true;       // soft objects' von Mises stress at the settled grasp
   // [farm] batch: candidates per work unit; 0: 4 per worker thread.
   int work_unit_size = 0;
-  // [farm] round_batches: work units per rank between two commits (checkpoints).
-  int round_work_units = 4;
 };
 
 // The job file's text. Throws config::ConfigError naming the file when it cannot be read.

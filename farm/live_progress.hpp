@@ -32,8 +32,8 @@ class LiveProgress {
   void poll();  // rank 0: shows the line if due; other ranks: nothing
 
   // Collective: returns once every rank has called it, rank 0 polling meanwhile. Called where
-  // the ranks would wait for each other anyway (before a broadcast of everyone's results, before
-  // a round's collective commit), so it changes nothing of who does what.
+  // the ranks would wait for each other anyway (before a broadcast of everyone's results), so it
+  // changes nothing of who does what.
   void wait_for_ranks();
 
   // Rank 0: a log line now, whatever the interval: planning's totals; trials `done`.

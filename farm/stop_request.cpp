@@ -1,7 +1,10 @@
 #include "farm/stop_request.hpp"
 
+#include <sys/prctl.h>
 #include <unistd.h>
+
 #include <csignal>
+#include <cstdlib>
 
 namespace grip::farm {
 namespace {
@@ -27,5 +30,15 @@ void install_stop_handlers() {
 }
 
 bool stop_requested() { return requested != 0; }
+
+void end_with_launcher() {
+  const bool under_mpirun = std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr ||
+                            std::getenv("PMIX_RANK") != nullptr ||
+                            std::getenv("PMI_RANK") != nullptr;
+  if (!under_mpirun) return;
+  const pid_t launcher = ::getppid();
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != launcher) ::raise(SIGKILL);  // it died before the line above
+}
 
 }  // namespace grip::farm

@@ -6,6 +6,11 @@ namespace grip::farm {
 
 // Installs the handlers for this process's lifetime (idempotent).
 void install_stop_handlers();
+// Under mpirun: this rank is killed (SIGKILL) when its launcher, its parent process (mpirun or
+// the node's daemon), dies. Ranks that commit their own work units never wait for each other, so
+// nothing else would stop the ranks of a killed mpirun before the job's end (each holding the
+// journal's lock, a resume refused meanwhile). Elsewhere (no mpirun) nothing changes.
+void end_with_launcher();
 bool stop_requested();
 
 }  // namespace grip::farm

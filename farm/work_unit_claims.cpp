@@ -1,20 +1,20 @@
 #include "farm/work_unit_claims.hpp"
 
-#include <stdexcept>
-
 namespace grip::farm {
 
-WorkUnitClaims::WorkUnitClaims(MPI_Comm comm, std::uint64_t rounds)
-    : counters_(comm, rounds), rounds_(rounds) {}
+WorkUnitClaims::WorkUnitClaims(MPI_Comm comm) : counters_(comm, 1) {}
 
-std::uint64_t WorkUnitClaims::claim(std::uint64_t round) {
-  if (round >= rounds_) throw std::out_of_range("WorkUnitClaims: no such round");
+std::uint64_t WorkUnitClaims::claim() {
   const std::uint64_t one = 1;
   std::uint64_t previous = 0;
-  MPI_Fetch_and_op(&one, &previous, MPI_UINT64_T, 0, static_cast<MPI_Aint>(round), MPI_SUM,
-                   counters_.window());
+  MPI_Fetch_and_op(&one, &previous, MPI_UINT64_T, 0, 0, MPI_SUM, counters_.window());
   MPI_Win_flush(0, counters_.window());
   return previous;
+}
+
+void WorkUnitClaims::hand_out_no_more(std::uint64_t units) {
+  MPI_Accumulate(&units, 1, MPI_UINT64_T, 0, 0, 1, MPI_UINT64_T, MPI_SUM, counters_.window());
+  MPI_Win_flush(0, counters_.window());
 }
 
 }  // namespace grip::farm

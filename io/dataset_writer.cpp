@@ -1,9 +1,16 @@
 #include "io/dataset_writer.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <utility>
 
@@ -19,6 +26,8 @@ namespace grip::io {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kJournalTag = 2601;  // a work unit's ids, sent to rank 0 for its journal
+constexpr int kWaitPoll = 20;      // ms between rank 0's looks while it waits for the others
 
 int comm_rank(MPI_Comm comm) {
   int rank = 0;
@@ -265,37 +274,48 @@ void write_candidate_table(hid_t file, const DatasetLayout& layout, int rank, hi
 
 // ---- batch writes ---------------------------------------------------------------------------
 
-// Writes one row per entry of `rows` (ascending) from `data` (rows packed in that order), as a
-// collective call; a rank with no rows joins with an empty selection.
-void write_rows(hid_t location, const std::string& path, const std::vector<std::uint64_t>& rows,
-                hid_t memory_type, const void* data, hid_t transfer) {
-  const h5::Handle dataset =
-      h5::dataset_handle(H5Dopen2(location, path.c_str(), H5P_DEFAULT), "opening " + path);
+// Writes one row per entry of `rows` (ascending) from `data` (rows packed in that order).
+// Collectively: one call, a rank with no rows joining with an empty selection. Independently:
+// one call per run of consecutive rows, each a contiguous range of the file (no read-modify-write
+// of a range another rank may be writing).
+void write_rows(hid_t dataset, const std::vector<std::uint64_t>& rows, hid_t memory_type,
+                const void* data, hid_t transfer, bool collective) {
+  if (!collective && rows.empty()) return;
   const std::vector<hsize_t> dims = h5::dims(dataset);
   const std::size_t row_size = element_count(std::vector<hsize_t>(dims.begin() + 1, dims.end()));
   if (row_size == 0) return;  // a zero-width column; the same on every rank
-  const h5::Handle file_space = h5::space_handle(H5Dget_space(dataset), "selecting " + path);
-  h5::check(H5Sselect_none(file_space), "selecting " + path);
+  const h5::Handle file_space = h5::space_handle(H5Dget_space(dataset), "selecting rows");
+  h5::check(H5Sselect_none(file_space), "selecting rows");
   std::vector<hsize_t> start(dims.size(), 0);
   std::vector<hsize_t> count = dims;
+  const std::size_t row_bytes = row_size * H5Tget_size(memory_type);
   for (std::size_t i = 0; i < rows.size();) {
     std::size_t j = i + 1;
     while (j < rows.size() && rows[j] == rows[j - 1] + 1) ++j;
     start[0] = rows[i];
     count[0] = j - i;
-    h5::check(H5Sselect_hyperslab(file_space, H5S_SELECT_OR, start.data(), nullptr, count.data(),
-                                  nullptr),
-              "selecting rows of " + path);
+    h5::check(H5Sselect_hyperslab(file_space, collective ? H5S_SELECT_OR : H5S_SELECT_SET,
+                                  start.data(), nullptr, count.data(), nullptr),
+              "selecting rows");
+    if (!collective) {
+      const hsize_t values = (j - i) * row_size;
+      const h5::Handle memory_space =
+          h5::space_handle(H5Screate_simple(1, &values, nullptr), "shaping rows");
+      h5::check(H5Dwrite(dataset, memory_type, memory_space, file_space, transfer,
+                         static_cast<const std::byte*>(data) + i * row_bytes),
+                "writing rows");
+    }
     i = j;
   }
+  if (!collective) return;
   const hsize_t total = std::max<hsize_t>(rows.size() * row_size, 1);
   const h5::Handle memory_space =
-      h5::space_handle(H5Screate_simple(1, &total, nullptr), "shaping rows of " + path);
+      h5::space_handle(H5Screate_simple(1, &total, nullptr), "shaping rows");
   if (rows.empty()) h5::check(H5Sselect_none(memory_space), "selecting nothing");
   const char dummy = 0;
   h5::check(H5Dwrite(dataset, memory_type, memory_space, file_space, transfer,
                      rows.empty() ? static_cast<const void*>(&dummy) : data),
-            "writing rows of " + path);
+            "writing rows");
 }
 
 // Packs one column's rows of `records` (in order): each record's values, padded per hand to
@@ -373,6 +393,31 @@ std::string check_result(const CandidateResult& result, const DatasetLayout& lay
   return "";
 }
 
+// Results in id order: a union of row hyperslabs is written in row order.
+std::vector<const CandidateResult*> sorted_by_id(std::span<const CandidateResult> results) {
+  std::vector<const CandidateResult*> sorted;
+  for (const CandidateResult& result : results) sorted.push_back(&result);
+  std::sort(sorted.begin(), sorted.end(),
+            [](const auto* a, const auto* b) { return a->record.id < b->record.id; });
+  return sorted;
+}
+
+std::vector<std::uint64_t> ids_of(const std::vector<const CandidateResult*>& sorted) {
+  std::vector<std::uint64_t> ids;
+  for (const auto* result : sorted) ids.push_back(result->record.id);
+  return ids;
+}
+
+// Receives the work unit `status` announces and adds its ids to `ids`.
+void receive_unit(const MPI_Status& status, MPI_Comm comm, std::vector<std::uint64_t>& ids) {
+  int count = 0;
+  MPI_Get_count(&status, MPI_UINT64_T, &count);
+  const std::size_t at = ids.size();
+  ids.resize(at + static_cast<std::size_t>(count));
+  MPI_Recv(ids.data() + at, count, MPI_UINT64_T, status.MPI_SOURCE, kJournalTag, comm,
+           MPI_STATUS_IGNORE);
+}
+
 }  // namespace
 
 DatasetWriter::DatasetWriter(std::filesystem::path path, DatasetLayout layout, MPI_Comm comm)
@@ -384,8 +429,11 @@ DatasetWriter& DatasetWriter::operator=(DatasetWriter&&) noexcept = default;
 DatasetWriter::~DatasetWriter() { close(); }
 
 void DatasetWriter::close() {
+  row_datasets_.clear();
   transfer_.reset();
+  independent_.reset();
   file_.reset();
+  sync_file_ = SyncFile();
   journal_.reset();
 }
 
@@ -400,6 +448,47 @@ void DatasetWriter::open_collective(bool create) {
                                    name + ": cannot open the dataset for writing");
   transfer_ = h5::plist_handle(H5Pcreate(H5P_DATASET_XFER), "creating transfer properties");
   h5::check(H5Pset_dxpl_mpio(transfer_, H5FD_MPIO_COLLECTIVE), "choosing collective transfers");
+  independent_ = h5::plist_handle(H5Pcreate(H5P_DATASET_XFER), "creating transfer properties");
+  h5::check(H5Pset_dxpl_mpio(independent_, H5FD_MPIO_INDEPENDENT),
+            "choosing independent transfers");
+  const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0)
+    throw DatasetError(name + ": cannot open the dataset to sync: " + std::strerror(errno));
+  sync_file_ = SyncFile(fd);
+}
+
+// Every dataset that rows are written into, opened once by every rank together: the work units'
+// independent writes then touch raw data only, no metadata.
+void DatasetWriter::open_row_datasets() {
+  const auto open = [&](const std::string& path) {
+    row_datasets_.emplace(path, h5::open_dataset(file_, path));
+  };
+  for (const Column& column : dataset_columns()) {
+    if (column.place == Place::kResult || column.place == Place::kDone ||
+        column.place == Place::kChecksum) {
+      open(std::string("/candidates/") + column.name);
+    }
+  }
+  const std::uint32_t grippers = static_cast<std::uint32_t>(layout_.grippers.size());
+  for (std::uint32_t o = 0; o < layout_.objects.size(); ++o) {
+    for (const Column& column : dataset_columns()) {
+      if (column.place == Place::kStress && layout_.objects[o].stress_slots > 0) {
+        open(object_group(o) + "/" + column.name);
+      }
+    }
+    for (std::uint32_t g = 0; g < grippers; ++g) {
+      if (layout_.trajectory_slots[layout_.pair(o, g)] == 0) continue;
+      for (const Column& column : dataset_columns()) {
+        if (column.place == Place::kTrajectory) open(trajectory_group(o, g) + "/" + column.name);
+      }
+    }
+  }
+}
+
+hid_t DatasetWriter::row_dataset(const std::string& path) const {
+  const auto found = row_datasets_.find(path);
+  if (found == row_datasets_.end()) throw DatasetError(path_.string() + ": no dataset " + path);
+  return found->second;
 }
 
 DatasetWriter DatasetWriter::create(const std::filesystem::path& path, const DatasetPlan& plan,
@@ -448,6 +537,7 @@ DatasetWriter DatasetWriter::create(const std::filesystem::path& path, const Dat
     }
   });
   writer.done_.assign(layout.candidate_count, 0);
+  writer.open_row_datasets();
   return writer;
 }
 
@@ -531,6 +621,7 @@ DatasetWriter DatasetWriter::resume(const std::filesystem::path& path, const Pro
     if (writer.rank_ == 0) writer.journal_.emplace(Journal::reopen(journal_path, journal_bytes));
   });
   writer.done_ = std::move(done);
+  writer.open_row_datasets();
   return writer;
 }
 
@@ -573,16 +664,130 @@ void DatasetWriter::write(std::span<const CandidateResult> results) {
   });
   if (all.empty()) return;
 
-  // This rank's results in id order: a union of row hyperslabs is written in row order.
-  std::vector<const CandidateResult*> sorted;
-  for (const CandidateResult& result : results) sorted.push_back(&result);
-  std::sort(sorted.begin(), sorted.end(),
-            [](const auto* a, const auto* b) { return a->record.id < b->record.id; });
-  std::vector<std::uint64_t> rows;
-  for (const auto* result : sorted) rows.push_back(result->record.id);
+  const std::vector<const CandidateResult*> sorted = sorted_by_id(results);
+  // Every rank joins the writes of every dataset that any rank touches in this batch.
+  std::vector<std::uint8_t> touched = touched_by(sorted);
+  MPI_Allreduce(MPI_IN_PLACE, touched.data(), static_cast<int>(touched.size()), MPI_UINT8_T,
+                MPI_MAX, comm_);
+  write_result_rows(sorted, touched, true);
 
-  const hid_t file = file_;
-  const hid_t transfer = transfer_;
+  // Commit: rows reach the disk before their done flags, the flags before the journal line.
+  h5::check(H5Fflush(file_, H5F_SCOPE_GLOBAL), path_.string() + ": flushing a batch");
+  const std::vector<std::uint64_t> rows = ids_of(sorted);
+  const std::vector<std::uint8_t> ones(rows.size(), 1);
+  write_rows(row_dataset("/candidates/done"), rows, H5T_NATIVE_UINT8, ones.data(), transfer_, true);
+  h5::check(H5Fflush(file_, H5F_SCOPE_GLOBAL), path_.string() + ": flushing done flags");
+  agree(comm_, [&] {
+    if (rank_ == 0) journal_->append(all);
+  });
+  for (const std::uint64_t id : all) done_[id] = 1;
+}
+
+void DatasetWriter::commit_unit(std::span<const CandidateResult> results) {
+  if (file_.get() < 0) throw DatasetError(path_.string() + ": the writer is closed");
+  for (const CandidateResult& result : results) {
+    const std::string problem = check_result(result, layout_, done_);
+    if (!problem.empty()) throw DatasetError(path_.string() + ": " + problem);
+  }
+  const std::vector<const CandidateResult*> sorted = sorted_by_id(results);
+  const std::vector<std::uint64_t> rows = ids_of(sorted);
+  if (const auto repeated = std::adjacent_find(rows.begin(), rows.end()); repeated != rows.end()) {
+    throw DatasetError(path_.string() + ": candidate " + std::to_string(*repeated) +
+                       " was handed to the writer twice in one work unit");
+  }
+  if (rows.empty()) return;
+  write_result_rows(sorted, touched_by(sorted), false);
+  const std::vector<std::uint8_t> ones(rows.size(), 1);
+  write_rows(row_dataset("/candidates/done"), rows, H5T_NATIVE_UINT8, ones.data(), independent_,
+             false);
+  // Rows, checksums and flags on disk before the journal says so; resume takes a candidate as
+  // done only when both its flag and a journal line do, so one sync covers all three.
+  if (::fdatasync(sync_file_.get()) != 0) {
+    throw DatasetError(path_.string() +
+                       ": cannot sync a work unit's rows: " + std::strerror(errno));
+  }
+  for (const std::uint64_t id : rows) done_[id] = 1;
+  if (rank_ == 0) {
+    unjournaled_.insert(unjournaled_.end(), rows.begin(), rows.end());
+    append_to_journal();
+    return;
+  }
+  sends_.push_back({MPI_REQUEST_NULL, rows});
+  Send& send = sends_.back();
+  MPI_Isend(send.ids.data(), static_cast<int>(send.ids.size()), MPI_UINT64_T, 0, kJournalTag, comm_,
+            &send.request);
+  ++units_sent_;
+  poll_journal();
+}
+
+void DatasetWriter::poll_journal() {
+  if (rank_ != 0) {
+    std::erase_if(sends_, [](Send& send) {
+      int done = 0;
+      MPI_Test(&send.request, &done, MPI_STATUS_IGNORE);
+      return done != 0;
+    });
+    return;
+  }
+  for (;;) {
+    int arrived = 0;
+    MPI_Status status;
+    MPI_Iprobe(MPI_ANY_SOURCE, kJournalTag, comm_, &arrived, &status);
+    if (!arrived) break;
+    receive_unit(status, comm_, unjournaled_);
+    ++units_received_;
+  }
+  append_to_journal();
+}
+
+void DatasetWriter::end_units(const std::function<void()>& while_waiting) {
+  std::uint64_t total = 0;
+  MPI_Request request;
+  MPI_Ireduce(&units_sent_, &total, 1, MPI_UINT64_T, MPI_SUM, 0, comm_, &request);
+  if (rank_ != 0) {
+    MPI_Wait(&request, MPI_STATUS_IGNORE);
+    for (Send& send : sends_) MPI_Wait(&send.request, MPI_STATUS_IGNORE);
+    sends_.clear();
+    return;
+  }
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    poll_journal();
+    if (done) break;
+    while_waiting();
+    std::this_thread::sleep_for(std::chrono::milliseconds(kWaitPoll));
+  }
+  // Every rank has sent all it will: take the messages still on their way.
+  for (; units_received_ < total; ++units_received_) {
+    MPI_Status status;
+    MPI_Probe(MPI_ANY_SOURCE, kJournalTag, comm_, &status);
+    receive_unit(status, comm_, unjournaled_);
+  }
+  append_to_journal();
+}
+
+void DatasetWriter::append_to_journal() {
+  if (unjournaled_.empty()) return;
+  journal_->append(unjournaled_);
+  unjournaled_.clear();
+}
+
+std::vector<std::uint8_t> DatasetWriter::touched_by(
+    const std::vector<const CandidateResult*>& sorted) const {
+  const std::size_t pairs = layout_.trajectory_slots.size();
+  std::vector<std::uint8_t> touched(pairs + layout_.objects.size(), 0);
+  for (const auto* result : sorted) {
+    const std::uint64_t id = result->record.id;
+    if (result->trajectory) touched[layout_.pair(layout_.object[id], layout_.gripper[id])] = 1;
+    if (result->stress) touched[pairs + layout_.object[id]] = 1;
+  }
+  return touched;
+}
+
+void DatasetWriter::write_result_rows(const std::vector<const CandidateResult*>& sorted,
+                                      const std::vector<std::uint8_t>& touched, bool collective) {
+  const hid_t transfer = collective ? transfer_.get() : independent_.get();
+  const std::vector<std::uint64_t> rows = ids_of(sorted);
   // Each row's checksum per column, written beside the rows (this rank's rows in `sorted` order).
   const std::size_t entries = checksum_entries();
   std::vector<std::uint32_t> checksums(rows.size() * entries, 0);
@@ -596,7 +801,7 @@ void DatasetWriter::write(std::span<const CandidateResult> results) {
           checksums[positions[i] * entries + entry] = row_checksum(values, i * row_size, row_size);
         }
         const h5::Handle memory_type = element_type(column.element, false);
-        write_rows(file, path, at, memory_type, number_data(values), transfer);
+        write_rows(row_dataset(path), at, memory_type, number_data(values), transfer, collective);
       };
   std::vector<std::size_t> all_positions(sorted.size());
   std::iota(all_positions.begin(), all_positions.end(), std::size_t{0});
@@ -607,17 +812,8 @@ void DatasetWriter::write(std::span<const CandidateResult> results) {
                       row_size(column, table), packed_rows(column, sorted, layout_));
   }
 
-  // Trajectories and stress live in per-object datasets: every rank joins the writes of every
-  // dataset that any rank touches in this batch, in the same order.
+  // Trajectories and stress live in per-object datasets, written in the same order everywhere.
   const std::size_t pairs = layout_.trajectory_slots.size();
-  std::vector<std::uint8_t> touched(pairs + layout_.objects.size(), 0);
-  for (const auto* result : sorted) {
-    const std::uint64_t id = result->record.id;
-    if (result->trajectory) touched[layout_.pair(layout_.object[id], layout_.gripper[id])] = 1;
-    if (result->stress) touched[pairs + layout_.object[id]] = 1;
-  }
-  MPI_Allreduce(MPI_IN_PLACE, touched.data(), static_cast<int>(touched.size()), MPI_UINT8_T,
-                MPI_MAX, comm_);
   const std::uint32_t gripper_count = static_cast<std::uint32_t>(layout_.grippers.size());
   for (std::size_t p = 0; p < pairs; ++p) {
     if (!touched[p]) continue;
@@ -664,17 +860,22 @@ void DatasetWriter::write(std::span<const CandidateResult> results) {
                         packed_rows(column, stressed, layout_));
     }
   }
-  write_rows(file, "/candidates/checksum", rows, H5T_NATIVE_UINT32, checksums.data(), transfer);
+  write_rows(row_dataset("/candidates/checksum"), rows, H5T_NATIVE_UINT32, checksums.data(),
+             transfer, collective);
+}
 
-  // Commit: rows reach the disk before their done flags, the flags before the journal line.
-  h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), path_.string() + ": flushing a batch");
-  const std::vector<std::uint8_t> ones(rows.size(), 1);
-  write_rows(file, "/candidates/done", rows, H5T_NATIVE_UINT8, ones.data(), transfer);
-  h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), path_.string() + ": flushing done flags");
-  agree(comm_, [&] {
-    if (rank_ == 0) journal_->append(all);
-  });
-  for (const std::uint64_t id : all) done_[id] = 1;
+DatasetWriter::SyncFile::SyncFile(SyncFile&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+
+DatasetWriter::SyncFile& DatasetWriter::SyncFile::operator=(SyncFile&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = std::exchange(other.fd_, -1);
+  }
+  return *this;
+}
+
+DatasetWriter::SyncFile::~SyncFile() {
+  if (fd_ >= 0) ::close(fd_);
 }
 
 }  // namespace grip::io

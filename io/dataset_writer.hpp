@@ -1,15 +1,18 @@
 #pragma once
-// Writes a dataset collectively over an MPI communicator with parallel HDF5: create() lays out
-// the whole file from the plan at once (fixed sizes, contiguous, space allocated up front), so
-// later writes touch raw data at fixed offsets only; write() commits a batch of results from
-// every rank (rows and their checksums, flush, done flags, flush, fsync'd journal line);
-// resume() reopens a file of the same job and reports which candidates are already done.
+// Writes a dataset over an MPI communicator with parallel HDF5: create() lays out the whole
+// file from the plan at once (fixed sizes, contiguous, space allocated up front), so later writes
+// touch raw data at fixed offsets only; commit_unit() commits one rank's work unit alone
+// (independent writes, a sync, its ids to rank 0's journal), write() a batch from every rank
+// collectively; resume() reopens a file of the same job and reports which candidates are done.
 #include <mpi.h>
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "io/candidate_record.hpp"
@@ -41,7 +44,8 @@ class DatasetWriter {
   ~DatasetWriter();  // closes the file (collective: every rank destroys its writer)
 
   const DatasetLayout& layout() const { return layout_; }
-  // Committed candidates: both their file flag and a journal line say so. Same on every rank.
+  // Committed candidates: both their file flag and a journal line say so. Same on every rank
+  // after create() and resume() and after each write(); commit_unit() adds this rank's only.
   bool is_done(std::uint64_t id) const { return done_[id] != 0; }
   std::vector<std::uint64_t> pending() const;
   // On rank 0 after resume(): the committed rows found damaged, now pending. Empty elsewhere.
@@ -53,22 +57,68 @@ class DatasetWriter {
   // object. On bad input every rank throws the same DatasetError and nothing is written.
   void write(std::span<const CandidateResult> results);
 
+  // Independent: this rank alone commits one work unit's results, no other rank taking part:
+  // rows, checksums and done flags by independent MPI-IO writes at their planned places, synced
+  // to disk, then the ids go to the journal (rank 0 appends its own at once, other ranks' at its
+  // poll_journal()). Each id must be pending and given to one rank only (the caller's claims
+  // guarantee it); a bad result throws DatasetError on this rank and nothing is written.
+  void commit_unit(std::span<const CandidateResult> results);
+  // Returns at once. Rank 0: appends the ids other ranks have sent to the journal (one fsync'd
+  // line). Other ranks: releases the sends rank 0 has received.
+  void poll_journal();
+  // Collective: returns once every rank's commit_unit() calls are in the journal, rank 0
+  // calling `while_waiting` and polling the journal as it waits for the others.
+  void end_units(const std::function<void()>& while_waiting);
+
   // Collective: closes the file. Called by the destructor if not called before.
   void close();
 
  private:
+  // The dataset's file as a plain descriptor, to sync this rank's independent writes.
+  class SyncFile {
+   public:
+    SyncFile() = default;
+    explicit SyncFile(int fd) : fd_(fd) {}
+    SyncFile(SyncFile&& other) noexcept;
+    SyncFile& operator=(SyncFile&& other) noexcept;
+    ~SyncFile();
+    int get() const { return fd_; }
+
+   private:
+    int fd_ = -1;
+  };
+  struct Send {
+    MPI_Request request = MPI_REQUEST_NULL;
+    std::vector<std::uint64_t> ids;
+  };
+
   DatasetWriter(std::filesystem::path path, DatasetLayout layout, MPI_Comm comm);
   void open_collective(bool create);
+  void open_row_datasets();
+  hid_t row_dataset(const std::string& path) const;
+  // Writes `sorted`'s rows and checksums into every row dataset in `touched` (candidate table,
+  // then trajectories per pair, then stress per object); collectively, every rank joining each.
+  void write_result_rows(const std::vector<const CandidateResult*>& sorted,
+                         const std::vector<std::uint8_t>& touched, bool collective);
+  std::vector<std::uint8_t> touched_by(const std::vector<const CandidateResult*>& sorted) const;
+  void append_to_journal();
 
   std::filesystem::path path_;
   DatasetLayout layout_;
   MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0;
   h5::Handle file_;
-  h5::Handle transfer_;  // collective MPI-IO data transfer
+  h5::Handle transfer_;                             // collective MPI-IO data transfer
+  h5::Handle independent_;                          // independent MPI-IO data transfer
+  std::map<std::string, h5::Handle> row_datasets_;  // opened collectively, by path
+  SyncFile sync_file_;
   std::vector<std::uint8_t> done_;
   std::vector<Damage> damaged_;
-  std::optional<Journal> journal_;  // rank 0 only
+  std::optional<Journal> journal_;          // rank 0 only
+  std::vector<std::uint64_t> unjournaled_;  // rank 0: committed ids not yet in the journal
+  std::uint64_t units_received_ = 0;        // rank 0: messages from other ranks
+  std::vector<Send> sends_;                 // other ranks: ids sent to rank 0, maybe not received
+  std::uint64_t units_sent_ = 0;
 };
 
 }  // namespace grip::io

@@ -60,4 +60,18 @@ CommitModel fit_commit_model(const std::vector<CommitPoint>& points) {
   return model;
 }
 
+CommitModel fit_unit_commit_model(const std::vector<CommitPoint>& points) {
+  std::vector<CommitPoint> flat = points;
+  for (CommitPoint& p : flat) p.ranks = 1;  // log2(1) = 0: that term drops out
+  std::array<double, 3> c{};
+  CommitModel model;
+  if (least_squares(flat, {true, false, true}, c) && c[2] > 0) {
+    model.latency = std::max(0.0, c[0]);
+    model.bandwidth = 1.0 / c[2];
+  } else if (least_squares(flat, {true, false, false}, c)) {
+    model.latency = std::max(0.0, c[0]);
+  }
+  return model;
+}
+
 }  // namespace grip::bench

@@ -16,5 +16,8 @@ struct CommitPoint {
 // Needs points at two rank counts and two byte counts for every term; a term the points cannot
 // tell apart from zero (or that fits below zero) is left at zero and the others refitted.
 CommitModel fit_commit_model(const std::vector<CommitPoint>& points);
+// A unit's commit, no collective in it: seconds = latency + bytes / bandwidth over all points
+// whatever their rank count (a slope that fits below zero is dropped: unlimited bandwidth).
+CommitModel fit_unit_commit_model(const std::vector<CommitPoint>& points);
 
 }  // namespace grip::bench

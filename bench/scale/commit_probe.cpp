@@ -10,6 +10,7 @@
 
 #include "farm/work_unit_claims.hpp"
 #include "io/dataset_writer.hpp"
+#include "io/journal.hpp"
 
 namespace grip::bench {
 namespace {
@@ -17,6 +18,8 @@ namespace {
 constexpr int kClaims = 2000;             // per rank
 constexpr int kRounds = 7;                // commits timed per row size
 constexpr int kRowsPerRank = 16;          // a round's rows per rank: 4 work units of 4
+constexpr int kUnitRows = 4;              // a work unit's rows (the farm's at one thread)
+constexpr int kUnitsPerRank = 15;         // unit commits timed per rank and row size
 constexpr std::uint32_t kVertices = 500;  // object vertices, for the trajectory rows
 constexpr std::uint32_t kFrames = 20;
 constexpr std::uint32_t kGripperVertices = 8;
@@ -99,6 +102,58 @@ double row_bytes(bool trajectory) {
   return trajectory ? table + frames : table;
 }
 
+// Every rank commits kUnitsPerRank work units of its own rows at once, as the farm's ranks do
+// when their units end together (the worst case: all share the file at each commit); the median
+// over every commit of every rank. Rank 0's share includes appending the others' journal lines.
+double time_unit_commits(io::DatasetWriter& writer, std::uint64_t first, bool trajectory,
+                         MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  std::vector<double> seconds;
+  MPI_Barrier(comm);
+  for (int unit = 0; unit < kUnitsPerRank; ++unit) {
+    std::vector<io::CandidateResult> mine;
+    const std::uint64_t start_row = first + (static_cast<std::uint64_t>(unit) * ranks + rank) *
+                                                static_cast<std::uint64_t>(kUnitRows);
+    for (int i = 0; i < kUnitRows; ++i) mine.push_back(probe_result(start_row + i, trajectory));
+    const double start = now();
+    writer.commit_unit(mine);
+    writer.poll_journal();
+    seconds.push_back(now() - start);
+  }
+  writer.end_units([] {});
+  std::vector<double> all(seconds.size() * static_cast<std::size_t>(ranks));
+  MPI_Allgather(seconds.data(), static_cast<int>(seconds.size()), MPI_DOUBLE, all.data(),
+                static_cast<int>(seconds.size()), MPI_DOUBLE, comm);
+  return median(all);
+}
+
+// Rank 0's cost per journal line: a line of four ids appended and fsync'd, in a scratch journal.
+double time_journal_lines(const std::filesystem::path& folder, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  double seconds = 0;
+  if (rank == 0) {
+    const std::filesystem::path path = folder / "probe_journal";
+    std::filesystem::remove(path);
+    std::vector<double> lines;
+    {
+      io::Journal journal = io::Journal::create(path, "probe", 1000);
+      const std::vector<std::uint64_t> ids = {1, 2, 3, 4};
+      for (int k = 0; k < 50; ++k) {
+        const double start = now();
+        journal.append(ids);
+        lines.push_back(now() - start);
+      }
+    }
+    std::filesystem::remove(path);
+    seconds = median(lines);
+  }
+  MPI_Bcast(&seconds, 1, MPI_DOUBLE, 0, comm);
+  return seconds;
+}
+
 }  // namespace
 
 ProbeResult probe_commit_costs(MPI_Comm comm, const std::filesystem::path& folder) {
@@ -109,10 +164,10 @@ ProbeResult probe_commit_costs(MPI_Comm comm, const std::filesystem::path& folde
   result.ranks = ranks;
 
   {
-    farm::WorkUnitClaims claims(comm, 1);
+    farm::WorkUnitClaims claims(comm);
     MPI_Barrier(comm);
     const double start = now();
-    for (int k = 0; k < kClaims; ++k) claims.claim(0);
+    for (int k = 0; k < kClaims; ++k) claims.claim();
     const double mine = now() - start;
     double sum = mine;
     MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, comm);
@@ -121,7 +176,9 @@ ProbeResult probe_commit_costs(MPI_Comm comm, const std::filesystem::path& folde
   }
 
   const std::uint32_t per_round = static_cast<std::uint32_t>(kRowsPerRank * ranks);
-  const std::uint32_t candidates = 2 * kRounds * per_round;
+  const std::uint32_t per_half = static_cast<std::uint32_t>(kUnitsPerRank * kUnitRows * ranks);
+  // Rows of the table only, then rows with trajectories: the rounds', then the units'.
+  const std::uint32_t candidates = 2 * (kRounds * per_round + per_half);
   const std::filesystem::path dataset = folder / ("probe_" + std::to_string(ranks) + ".h5");
   if (rank == 0) {
     std::filesystem::create_directories(folder);
@@ -135,11 +192,12 @@ ProbeResult probe_commit_costs(MPI_Comm comm, const std::filesystem::path& folde
   {
     io::DatasetWriter writer =
         io::DatasetWriter::create(dataset, probe_plan(candidates), provenance, comm);
+    const std::uint64_t half_size = kRounds * per_round + per_half;
     for (int half = 0; half < 2; ++half) {
       std::vector<double> seconds;
       for (int round = 0; round < kRounds; ++round) {
         const std::uint64_t first =
-            (static_cast<std::uint64_t>(half) * kRounds + round) * per_round;
+            half * half_size + static_cast<std::uint64_t>(round) * per_round;
         std::vector<io::CandidateResult> mine;
         for (std::uint32_t i = 0; i < per_round; ++i) {
           if (static_cast<int>(i % ranks) == rank)
@@ -157,7 +215,11 @@ ProbeResult probe_commit_costs(MPI_Comm comm, const std::filesystem::path& folde
         seconds.push_back(slowest(now() - start, comm));
       }
       result.commits.push_back({row_bytes(half == 1) * per_round, median(seconds)});
+      result.unit_commits.push_back(
+          {row_bytes(half == 1) * kUnitRows,
+           time_unit_commits(writer, half * half_size + kRounds * per_round, half == 1, comm)});
     }
+    result.journal_seconds = time_journal_lines(folder, comm);
     writer.close();
   }
   if (rank == 0) {
@@ -168,14 +230,18 @@ ProbeResult probe_commit_costs(MPI_Comm comm, const std::filesystem::path& folde
 }
 
 void write_probe_json(const std::filesystem::path& file, const ProbeResult& result) {
-  nlohmann::ordered_json commits = nlohmann::ordered_json::array();
-  for (const CommitSample& c : result.commits) {
-    commits.push_back({{"bytes", c.bytes}, {"seconds", c.seconds}});
-  }
+  const auto samples = [](const std::vector<CommitSample>& list) {
+    nlohmann::ordered_json array = nlohmann::ordered_json::array();
+    for (const CommitSample& c : list)
+      array.push_back({{"bytes", c.bytes}, {"seconds", c.seconds}});
+    return array;
+  };
   const nlohmann::ordered_json json = {{"ranks", result.ranks},
                                        {"claim_seconds", result.claim_seconds},
                                        {"claim_service", result.claim_service},
-                                       {"commits", commits}};
+                                       {"commits", samples(result.commits)},
+                                       {"unit_commits", samples(result.unit_commits)},
+                                       {"journal_seconds", result.journal_seconds}};
   std::ofstream(file) << json.dump() << '\n';
 }
 
@@ -190,6 +256,10 @@ ProbeResult read_probe_json(const std::filesystem::path& file) {
     for (const auto& c : json.at("commits")) {
       result.commits.push_back({c.at("bytes").get<double>(), c.at("seconds").get<double>()});
     }
+    for (const auto& c : json.at("unit_commits")) {
+      result.unit_commits.push_back({c.at("bytes").get<double>(), c.at("seconds").get<double>()});
+    }
+    result.journal_seconds = json.at("journal_seconds").get<double>();
   } catch (const nlohmann::json::exception&) {
     throw std::runtime_error(file.string() + ": not the commit probe's result");
   }

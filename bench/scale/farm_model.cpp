@@ -72,6 +72,50 @@ double plan_seconds(const ModelJob& job, const FarmCosts& costs, int ranks) {
          static_cast<double>(objects + pairs) * broadcast;
 }
 
+// The farm's order of work units, or, as a what-if, the costliest class first.
+std::vector<Unit> ordered_units(const ModelJob& job, const ModelOptions& options) {
+  std::vector<Unit> units = work_units(job);
+  if (options.order == UnitOrder::kHeaviestFirst) {
+    std::stable_sort(units.begin(), units.end(), [&](const Unit& a, const Unit& b) {
+      return job.class_mean[a.pair] > job.class_mean[b.pair];
+    });
+  }
+  return units;
+}
+
+// The dataset's file under unit commits: it takes one commit's bytes at a time.
+class SharedFile {
+ public:
+  explicit SharedFile(double now) : free_(now) {}
+  // When a commit of `bytes` that starts at `t` is done.
+  double commit(double t, double bytes, const CommitModel& model) {
+    free_ = std::max(t, free_) + (model.bandwidth > 0 ? bytes / model.bandwidth : 0.0);
+    return free_ + model.latency;
+  }
+
+ private:
+  double free_;
+};
+
+// Rank 0's journal: one fsync'd line at a time, each holding every unit whose ids arrived
+// before it starts; rank 0 owes each line's time until it pays it.
+class RankZeroJournal {
+ public:
+  explicit RankZeroJournal(double now) : end_(now) {}
+  void arrive(double t, double line_seconds) {
+    if (t <= start_) return;  // in the line already waiting to start
+    start_ = std::max(t, end_);
+    end_ = start_ + line_seconds;
+    owed_ += line_seconds;
+  }
+  double pay() { return std::exchange(owed_, 0.0); }
+  double owed() const { return owed_; }
+  double end() const { return end_; }  // of the last line
+
+ private:
+  double start_ = -1, end_, owed_ = 0;
+};
+
 }  // namespace
 
 double CommitModel::seconds(int ranks, double bytes) const {
@@ -89,20 +133,15 @@ ModelRun simulate_farm(const ModelJob& job, const FarmCosts& costs, int ranks,
   run.startup = costs.startup;
   run.plan = plan_seconds(job, costs, ranks);
 
-  std::vector<Unit> units = work_units(job);
-  if (options.order == UnitOrder::kHeaviestFirst) {
-    std::stable_sort(units.begin(), units.end(), [&](const Unit& a, const Unit& b) {
-      return job.class_mean[a.pair] > job.class_mean[b.pair];
-    });
-  }
+  const std::vector<Unit> units = ordered_units(job, options);
   run.units = units.size();
-  const std::uint64_t per_round = options.barrier_free
-                                      ? std::max<std::uint64_t>(units.size(), 1)
-                                      : static_cast<std::uint64_t>(job.round_work_units) * ranks;
+  const std::uint64_t per_round = options.rounds
+                                      ? static_cast<std::uint64_t>(job.round_work_units) * ranks
+                                      : std::max<std::uint64_t>(units.size(), 1);
   run.rounds = (units.size() + per_round - 1) / per_round;
 
   std::vector<SceneCache> scenes(ranks);
-  // (time, rank, what): a rank claims its next unit (0), or, barrier-free, writes its last (1).
+  // (time, rank, what): a rank claims its next unit (0), or, unit by unit, commits its last (1).
   using Event = std::tuple<double, int, int>;
   double now = 0;
   for (std::uint64_t round = 0; round < run.rounds; ++round) {
@@ -112,19 +151,24 @@ ModelRun simulate_farm(const ModelJob& job, const FarmCosts& costs, int ranks,
     for (int r = 0; r < ranks; ++r) ready.push({now, r, 0});
     std::vector<double> finished(ranks, now), unwritten(ranks, 0.0);
     double counter_free = now;  // rank 0's counter serves one claim at a time
-    double file_free = now;     // the file takes one write's bytes at a time
+    SharedFile file(now);
+    RankZeroJournal journal(now);
     std::uint64_t next = 0;
     double bytes = 0;
     while (!ready.empty()) {
       const auto [t, r, what] = ready.top();
       ready.pop();
       if (what == 1) {
-        const double start = std::max(t, file_free);
-        file_free =
-            start + (costs.commit.bandwidth > 0 ? unwritten[r] / costs.commit.bandwidth : 0.0);
-        const double written = file_free + costs.commit.latency;
+        const double written = file.commit(t, unwritten[r], costs.unit_commit);
         run.committing += written - t;
+        if (r != 0) journal.arrive(written, costs.journal_line);
         ready.push({written, r, 0});
+        continue;
+      }
+      if (r == 0 && journal.owed() > 0) {  // rank 0 writes the lines owed, then claims
+        const double lines = journal.pay();
+        run.committing += lines;
+        ready.push({t + lines, 0, 0});
         continue;
       }
       const double start = std::max(t + 0.5 * costs.claim.latency, counter_free);
@@ -132,7 +176,7 @@ ModelRun simulate_farm(const ModelJob& job, const FarmCosts& costs, int ranks,
       const double answered = counter_free + 0.5 * costs.claim.latency;
       run.claiming += answered - t;
       const std::uint64_t k = next++;
-      if (k >= count) {  // the round is handed out: this rank waits for the commit
+      if (k >= count) {  // everything is handed out: this rank waits for the others
         finished[r] = answered;
         continue;
       }
@@ -142,11 +186,15 @@ ModelRun simulate_farm(const ModelJob& job, const FarmCosts& costs, int ranks,
       run.work += trials;
       bytes += unit_bytes;
       unwritten[r] = unit_bytes;
-      ready.push({answered + trials, r, options.barrier_free ? 1 : 0});
+      ready.push({answered + trials, r, options.rounds ? 0 : 1});
     }
-    const double end = *std::max_element(finished.begin(), finished.end());
+    // Rank 0 writes the lines still owed while it waits for the others' last units.
+    const double end = std::max(*std::max_element(finished.begin(), finished.end()), journal.end());
     for (const double f : finished) run.idle += end - f;
-    const double commit = options.barrier_free ? 0.0 : costs.commit.seconds(ranks, bytes);
+    const double lines = journal.pay();
+    run.idle -= lines;
+    run.committing += lines;
+    const double commit = options.rounds ? costs.commit.seconds(ranks, bytes) : 0.0;
     run.committing += commit * ranks;
     now = end + commit;
   }

@@ -1,15 +1,17 @@
 #pragma once
 // A deterministic discrete-event model of `grip farm`'s protocol (farm/farm.cpp, docs/farm.md):
-// planning shared round-robin and broadcast, work units claimed from rank 0's counter in
-// rounds, every round ended by one collective commit with its journal line. It predicts a run's
-// wall time from measured costs at rank counts this machine cannot run.
+// planning shared round-robin and broadcast, work units claimed from rank 0's counter, each
+// committed by its rank as it ends (independent writes sharing the file, rank 0 appending the
+// journal lines); or, as a what-if, the former rounds, each ended by one collective commit. It
+// predicts a run's wall time from measured costs at rank counts this machine cannot run.
 #include <cstdint>
 #include <vector>
 
 namespace grip::bench {
 
-// One round's commit (DatasetWriter::write, the progress barrier, the farm's allreduces):
-// latency + per_log2 * log2(P) + bytes / bandwidth.
+// A commit: latency + per_log2 * log2(P) + bytes / bandwidth. A round's (DatasetWriter::write,
+// the progress barrier, the farm's allreduces), or one unit's (DatasetWriter::commit_unit: no
+// collective, so no log2 term).
 struct CommitModel {
   double latency = 0;    // s: flushes, the journal's fsync
   double per_log2 = 0;   // s per log2(ranks): the collectives' tree depth
@@ -33,7 +35,9 @@ struct FarmCosts {
   double scene_build = 0;          // s to build a trial scene not among a rank's last two
   double bytes_per_candidate = 0;  // committed bytes per result row
   ClaimModel claim;
-  CommitModel commit;
+  CommitModel commit;       // a round's collective commit (the rounds what-if)
+  CommitModel unit_commit;  // one work unit's independent commit, on its rank
+  double journal_line = 0;  // s of rank 0's time per journal line (the units that arrived)
 };
 
 // The order work units are handed out in: the farm's (candidate ids), or, as a what-if, the
@@ -51,15 +55,16 @@ struct ModelJob {
   std::vector<std::uint32_t> candidate_pair;  // object * grippers + gripper
   std::vector<double> class_mean;             // by pair: the mean cost of its class (for ordering)
   int work_unit_size = 4;                     // candidates per work unit (--batch)
-  int round_work_units = 4;  // work units per rank per round ([farm] round_batches)
+  int round_work_units = 4;                   // work units per rank per round (rounds what-if)
 };
 
 struct ModelOptions {
   UnitOrder order = UnitOrder::kIds;
-  // What-if: no barrier at a round's end; each rank commits its own rows after each unit
-  // independently and runs on: a write takes latency + bytes / bandwidth, no log2 term, and
-  // the file takes one write's bytes at a time (the bandwidth is shared).
-  bool barrier_free = false;
+  // What-if, the farm before per-unit commits: units handed out in rounds of round_work_units
+  // per rank, every round ended by one collective commit that every rank waits for. Without
+  // it (the farm): each rank commits each unit as it ends and claims on; the file takes one
+  // write's bytes at a time (the bandwidth is shared) and rank 0 pays the journal's lines.
+  bool rounds = false;
 };
 
 struct ModelRun {
@@ -71,7 +76,8 @@ struct ModelRun {
   double trial_phase = 0;  // s, from the first claim to the last commit
   double total = 0;        // s, time to solution
   // Rank-seconds of the trial phase, summed over ranks: trials (scene builds included),
-  // claims (waiting on rank 0's counter), idle at round ends, commits.
+  // claims (waiting on rank 0's counter), idle (at round ends, or after the last unit),
+  // commits (rank 0's journal lines included).
   double work = 0;
   double claiming = 0;
   double idle = 0;

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plot `grip bench scale`'s CSV: the predicted parallel efficiency against MPI ranks, one line
 per scenario (the farm's protocol and each what-if), and where the farm's rank-seconds of the
-trial phase go (trials, claims, idle at round ends, commits).
+trial phase go (trials, claims, idle waiting for others, commits).
 Usage: plot_scale.py scale.csv scale.png (Debian: python3-matplotlib)."""
 import csv
 import sys
@@ -33,7 +33,7 @@ def main(csv_path, png_path):
     ranks = [int(r["ranks"]) for r in farm]
     bottom = [0.0] * len(farm)
     labels = (("work_share", "trials"), ("claim_share", "claims"),
-              ("idle_share", "idle at round ends"), ("commit_share", "commits"))
+              ("idle_share", "idle (waiting for others)"), ("commit_share", "commits"))
     for key, label in labels:
         share = [100 * float(r[key]) for r in farm]
         share_ax.bar(range(len(farm)), share, bottom=bottom, label=label)

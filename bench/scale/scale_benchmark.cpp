@@ -15,7 +15,6 @@
 #include "bench/common/subprocess.hpp"
 #include "bench/scale/commit_fit.hpp"
 #include "bench/scale/trial_costs.hpp"
-#include "farm/job.hpp"
 
 namespace grip::bench {
 namespace {
@@ -51,15 +50,16 @@ std::vector<Scenario> scenarios(const ScaleOptions& o) {
       const std::string value = eq == std::string::npos ? "" : part.substr(eq + 1);
       if (part == "heaviest-first") {
         s.options.order = UnitOrder::kHeaviestFirst;
-      } else if (part == "barrier-free") {
-        s.options.barrier_free = true;
+      } else if (part == "rounds") {
+        s.options.rounds = true;
       } else if (key == "round-batches" && eq != std::string::npos) {
+        s.options.rounds = true;
         s.round_batches = positive(key, value);
       } else if (key == "batch" && eq != std::string::npos) {
         s.batch = positive(key, value);
       } else {
         throw std::invalid_argument("--what-if: '" + part +
-                                    "' is not one of heaviest-first, barrier-free, "
+                                    "' is not one of rounds, heaviest-first, "
                                     "round-batches=N, batch=N (joined by '+')");
       }
     }
@@ -103,11 +103,14 @@ std::vector<ProbeResult> measure(const ScaleOptions& o) {
                  log, "the commit probe on " + ranks + " rank(s)");
       const ProbeResult probe = read_probe_json(json);
       spdlog::info(
-          "probe on {} rank(s): claim {:.2f} us, commits {:.1f} ms ({:.0f} kB), "
+          "probe on {} rank(s): claim {:.2f} us, unit commits {:.2f} ms ({:.1f} kB), "
+          "{:.2f} ms ({:.0f} kB), journal line {:.2f} ms; round commits {:.1f} ms ({:.0f} kB), "
           "{:.1f} ms ({:.0f} kB)",
-          ranks, 1e6 * probe.claim_seconds, 1e3 * probe.commits[0].seconds,
-          1e-3 * probe.commits[0].bytes, 1e3 * probe.commits[1].seconds,
-          1e-3 * probe.commits[1].bytes);
+          ranks, 1e6 * probe.claim_seconds, 1e3 * probe.unit_commits[0].seconds,
+          1e-3 * probe.unit_commits[0].bytes, 1e3 * probe.unit_commits[1].seconds,
+          1e-3 * probe.unit_commits[1].bytes, 1e3 * probe.journal_seconds,
+          1e3 * probe.commits[0].seconds, 1e-3 * probe.commits[0].bytes,
+          1e3 * probe.commits[1].seconds, 1e-3 * probe.commits[1].bytes);
       ProbeResult& best = probes[k];
       if (repeat == 0) {
         best = probe;
@@ -118,6 +121,11 @@ std::vector<ProbeResult> measure(const ScaleOptions& o) {
       for (std::size_t c = 0; c < best.commits.size(); ++c) {
         best.commits[c].seconds = std::min(best.commits[c].seconds, probe.commits[c].seconds);
       }
+      for (std::size_t c = 0; c < best.unit_commits.size(); ++c) {
+        best.unit_commits[c].seconds =
+            std::min(best.unit_commits[c].seconds, probe.unit_commits[c].seconds);
+      }
+      best.journal_seconds = std::min(best.journal_seconds, probe.journal_seconds);
     }
   }
   return probes;
@@ -130,6 +138,12 @@ void apply_probes(const std::vector<ProbeResult>& probes, FarmCosts& costs) {
     for (const CommitSample& c : p.commits) points.push_back({p.ranks, c.bytes, c.seconds});
   }
   costs.commit = fit_commit_model(points);
+  std::vector<CommitPoint> unit_points;
+  for (const ProbeResult& p : probes) {
+    for (const CommitSample& c : p.unit_commits) unit_points.push_back({1, c.bytes, c.seconds});
+  }
+  costs.unit_commit = fit_unit_commit_model(unit_points);
+  costs.journal_line = probes.back().journal_seconds;
   costs.claim.latency = probes.back().claim_seconds;
   costs.claim.service = probes.back().claim_service;
 }
@@ -184,13 +198,10 @@ std::vector<ValidationRow> validate(const ScaleOptions& o, FarmCosts& costs) {
       std::find_if(runs.begin(), runs.end(), [](const auto& r) { return r.ranks == 1; });
   if (one == runs.end()) throw std::invalid_argument("--validate-ranks must include 1");
   apply_one_rank_run(*one, costs);
-  const int round_batches =
-      farm::parse_job(farm::read_job_text(o.validate_job), o.validate_job).round_work_units;
   std::vector<ValidationRow> rows;
   for (const MeasuredRun& run : runs) {
     ModelJob own = run.dataset.job, first = one->dataset.job;
     own.work_unit_size = first.work_unit_size = run.batch;
-    own.round_work_units = first.round_work_units = round_batches;
     FarmCosts c = costs;
     c.bytes_per_candidate = static_cast<double>(run.dataset.file_bytes) /
                             static_cast<double>(own.candidate_seconds.size());
@@ -238,14 +249,17 @@ void write_files(const ScaleOptions& o, const ScaleResult& r) {
   md << "Costs: `" << o.costs_file.string() << "`; job: " << o.objects << " objects ("
      << o.soft_fraction * 100 << " % soft), " << o.candidates << " candidates, gripper(s)";
   for (const std::string& g : o.grippers) md << ' ' << g;
-  md << "; batch " << o.batch << ", " << o.round_batches << " batches per rank per round, one "
-     << "core per rank.\n\n";
+  md << "; batch " << o.batch << ", one core per rank; the rounds what-if: " << o.round_batches
+     << " batches per rank per round.\n\n";
   std::snprintf(line, sizeof line,
-                "Model constants: commit %.3g s + %.3g s x log2(P) + bytes / %.3g MB/s; claim "
-                "%.3g us round trip, %.3g us at rank 0's counter; start-up %.3g s; planning %.3g "
-                "s per rigid object, %.3g s per soft one, %.3g s per candidate; %.0f bytes per "
-                "candidate; scene build %.3g s.\n\n",
-                c.commit.latency, c.commit.per_log2,
+                "Model constants: a unit's commit %.3g s + bytes / %.3g MB/s, a journal line %.3g "
+                "s on rank 0; a round's commit (rounds what-if) %.3g s + %.3g s x log2(P) + bytes "
+                "/ %.3g MB/s; claim %.3g us round trip, %.3g us at rank 0's counter; start-up "
+                "%.3g s; planning %.3g s per rigid object, %.3g s per soft one, %.3g s per "
+                "candidate; %.0f bytes per candidate; scene build %.3g s.\n\n",
+                c.unit_commit.latency,
+                c.unit_commit.bandwidth > 0 ? c.unit_commit.bandwidth * 1e-6 : INFINITY,
+                c.journal_line, c.commit.latency, c.commit.per_log2,
                 c.commit.bandwidth > 0 ? c.commit.bandwidth * 1e-6 : INFINITY,
                 c.claim.latency * 1e6, c.claim.service * 1e6, c.startup, c.prepare_rigid,
                 c.prepare_soft, c.synthesis, c.bytes_per_candidate, c.scene_build);
@@ -268,7 +282,7 @@ void write_files(const ScaleOptions& o, const ScaleResult& r) {
                 static_cast<unsigned long long>(r.trials), r.one_rank_seconds);
   md << line
      << "| scenario | ranks | time to solution (s) | trial phase (s) | efficiency | trials | "
-        "claims | idle at round ends | commits | rounds |\n"
+        "claims | idle | commits | rounds |\n"
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const ScaleRow& row : r.rows) {
     const ModelRun& m = row.run;

@@ -20,7 +20,7 @@ struct ScaleOptions {
   std::uint64_t seed = 1;
   std::vector<int> ranks{64, 128, 256, 512, 1024, 2048, 4096};
   int batch = 4;          // candidates per work unit (one thread per rank: the farm's default)
-  int round_batches = 4;  // work units per rank per round (the farm's default)
+  int round_batches = 4;  // the rounds what-if's work units per rank per round (the former default)
   FarmCosts costs;        // used where no measurement below replaces them
   // Rank counts to run the commit probe at under mpirun; it sets the claim and commit model.
   std::vector<int> measure;
@@ -28,8 +28,8 @@ struct ScaleOptions {
   // the start-up and planning costs, every run is predicted and compared.
   std::filesystem::path validate_job;
   std::vector<int> validate_ranks{1, 2, 3};
-  // What-ifs, each a scenario beside the farm's: "heaviest-first", "barrier-free",
-  // "round-batches=N", "batch=N".
+  // What-ifs, each a scenario beside the farm's: "rounds" (the farm before per-unit commits),
+  // "heaviest-first", "round-batches=N" (rounds of N units per rank), "batch=N".
   std::vector<std::string> what_if;
   std::filesystem::path out = "out/bench-scale";
   std::filesystem::path grip;     // the grip executable the runs start

@@ -338,7 +338,7 @@ int main(int argc, char** argv) {
       ->check(kPositiveCount);
   bench_scale
       ->add_option("--round-batches", bench_scale_args.round_batches,
-                   "Work units per rank per round ([farm] round_batches)")
+                   "Work units per rank per round of the rounds what-if")
       ->capture_default_str()
       ->check(kPositiveCount);
   bench_scale
@@ -358,19 +358,26 @@ int main(int argc, char** argv) {
       ->check(kPositiveCount);
   bench_scale
       ->add_option("--what-if", bench_scale_args.what_if,
-                   "Scenarios beside the farm's: heaviest-first, barrier-free, round-batches=N, "
-                   "batch=N")
+                   "Scenarios beside the farm's: rounds (the former commits), heaviest-first, "
+                   "round-batches=N (rounds of N), batch=N")
       ->delimiter(',');
   const auto seconds = [&](const char* name, double& value, const char* what) {
     bench_scale->add_option(name, value, what)
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
   };
-  seconds("--commit-latency", bench_scale_args.commit_latency, "s per commit (without --measure)");
+  seconds("--unit-commit-latency", bench_scale_args.unit_commit_latency,
+          "s per work unit's commit (without --measure)");
+  seconds("--unit-commit-bandwidth", bench_scale_args.unit_commit_bandwidth,
+          "bytes/s into the file of work units' commits, 0: unlimited (without --measure)");
+  seconds("--journal-line", bench_scale_args.journal_line,
+          "s of rank 0's time per journal line (without --measure)");
+  seconds("--commit-latency", bench_scale_args.commit_latency,
+          "s per round's commit, rounds what-if (without --measure)");
   seconds("--commit-per-log2", bench_scale_args.commit_per_log2,
-          "s per commit per log2(ranks) (without --measure)");
+          "s per round's commit per log2(ranks) (without --measure)");
   seconds("--commit-bandwidth", bench_scale_args.commit_bandwidth,
-          "bytes/s of commits, 0: unlimited (without --measure)");
+          "bytes/s of round commits, 0: unlimited (without --measure)");
   seconds("--claim-latency", bench_scale_args.claim_latency, "s, a claim's round trip");
   seconds("--claim-service", bench_scale_args.claim_service, "s a claim holds rank 0's counter");
   seconds("--startup", bench_scale_args.startup, "s of start-up (without --validate)");

@@ -141,12 +141,15 @@ struct BenchScaleArgs {
   std::uint64_t seed = 1;
   std::vector<int> ranks{64, 128, 256, 512, 1024, 2048, 4096};
   int batch = 4;
-  int round_batches = 4;
+  int round_batches = 4;     // the rounds what-if's work units per rank per round
   std::vector<int> measure;  // rank counts for the commit probe; empty: the constants
   std::string validate;      // a job run at validate_ranks and compared
   std::vector<int> validate_ranks{1, 2, 3};
-  std::vector<std::string> what_if;  // heaviest-first, barrier-free, round-batches=N, batch=N
+  std::vector<std::string> what_if;  // rounds, heaviest-first, round-batches=N, batch=N
   // The model's constants where no measurement replaces them (docs/farm.md gives their source).
+  double unit_commit_latency = 0.00174;
+  double unit_commit_bandwidth = 443e6;
+  double journal_line = 0.000366;
   double commit_latency = 0.0348;
   double commit_per_log2 = 0.00263;
   double commit_bandwidth = 340e6;

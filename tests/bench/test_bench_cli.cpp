@@ -116,10 +116,10 @@ TEST(BenchCli, ScalePredictsFromACostFileAndRefusesUnknownWhatIfs) {
                           "fin-ray x soft,defaults,12\nfin-ray x soft,reference,30\n";
   const std::string common = "bench scale --costs " + costs.string() +
                              " --objects 12 --candidates 120 --ranks 2,4 --out " + out.string();
-  const auto run = run_grip(common + " --what-if barrier-free,round-batches=8+heaviest-first");
+  const auto run = run_grip(common + " --what-if rounds,round-batches=8+heaviest-first");
   EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
   const std::string csv = slurp(out / "scale.csv");
-  EXPECT_NE(csv.find("\nbarrier-free,4,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nrounds,4,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\nround-batches=8+heaviest-first,2,"), std::string::npos) << csv;
   EXPECT_NE(run.out.find("{\"trials\": 120"), std::string::npos) << run.out;
   const auto bad = run_grip(common + " --what-if faster");

@@ -1,6 +1,7 @@
-// grip bench scale's probe under mpirun -np 2: claims and commits through the farm's own
-// counter and writer are timed, the two row sizes' payloads are what a round holds, and the
-// scratch dataset is gone afterwards; the JSON form reads back the same.
+// grip bench scale's probe under mpirun -np 2: claims, work units' commits and rounds' commits
+// through the farm's own counter and writer are timed, the two row sizes' payloads are what a
+// unit and a round hold, and the scratch dataset is gone afterwards; the JSON form reads back
+// the same.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -26,6 +27,10 @@ TEST(CommitProbe, TimesClaimsAndCommitsOnEveryRank) {
   // 16 rows per rank; trajectory rows are hundreds of times the table's.
   EXPECT_GT(result.commits[1].bytes, 100 * result.commits[0].bytes);
   EXPECT_GT(result.commits[0].bytes, 16.0 * ranks * 100);
+  ASSERT_EQ(result.unit_commits.size(), 2u);
+  EXPECT_GT(result.unit_commits[0].seconds, 0.0);
+  EXPECT_DOUBLE_EQ(result.unit_commits[1].bytes * 4 * ranks, result.commits[1].bytes);
+  EXPECT_GT(result.journal_seconds, 0.0);
   MPI_Barrier(MPI_COMM_WORLD);
   EXPECT_FALSE(std::filesystem::exists(folder / ("probe_" + std::to_string(ranks) + ".h5")));
 
@@ -35,6 +40,8 @@ TEST(CommitProbe, TimesClaimsAndCommitsOnEveryRank) {
     const ProbeResult back = read_probe_json(json);
     EXPECT_EQ(back.ranks, result.ranks);
     EXPECT_DOUBLE_EQ(back.commits[1].bytes, result.commits[1].bytes);
+    EXPECT_DOUBLE_EQ(back.unit_commits[0].seconds, result.unit_commits[0].seconds);
+    EXPECT_DOUBLE_EQ(back.journal_seconds, result.journal_seconds);
     std::filesystem::remove_all(folder);
   }
 }

@@ -44,18 +44,26 @@ TEST(FarmModel, OneHeavyTrialBoundsTheTimeFromBelow) {
   costs[17] = 100.0;
   const ModelJob job = one_pair_job(costs, 4, 2);
   FarmCosts costs_model;
+  costs_model.unit_commit = {0.01, 0, 0};
   costs_model.commit = {0.01, 0.001, 0};
+  ModelOptions rounds;
+  rounds.rounds = true;
   for (const int ranks : {1, 2, 8, 64, 4096}) {
-    const ModelRun run = simulate_farm(job, costs_model, ranks);
-    EXPECT_GE(run.total, 100.0 + 3 * 0.5) << ranks << " ranks";  // its work unit: 4 trials
+    for (const ModelOptions& options : {ModelOptions{}, rounds}) {
+      const ModelRun run = simulate_farm(job, costs_model, ranks, options);
+      EXPECT_GE(run.total, 100.0 + 3 * 0.5) << ranks << " ranks";  // its work unit: 4 trials
+    }
   }
-  // With more ranks than work units the heavy unit alone sets the trial phase.
+  // With more ranks than work units the heavy unit alone sets the trial phase, then its commit.
   const ModelRun wide = simulate_farm(job, costs_model, 64);
-  EXPECT_NEAR(wide.trial_phase, 101.5 + costs_model.commit.seconds(64, 0), 1e-12);
+  EXPECT_NEAR(wide.trial_phase, 101.5 + 0.01, 1e-12);
   EXPECT_EQ(wide.rounds, 1u);
+  const ModelRun wide_rounds = simulate_farm(job, costs_model, 64, rounds);
+  EXPECT_NEAR(wide_rounds.trial_phase, 101.5 + costs_model.commit.seconds(64, 0), 1e-12);
+  EXPECT_EQ(wide_rounds.rounds, 1u);
 }
 
-// Two ranks, work units of one candidate, rounds of 2 units per rank (4 units):
+// The rounds what-if: two ranks, work units of one candidate, rounds of 2 units per rank:
 //   round 0, units 5 1 1 1: rank 0 takes 5 (busy to t=5), rank 1 takes 1, 1, 1 (to t=3), then
 //     both find the round handed out; rank 1 idles 2 s; commit 0.5 + 0.25 log2(2) = 0.75 s;
 //   round 1, units 2 2: one each, to 5.75 + 2 = 7.75; commit 0.75: trials end at 8.5.
@@ -66,7 +74,9 @@ TEST(FarmModel, SmallScheduleMatchesTheHandWorkedOne) {
   costs.startup = 1.0;
   costs.prepare_rigid = 0.5;
   costs.commit = {0.5, 0.25, 0};
-  const ModelRun run = simulate_farm(job, costs, 2);
+  ModelOptions rounds;
+  rounds.rounds = true;
+  const ModelRun run = simulate_farm(job, costs, 2, rounds);
   EXPECT_EQ(run.units, 6u);
   EXPECT_EQ(run.rounds, 2u);
   EXPECT_DOUBLE_EQ(run.plan, 0.5);
@@ -78,7 +88,7 @@ TEST(FarmModel, SmallScheduleMatchesTheHandWorkedOne) {
 }
 
 TEST(FarmModel, ClaimsQueueAtRankZero) {
-  // 4 ranks, 4 free units in one round: 8 claims (4 granted, 4 refused), each holding the
+  // 4 ranks, 4 free units: 8 claims (4 granted, 4 refused), each holding the
   // counter 1 s, all issued at t=0 (the refusals as soon as a rank's unit ends).
   const ModelJob job = one_pair_job({0, 0, 0, 0}, 1, 1);
   FarmCosts costs;
@@ -130,8 +140,8 @@ TEST(FarmModel, PlanningIsSharedRoundRobin) {
   EXPECT_DOUBLE_EQ(simulate_farm(job, costs, 2).plan, 8 + 1.0);
 }
 
-TEST(FarmModel, HeaviestFirstAndBarrierFreeHelpAHeavyTail) {
-  // Soft pairs cost 10x: in id order the last round waits for them.
+TEST(FarmModel, HeaviestFirstAndUnitCommitsHelpAHeavyTail) {
+  // Soft pairs cost 10x: in id order, rounds wait for them.
   ModelJob job;
   job.grippers = 1;
   for (int o = 0; o < 32; ++o) {
@@ -145,29 +155,47 @@ TEST(FarmModel, HeaviestFirstAndBarrierFreeHelpAHeavyTail) {
   job.work_unit_size = 4;
   job.round_work_units = 2;
   const FarmCosts costs;
-  const double farm = simulate_farm(job, costs, 8).trial_phase;
-  ModelOptions heaviest;
+  ModelOptions rounds;
+  rounds.rounds = true;
+  const double before = simulate_farm(job, costs, 8, rounds).trial_phase;
+  ModelOptions heaviest = rounds;
   heaviest.order = UnitOrder::kHeaviestFirst;
-  ModelOptions free;
-  free.barrier_free = true;
-  EXPECT_LT(simulate_farm(job, costs, 8, heaviest).trial_phase, farm);
-  EXPECT_LT(simulate_farm(job, costs, 8, free).trial_phase, farm);
-  EXPECT_EQ(simulate_farm(job, costs, 8, free).rounds, 1u);
+  EXPECT_LT(simulate_farm(job, costs, 8, heaviest).trial_phase, before);
+  EXPECT_LT(simulate_farm(job, costs, 8).trial_phase, before);
+  EXPECT_EQ(simulate_farm(job, costs, 8).rounds, 1u);
+  EXPECT_GT(simulate_farm(job, costs, 8, rounds).rounds, 1u);
 }
 
-TEST(FarmModel, BarrierFreeWritesShareTheFile) {
+TEST(FarmModel, UnitCommitsShareTheFile) {
   // Two ranks end a one-candidate unit each at t=1 and write 1 byte at 1 byte/s: the second
   // write waits for the first (1-2, 2-3); the refused claims follow at 2 and 3.
   const ModelJob job = one_pair_job({1, 1}, 1, 1);
   FarmCosts costs;
   costs.bytes_per_candidate = 1;
-  costs.commit = {0, 5.0, 1.0};  // the log2 term belongs to the collective commit only
-  ModelOptions free;
-  free.barrier_free = true;
-  const ModelRun run = simulate_farm(job, costs, 2, free);
+  costs.unit_commit = {0, 5.0, 1.0};  // a unit's commit has no collective: no log2 term
+  costs.commit = {100, 100, 1e-3};    // the rounds' commit, unused
+  const ModelRun run = simulate_farm(job, costs, 2);
   EXPECT_DOUBLE_EQ(run.trial_phase, 3.0);
   EXPECT_DOUBLE_EQ(run.committing, 1.0 + 2.0);
   EXPECT_DOUBLE_EQ(run.idle, 1.0);
+}
+
+TEST(FarmModel, RankZeroPaysTheOtherRanksJournalLines) {
+  // Three ranks end a free unit each at t=1; rank 0 appends ranks 1 and 2's ids as one line
+  // (0.5 s) before its next claim, which finds everything handed out: the trial phase ends at
+  // 1.5, ranks 1 and 2 idle 0.5 s each.
+  const ModelJob job = one_pair_job({1, 1, 1}, 1, 1);
+  FarmCosts costs;
+  costs.journal_line = 0.5;
+  const ModelRun run = simulate_farm(job, costs, 3);
+  EXPECT_DOUBLE_EQ(run.trial_phase, 1.5);
+  EXPECT_DOUBLE_EQ(run.committing, 0.5);
+  EXPECT_DOUBLE_EQ(run.idle, 1.0);
+  // Rank 1's unit ends at 1.1 (a line to 1.6), rank 2's and 3's while it is written: one more
+  // line holds both (1.6 to 2.1), written while rank 0 waits.
+  const ModelRun spread = simulate_farm(one_pair_job({1, 1.1, 1.2, 1.3}, 1, 1), costs, 4);
+  EXPECT_DOUBLE_EQ(spread.committing, 1.0);
+  EXPECT_DOUBLE_EQ(spread.trial_phase, 2.1);
 }
 
 TEST(FarmModel, RefusesNonsense) {
@@ -187,6 +215,21 @@ TEST(CommitFit, RecoversExactConstants) {
   EXPECT_NEAR(fit.latency, 0.01, 1e-9);
   EXPECT_NEAR(fit.per_log2, 0.004, 1e-9);
   EXPECT_NEAR(fit.bandwidth, 2e8, 1.0);
+}
+
+TEST(CommitFit, AUnitCommitHasNoLog2Term) {
+  std::vector<CommitPoint> points;
+  for (const int ranks : {1, 2, 3}) {
+    for (const double bytes : {1e3, 1e6}) points.push_back({ranks, bytes, 0.005 + bytes / 1e8});
+  }
+  const CommitModel fit = fit_unit_commit_model(points);
+  EXPECT_NEAR(fit.latency, 0.005, 1e-9);
+  EXPECT_DOUBLE_EQ(fit.per_log2, 0.0);
+  EXPECT_NEAR(fit.bandwidth, 1e8, 1.0);
+  // A slope below zero (bigger writes faster, noise) is unlimited bandwidth: the mean.
+  const CommitModel flat = fit_unit_commit_model({{1, 1e3, 0.004}, {2, 1e6, 0.002}});
+  EXPECT_NEAR(flat.latency, 0.003, 1e-12);
+  EXPECT_DOUBLE_EQ(flat.bandwidth, 0.0);
 }
 
 TEST(CommitFit, DropsATermThatFitsBelowZero) {

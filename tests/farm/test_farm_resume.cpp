@@ -1,6 +1,7 @@
-// A farm run killed mid-way (SIGKILL of the whole mpirun, two ranks) and resumed, and one
-// stopped by SIGINT and resumed, both end equal, record by record, to an uninterrupted run:
-// nothing lost, nothing written twice. The test supervises `grip farm` as separate processes.
+// A farm run killed mid-way (SIGKILL of the whole mpirun, two ranks) and resumed, one whose
+// rank 1 is killed inside a work unit's commit (rows written, not yet journaled) and resumed,
+// and one stopped by SIGINT and resumed, all end equal, record by record, to an uninterrupted
+// run: nothing lost, nothing written twice. The test supervises `grip farm` as separate processes.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -15,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "io/dataset_reader.hpp"
 #include "io/journal.hpp"
 #include "tests/farm/farm_test_job.hpp"
 
@@ -156,6 +158,39 @@ TEST_F(FarmResume, KilledUnderMpirunThenResumedEqualsUninterrupted) {
   const std::size_t before = committed(dataset).size();
   EXPECT_GT(before, 0u);
   EXPECT_LT(before, static_cast<std::size_t>(kCandidates)) << "the run ended before the kill";
+
+  const fs::path log = dir_ / "resumed.log";
+  ASSERT_EQ(wait_for(start(farm(dataset, true, true), log)), 0) << log_text(log);
+  testing::expect_same_dataset(dir_ / "reference.h5", dataset);
+  expect_each_once(dataset);
+}
+
+// Rank 1 kills itself in the sync of its second work unit (a preload on rank 1 only): that
+// unit's rows and done flags are in the file, its journal line is not. The resumed run redoes
+// the unit and rewrites its rows identically.
+TEST_F(FarmResume, RankKilledMidCommitThenResumedEqualsUninterrupted) {
+  const fs::path dataset = dir_ / "mid_commit.h5";
+  const std::vector<std::string> grip = farm(dataset, false, false);
+  std::vector<std::string> args = {GRIP_MPIEXEC, "--oversubscribe", "-np", "1"};
+  args.insert(args.end(), grip.begin(), grip.end());
+  for (const std::string& a : {std::string(":"), std::string("-np"), std::string("1"),
+                               std::string("-x"), std::string("LD_PRELOAD=") + GRIP_KILL_MID_COMMIT,
+                               std::string("-x"), std::string("GRIP_KILL_AT_DATASET_SYNC=2")}) {
+    args.push_back(a);
+  }
+  args.insert(args.end(), grip.begin(), grip.end());
+  const fs::path killed_log = dir_ / "mid_commit.log";
+  EXPECT_NE(wait_for(start(args, killed_log)), 0) << log_text(killed_log);
+  wait_until_gone(dataset);
+  const std::vector<std::uint64_t> journaled = committed(dataset);
+  const std::set<std::uint64_t> in_journal(journaled.begin(), journaled.end());
+  EXPECT_LT(in_journal.size(), static_cast<std::size_t>(kCandidates));
+  const std::vector<std::uint8_t> flags = io::DatasetReader(dataset).done();
+  std::size_t written_not_journaled = 0;
+  for (std::uint64_t id = 0; id < flags.size(); ++id) {
+    written_not_journaled += flags[id] != 0 && in_journal.count(id) == 0;
+  }
+  EXPECT_GE(written_not_journaled, 1u) << "rank 1 was not killed between its write and journal";
 
   const fs::path log = dir_ / "resumed.log";
   ASSERT_EQ(wait_for(start(farm(dataset, true, true), log)), 0) << log_text(log);

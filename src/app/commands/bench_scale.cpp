@@ -35,6 +35,8 @@ int bench_scale(const BenchScaleArgs& args) {
   options.out = args.out;
   bench::FarmCosts& c = options.costs;
   c.commit = {args.commit_latency, args.commit_per_log2, args.commit_bandwidth};
+  c.unit_commit = {args.unit_commit_latency, 0.0, args.unit_commit_bandwidth};
+  c.journal_line = args.journal_line;
   c.claim = {args.claim_latency, args.claim_service};
   c.startup = args.startup;
   c.prepare_rigid = args.prepare_rigid;
