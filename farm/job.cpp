@@ -293,10 +293,7 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
   }
   if (auto t = root.optional_table("outputs")) read_outputs(*t, job);
   if (auto t = root.optional_table("farm")) {
-    t->allow({"batch", "round_batches"});
-    // Work units per rank per commit round, before each work unit was committed as it ends:
-    // still checked, so older job files run as they did, but without effect.
-    static_cast<void>(positive_integer(*t, "round_batches", 1));
+    t->allow({"batch"});
     const std::int64_t size = t->integer_or("batch", 0);
     if (size < 0 || size > 100000) t->fail("batch", "must be 0 (automatic) or a positive count");
     job.work_unit_size = static_cast<int>(size);

@@ -23,7 +23,7 @@ inline std::string small_job(int cylinders, int candidates, bool soft_object) {
   text += "\n[[grippers]]\nname = \"parallel-jaw\"\ncandidates = " + std::to_string(candidates) +
           "\n\n[randomization]\nscale = [0.5, 0.6]  # every shape fits the 85 mm jaws\n"
           "\n[trial]\nmetric_samples = 2000\n\n[outputs]\nclosing_frames = 4\n"
-          "validation_frames = 6\n\n[farm]\nround_batches = 1\n";
+          "validation_frames = 6\n";
   return text;
 }
 
