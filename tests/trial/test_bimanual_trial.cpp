@@ -2,8 +2,9 @@
 // two fin-ray grippers pinching a 36 cm box near its ends close every finger on the grip force
 // and hold it, D1 = 0 for both; with frictionless pads the box is squeezed out of both; a right
 // and a left LEAP hand synthesized on a large box (grip synth --bimanual) close on it and hold
-// it; and a scene of two grippers refuses one-gripper candidates and the reverse. Small meshes
-// (a one-layer fin-ray finger, the coarse hand), so each test runs in seconds.
+// it; a batch matches solo runs; and a scene of two grippers refuses one-gripper candidates and
+// the reverse. Small meshes (a one-layer fin-ray finger, the coarse hand), so each test runs in
+// seconds.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include "src/trial/grasp_trial.hpp"
 #include "src/trial/hand_trial.hpp"
 #include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/same_result.hpp"
 
 namespace grip::trial {
 namespace {
@@ -142,6 +144,30 @@ TEST(BimanualTrial, AScenesGripperCountMustMatchItsCandidates) {
   EXPECT_EQ(bodies.size(), 1u + 2u * 2u * 2u);  // the object, then per jaw a jaw and a finger
   EXPECT_EQ(bodies[static_cast<std::size_t>(two.jaws()[1].finger)].name, "finger-");
   EXPECT_EQ(bodies[static_cast<std::size_t>(two.jaws()[3].finger)].name, "finger- 2");
+}
+
+TEST(BimanualTrial, BatchMatchesSoloRunsForAnyThreadCount) {
+  // Rigid jaws (kinematic fingers, a fast trial): the grasp near the ends, one nearer the centre,
+  // and one whose second gripper's jaws start inside the box (it leaves the batch at once).
+  const grippers::ParallelGripper jaws = grippers::make_rigid_jaw_gripper();
+  const TrialScene scene(long_box(), jaws, parameters(), 2);
+  std::vector<std::array<ParallelGrasp, 2>> grasps(3, pinched_near_the_ends());
+  grasps[1][0].pose.translation().x() = -0.05;
+  grasps[1][1].pose.translation().x() = 0.05;
+  grasps[2][1].opening = 0.03;  // the box is 4 cm wide
+  TrialRunOptions batch_options;
+  batch_options.threads = 2;
+  const std::vector<TrialOutcome> batch = run_bimanual_trials(scene, grasps, batch_options);
+  ASSERT_EQ(batch.size(), grasps.size());
+  for (std::size_t k = 0; k < grasps.size(); ++k) {
+    TrialRunOptions solo_options;
+    solo_options.threads = 1;
+    solo_options.ids = {k};
+    const TrialOutcome solo = run_bimanual_trials(scene, {grasps[k]}, solo_options).front();
+    EXPECT_TRUE(same_result(batch[k].result, solo.result)) << "candidate " << k;
+  }
+  EXPECT_EQ(batch[0].result.record.failure, io::FailureKind::kNone) << batch[0].failure_reason;
+  EXPECT_EQ(batch[2].result.record.failure, io::FailureKind::kInitialPenetration);
 }
 
 // ---- A right and a left hand ----
