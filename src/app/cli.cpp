@@ -162,6 +162,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(grip::grippers::gripper_names()));
   trial->add_option("--candidates", trial_args.candidates, "Candidate file from grip synth")
       ->required();
+  trial->add_flag("--bimanual", trial_args.bimanual,
+                  "The candidates are bimanual (grip synth --bimanual): two grippers per trial");
   trial->add_option("--index", trial_args.index, "Candidate I, or A-B (inclusive) as one batch")
       ->capture_default_str();
   trial->add_option("--report", trial_args.report, "Write the JSON report here (default: stdout)")

@@ -94,6 +94,7 @@ struct TrialArgs {
   double friction = 3.5;               // the object's mu (a fin-ray pad's pairs use the pad's 3.5)
   std::optional<std::string> gripper;  // fin-ray, parallel-jaw or leap
   std::string candidates;              // candidate file (docs/synthesis.md)
+  bool bimanual = false;               // the file's candidates are bimanual (two grippers)
   std::string index = "0";             // one candidate "I" or a range "A-B", run as one batch
   std::string report;                  // JSON report file; stdout when empty
   std::string vtk;                     // folder for per-candidate VTK series; none when empty

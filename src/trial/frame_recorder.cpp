@@ -77,8 +77,8 @@ io::TrajectoryRecord trajectory_record(const std::vector<RecordedFrame>& frames)
                                   frame.friction_forces.end());
     record.object_poses.insert(record.object_poses.end(), frame.object_pose.begin(),
                                frame.object_pose.end());
-    record.hand_poses.insert(record.hand_poses.end(), frame.hand_pose.begin(),
-                             frame.hand_pose.end());
+    record.hand_poses.insert(record.hand_poses.end(), frame.hand_poses.begin(),
+                             frame.hand_poses.end());
     record.joints.insert(record.joints.end(), frame.joints.begin(), frame.joints.end());
   }
   return record;

@@ -17,9 +17,9 @@ struct RecordedFrame {
   std::vector<float> contact_forces;    // n x 3, N: barrier force on each object vertex
   std::vector<float> friction_forces;   // n x 3, N: friction force of the last step
   std::array<double, 12> object_pose{};
-  std::array<double, 12> hand_pose{};
-  std::vector<double> joints;  // the gripper's joint values (one hand)
-  BodyFrame bodies;            // filled only when body frames are kept
+  std::vector<double> hand_poses;  // 12 per gripper (hand)
+  std::vector<double> joints;      // the grippers' joint values, one gripper after the other
+  BodyFrame bodies;                // filled only when body frames are kept
 };
 
 class FrameRecorder {

@@ -1,5 +1,9 @@
 #include "src/trial/grasp_trial.hpp"
 
+#include <stdexcept>
+#include <string>
+#include <utility>
+
 namespace grip::trial {
 
 namespace {
@@ -7,13 +11,14 @@ namespace {
 using grippers::Jaw;
 constexpr std::array<Jaw, 2> kJaws = {Jaw::kPositive, Jaw::kNegative};
 
-// A parallel gripper in the protocol: each jaw is a finger whose travel runs along the
-// candidate's closing axis, down to final_opening; the joint value is the opening.
+// One or two parallel grippers in the protocol: each jaw is a finger whose travel runs along its
+// gripper's closing axis, down to final_opening; a gripper's joint value is its opening.
+// grasps[k][g] is candidate k's grasp for gripper g; finger f is jaw f % 2 of gripper f / 2.
 class ParallelTrialGripper final : public TrialGripper {
  public:
-  ParallelTrialGripper(const TrialScene& scene, const std::vector<ParallelGrasp>& grasps)
-      : scene_(scene), grasps_(grasps) {
-    for (int j = 0; j < 2; ++j) finger_bodies_[j] = {scene.jaws()[j].finger};
+  ParallelTrialGripper(const TrialScene& scene, std::vector<std::vector<ParallelGrasp>> grasps)
+      : scene_(scene), grasps_(std::move(grasps)) {
+    for (const JawBodies& jaw : scene.jaws()) finger_bodies_.push_back({jaw.finger});
   }
 
   const TrialParameters& parameters() const override { return scene_.parameters(); }
@@ -21,26 +26,30 @@ class ParallelTrialGripper final : public TrialGripper {
   bool soft_object() const override { return scene_.soft_object(); }
   int object_body() const override { return scene_.object_body(); }
   std::size_t candidate_count() const override { return grasps_.size(); }
-  int finger_count() const override { return 2; }
+  int finger_count() const override { return static_cast<int>(finger_bodies_.size()); }
   const std::vector<int>& finger_bodies(int finger) const override {
     return finger_bodies_[finger];
   }
 
   std::vector<double> place(solver::Environment& environment, std::size_t k) const override {
-    scene_.place(environment, grasps_[k]);
-    const double travel = 0.5 * (grasps_[k].opening - scene_.parameters().final_opening);
-    return {travel, travel};
+    std::vector<double> travel;
+    for (std::size_t g = 0; g < grasps_[k].size(); ++g) {
+      scene_.place(environment, grasps_[k][g], static_cast<int>(g));
+      const double half = 0.5 * (grasps_[k][g].opening - scene_.parameters().final_opening);
+      travel.insert(travel.end(), {half, half});
+    }
+    return travel;
   }
 
   void place_finger(solver::Environment& environment, std::size_t k, int finger, double from,
                     double to) const override {
-    scene_.advance_jaw(environment, grasps_[k], finger, to - from);
+    scene_.advance_jaw(environment, grasp(k, finger), finger, to - from);
   }
 
   void move_finger(solver::Environment& environment, std::size_t k, int finger, double,
                    double speed) const override {
     solver::Script script;
-    script.velocity = scene_.closing_velocity(grasps_[k], kJaws[finger], speed);
+    script.velocity = scene_.closing_velocity(grasp(k, finger), kJaws[finger % 2], speed);
     environment.set_script(scene_.jaws()[finger].jaw, script);
   }
 
@@ -48,10 +57,18 @@ class ParallelTrialGripper final : public TrialGripper {
     environment.set_script(scene_.jaws()[finger].jaw, solver::Script{});
   }
 
-  const Eigen::Isometry3d& pose(std::size_t k) const override { return grasps_[k].pose; }
+  std::vector<Eigen::Isometry3d> poses(std::size_t k) const override {
+    std::vector<Eigen::Isometry3d> poses;
+    for (const ParallelGrasp& g : grasps_[k]) poses.push_back(g.pose);
+    return poses;
+  }
 
   std::vector<double> joints(std::size_t k, const std::vector<double>& travel) const override {
-    return {grasps_[k].opening - travel[0] - travel[1]};
+    std::vector<double> openings;
+    for (std::size_t g = 0; g < grasps_[k].size(); ++g) {
+      openings.push_back(grasps_[k][g].opening - travel[2 * g] - travel[2 * g + 1]);
+    }
+    return openings;
   }
 
   geometry::Vertices surface_vertices(const solver::Environment& environment) const override {
@@ -63,14 +80,22 @@ class ParallelTrialGripper final : public TrialGripper {
   metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const override {
     return scene_.grasp_distances(environment);
   }
+  std::vector<metrics::DistanceMetrics> gripper_distances(
+      const solver::Environment& environment) const override {
+    return scene_.gripper_distances(environment);
+  }
   Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const override {
     return scene_.body_stress(environment, body);
   }
 
  private:
+  const ParallelGrasp& grasp(std::size_t k, int finger) const {
+    return grasps_[k][static_cast<std::size_t>(finger / 2)];
+  }
+
   const TrialScene& scene_;
-  const std::vector<ParallelGrasp>& grasps_;
-  std::array<std::vector<int>, 2> finger_bodies_;
+  std::vector<std::vector<ParallelGrasp>> grasps_;
+  std::vector<std::vector<int>> finger_bodies_;
 };
 
 }  // namespace
@@ -78,7 +103,25 @@ class ParallelTrialGripper final : public TrialGripper {
 std::vector<TrialOutcome> run_trials(const TrialScene& scene,
                                      const std::vector<ParallelGrasp>& grasps,
                                      const TrialRunOptions& options) {
-  return run_protocol(ParallelTrialGripper(scene, grasps), options);
+  if (scene.gripper_count() != 1) {
+    throw std::invalid_argument("run_trials: the scene has " +
+                                std::to_string(scene.gripper_count()) + " grippers, not one");
+  }
+  std::vector<std::vector<ParallelGrasp>> each;
+  for (const ParallelGrasp& g : grasps) each.push_back({g});
+  return run_protocol(ParallelTrialGripper(scene, std::move(each)), options);
+}
+
+std::vector<TrialOutcome> run_bimanual_trials(
+    const TrialScene& scene, const std::vector<std::array<ParallelGrasp, 2>>& grasps,
+    const TrialRunOptions& options) {
+  if (scene.gripper_count() != 2) {
+    throw std::invalid_argument("run_bimanual_trials: the scene has " +
+                                std::to_string(scene.gripper_count()) + " gripper, not two");
+  }
+  std::vector<std::vector<ParallelGrasp>> each;
+  for (const auto& g : grasps) each.push_back({g[0], g[1]});
+  return run_protocol(ParallelTrialGripper(scene, std::move(each)), options);
 }
 
 }  // namespace grip::trial

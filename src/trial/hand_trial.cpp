@@ -2,29 +2,33 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace grip::trial {
 
 namespace {
 
-// A hand in the protocol: each finger's travel runs along its closing direction in joint space
-// (HandTrialScene::closing_direction, fixed at the candidate) until one of its joints reaches
-// a limit.
+// One or two hands in the protocol: each finger's travel runs along its closing direction in
+// its hand's joint space (HandTrialScene::closing_direction, fixed at the candidate) until one
+// of its joints reaches a limit. grasps[k][h] is candidate k's grasp for hand h.
 class HandTrialGripper final : public TrialGripper {
  public:
-  HandTrialGripper(const HandTrialScene& scene, const std::vector<HandTrialGrasp>& grasps)
-      : scene_(scene), grasps_(grasps) {
+  HandTrialGripper(const HandTrialScene& scene, std::vector<std::vector<HandTrialGrasp>> grasps)
+      : scene_(scene), grasps_(std::move(grasps)) {
     const auto fingers = static_cast<int>(scene.fingers().size());
-    for (std::size_t k = 0; k < grasps.size(); ++k) {
+    for (std::size_t k = 0; k < grasps_.size(); ++k) {
       try {
-        scene.check(grasps[k]);
+        for (std::size_t h = 0; h < grasps_[k].size(); ++h) {
+          scene.check(grasps_[k][h], static_cast<int>(h));
+        }
       } catch (const std::out_of_range& e) {
         throw std::out_of_range("candidate " + std::to_string(k) + ": " + e.what());
       }
       Path path;
       for (int f = 0; f < fingers; ++f) {
-        path.direction.push_back(scene.closing_direction(grasps[k], f));
-        path.travel.push_back(scene.closing_travel(grasps[k].joints, path.direction.back(), f));
+        const HandTrialGrasp& grasp = finger_grasp(k, f);
+        path.direction.push_back(scene.closing_direction(grasp, f));
+        path.travel.push_back(scene.closing_travel(grasp.joints, path.direction.back(), f));
       }
       paths_.push_back(std::move(path));
     }
@@ -41,15 +45,18 @@ class HandTrialGripper final : public TrialGripper {
   }
 
   std::vector<double> place(solver::Environment& environment, std::size_t k) const override {
-    scene_.place(environment, grasps_[k]);
+    for (std::size_t h = 0; h < grasps_[k].size(); ++h) {
+      scene_.place(environment, grasps_[k][h], static_cast<int>(h));
+    }
     return paths_[k].travel;
   }
 
   void place_finger(solver::Environment& environment, std::size_t k, int finger, double from,
                     double to) const override {
     const Eigen::VectorXd& direction = paths_[k].direction[static_cast<std::size_t>(finger)];
-    const Eigen::VectorXd& start = grasps_[k].joints;
-    scene_.place_finger(environment, grasps_[k].pose, finger,
+    const HandTrialGrasp& grasp = finger_grasp(k, finger);
+    const Eigen::VectorXd& start = grasp.joints;
+    scene_.place_finger(environment, grasp.pose, finger,
                         scene_.finger_joints(start, direction, finger, from),
                         scene_.finger_joints(start, direction, finger, to));
   }
@@ -58,8 +65,9 @@ class HandTrialGripper final : public TrialGripper {
                    double speed) const override {
     const Eigen::VectorXd& direction = paths_[k].direction[static_cast<std::size_t>(finger)];
     const double next = travel + speed * scene_.parameters().sim.dt;
-    scene_.move_finger(environment, grasps_[k].pose, finger,
-                       scene_.finger_joints(grasps_[k].joints, direction, finger, next));
+    const HandTrialGrasp& grasp = finger_grasp(k, finger);
+    scene_.move_finger(environment, grasp.pose, finger,
+                       scene_.finger_joints(grasp.joints, direction, finger, next));
   }
 
   void hold_finger(solver::Environment& environment, int finger) const override {
@@ -68,17 +76,27 @@ class HandTrialGripper final : public TrialGripper {
 
   bool driven_fingers() const override { return true; }
 
-  const Eigen::Isometry3d& pose(std::size_t k) const override { return grasps_[k].pose; }
+  std::vector<Eigen::Isometry3d> poses(std::size_t k) const override {
+    std::vector<Eigen::Isometry3d> poses;
+    for (const HandTrialGrasp& grasp : grasps_[k]) poses.push_back(grasp.pose);
+    return poses;
+  }
 
   std::vector<double> joints(std::size_t k, const std::vector<double>& travel) const override {
-    Eigen::VectorXd q = grasps_[k].joints;
+    std::vector<Eigen::VectorXd> q;
+    for (const HandTrialGrasp& grasp : grasps_[k]) q.push_back(grasp.joints);
     for (int f = 0; f < finger_count(); ++f) {
-      const Eigen::VectorXd finger =
-          scene_.finger_joints(grasps_[k].joints, paths_[k].direction[static_cast<std::size_t>(f)],
-                               f, travel[static_cast<std::size_t>(f)]);
-      for (int dof : scene_.fingers()[static_cast<std::size_t>(f)].dofs) q[dof] = finger[dof];
+      const HandFinger& finger = scene_.fingers()[static_cast<std::size_t>(f)];
+      const Eigen::VectorXd moved = scene_.finger_joints(
+          finger_grasp(k, f).joints, paths_[k].direction[static_cast<std::size_t>(f)], f,
+          travel[static_cast<std::size_t>(f)]);
+      Eigen::VectorXd& own = q[static_cast<std::size_t>(finger.hand)];
+      for (int dof : finger.dofs) own[dof] = moved[dof];
     }
-    return std::vector<double>(q.data(), q.data() + q.size());
+    std::vector<double> values;
+    for (const Eigen::VectorXd& hand : q)
+      values.insert(values.end(), hand.data(), hand.data() + hand.size());
+    return values;
   }
 
   geometry::Vertices surface_vertices(const solver::Environment& environment) const override {
@@ -89,6 +107,10 @@ class HandTrialGripper final : public TrialGripper {
   }
   metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const override {
     return scene_.grasp_distances(environment);
+  }
+  std::vector<metrics::DistanceMetrics> gripper_distances(
+      const solver::Environment& environment) const override {
+    return scene_.hand_distances(environment);
   }
   Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const override {
     return scene_.body_stress(environment, body);
@@ -101,8 +123,13 @@ class HandTrialGripper final : public TrialGripper {
     std::vector<double> travel;
   };
 
+  const HandTrialGrasp& finger_grasp(std::size_t k, int finger) const {
+    const int hand = scene_.fingers()[static_cast<std::size_t>(finger)].hand;
+    return grasps_[k][static_cast<std::size_t>(hand)];
+  }
+
   const HandTrialScene& scene_;
-  const std::vector<HandTrialGrasp>& grasps_;
+  std::vector<std::vector<HandTrialGrasp>> grasps_;
   std::vector<Path> paths_;
 };
 
@@ -111,7 +138,25 @@ class HandTrialGripper final : public TrialGripper {
 std::vector<TrialOutcome> run_hand_trials(const HandTrialScene& scene,
                                           const std::vector<HandTrialGrasp>& grasps,
                                           const TrialRunOptions& options) {
-  return run_protocol(HandTrialGripper(scene, grasps), options);
+  if (scene.hand_count() != 1) {
+    throw std::invalid_argument("run_hand_trials: the scene has " +
+                                std::to_string(scene.hand_count()) + " hands, not one");
+  }
+  std::vector<std::vector<HandTrialGrasp>> each;
+  for (const HandTrialGrasp& g : grasps) each.push_back({g});
+  return run_protocol(HandTrialGripper(scene, std::move(each)), options);
+}
+
+std::vector<TrialOutcome> run_bimanual_hand_trials(
+    const HandTrialScene& scene, const std::vector<std::array<HandTrialGrasp, 2>>& grasps,
+    const TrialRunOptions& options) {
+  if (scene.hand_count() != 2) {
+    throw std::invalid_argument("run_bimanual_hand_trials: the scene has " +
+                                std::to_string(scene.hand_count()) + " hand, not two");
+  }
+  std::vector<std::vector<HandTrialGrasp>> each;
+  for (const auto& g : grasps) each.push_back({g[0], g[1]});
+  return run_protocol(HandTrialGripper(scene, std::move(each)), options);
 }
 
 }  // namespace grip::trial

@@ -5,7 +5,9 @@
 // limits, the released grasp settles, then gravity along +x, -x, +y, -y, +z, -z (world) for one
 // phase each (run_protocol). Outcomes as
 // run_trials gives them for parallel grippers, with one closing force per finger and the
-// hand's joint values per frame.
+// hand's joint values per frame. A bimanual trial runs a right and a left hand of one scene the
+// same way, their fingers together.
+#include <array>
 #include <vector>
 
 #include "src/trial/hand_trial_scene.hpp"
@@ -20,5 +22,12 @@ namespace grip::trial {
 std::vector<TrialOutcome> run_hand_trials(const HandTrialScene& scene,
                                           const std::vector<HandTrialGrasp>& grasps,
                                           const TrialRunOptions& options = {});
+
+// The same for a scene of two hands: grasps[k] is candidate k's grasp per hand (the right hand,
+// then the left); fingers, closing forces and the frames' poses and joints follow that order.
+// Throws std::invalid_argument for a scene of one hand (and run_hand_trials for one of two).
+std::vector<TrialOutcome> run_bimanual_hand_trials(
+    const HandTrialScene& scene, const std::vector<std::array<HandTrialGrasp, 2>>& grasps,
+    const TrialRunOptions& options = {});
 
 }  // namespace grip::trial

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "solver/kernels/affine_body.hpp"
@@ -22,13 +23,12 @@ solver::Pose to_pose(const Eigen::Isometry3d& isometry) {
   return pose;
 }
 
-// The fingers: one per link hanging from the root link, with every link below it, and each
-// link's finger (-1 for the root).
-std::vector<HandFinger> find_fingers(const grippers::KinematicTree& tree,
-                                     std::vector<int>& link_finger) {
+// Appends the hand's fingers: one per link hanging from the root link, with every link below
+// it; sets each link's finger (an index of `fingers`; -1 for the root). `suffix` ends the names.
+void find_fingers(const grippers::KinematicTree& tree, int hand, const std::string& suffix,
+                  std::vector<HandFinger>& fingers, std::vector<int>& link_finger) {
   const auto& links = tree.links();
   const auto& joints = tree.joints();
-  std::vector<HandFinger> fingers;
   link_finger.assign(links.size(), -1);
   // Links are numbered depth first from the root (link 0): a link's parent comes before it.
   for (std::size_t l = 1; l < links.size(); ++l) {
@@ -36,7 +36,7 @@ std::vector<HandFinger> find_fingers(const grippers::KinematicTree& tree,
         joints.at(static_cast<std::size_t>(links[l].parent_joint));
     if (joint.parent_link == 0) {
       const std::string& name = links[l].name;
-      fingers.push_back({name.substr(0, name.find('_')), {}, {}, {}});
+      fingers.push_back({name.substr(0, name.find('_')) + suffix, hand, {}, {}, {}});
       link_finger[l] = static_cast<int>(fingers.size()) - 1;
     } else {
       link_finger[l] = link_finger[static_cast<std::size_t>(joint.parent_link)];
@@ -45,64 +45,95 @@ std::vector<HandFinger> find_fingers(const grippers::KinematicTree& tree,
     finger.links.push_back(static_cast<int>(l));
     if (joint.dof >= 0) finger.dofs.push_back(joint.dof);
   }
-  return fingers;
+}
+
+// The meshes a and b as one (b's vertices after a's).
+geometry::SurfaceMesh joined(const geometry::SurfaceMesh& a, const geometry::SurfaceMesh& b) {
+  const auto offset = static_cast<int>(a.vertices.rows());
+  geometry::SurfaceMesh both;
+  both.vertices.resize(a.vertices.rows() + b.vertices.rows(), 3);
+  both.vertices << a.vertices, b.vertices;
+  both.triangles.resize(a.triangles.rows() + b.triangles.rows(), 3);
+  both.triangles << a.triangles, (b.triangles.array() + offset).matrix();
+  return both;
 }
 
 }  // namespace
 
 HandTrialScene::HandTrialScene(const TrialObject& object, grippers::HandModel hand,
                                std::string name, const TrialParameters& parameters)
-    : hand_(std::move(hand)), name_(std::move(name)), parameters_(parameters), object_(object) {
-  validate(parameters);
-  const grippers::KinematicTree& tree = hand_.kinematics;
-  fingers_ = find_fingers(tree, link_finger_);
-  if (fingers_.empty()) {
-    throw std::invalid_argument("hand '" + tree.name() + "' has no fingers (links below its root)");
-  }
-  for (const grippers::ContactCandidate& c : hand_.points.contacts) {
-    contact_link_.push_back(tree.link_index(c.link));
-  }
+    : HandTrialScene(
+          object,
+          [&] {
+            std::vector<grippers::HandModel> hands;
+            hands.push_back(std::move(hand));
+            return hands;
+          }(),
+          std::move(name), parameters) {}
 
+HandTrialScene::HandTrialScene(const TrialObject& object, std::vector<grippers::HandModel> hands,
+                               std::string name, const TrialParameters& parameters)
+    : hands_(std::move(hands)), name_(std::move(name)), parameters_(parameters), object_(object) {
+  validate(parameters);
+  if (hands_.empty() || hands_.size() > 2) {
+    throw std::invalid_argument("a trial takes one or two hands, not " +
+                                std::to_string(hands_.size()));
+  }
   solver::SceneDescription scene;
   scene.sim = parameters.sim;
   scene.sim.gravity = Eigen::Vector3d::Zero();
   scene.bodies.push_back(object_.description());
-  rest_link_poses_ =
-      tree.link_poses(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Zero(tree.dof_count()));
-  link_body_.assign(tree.links().size(), -1);
-  for (std::size_t l = 0; l < tree.links().size(); ++l) {
-    const grippers::KinematicLink& link = tree.links()[l];
-    if (link.surface.triangles.rows() == 0) continue;
-    solver::BodyDescription body;
-    body.name = link.name;
-    body.vertices = link.surface.vertices;
-    body.triangles = link.surface.triangles;
-    body.pose = to_pose(rest_link_poses_[l]);
-    body.material.friction = parameters.rigid_finger_friction;
-    body.collision_group = 0;
-    // A finger's links are driven: each follows the pose its joints command through a spring
-    // of hand_drive_stiffness inside the step (the drive's compliance); the palm is kinematic.
-    if (link_finger_[l] >= 0) {
-      body.type = solver::BodyType::kAffine;
-      body.drive_stiffness = parameters.hand_drive_stiffness;
-    } else {
-      body.type = solver::BodyType::kKinematic;
+  std::vector<geometry::SurfaceMesh> hand_surfaces;
+  for (std::size_t h = 0; h < hands_.size(); ++h) {
+    const grippers::KinematicTree& tree = hands_[h].kinematics;
+    const std::string suffix = h == 0 ? std::string() : std::string(" 2");
+    HandLinks& links = links_.emplace_back();
+    const std::size_t first_finger = fingers_.size();
+    find_fingers(tree, static_cast<int>(h), suffix, fingers_, links.finger);
+    if (fingers_.size() == first_finger) {
+      throw std::invalid_argument("hand '" + tree.name() +
+                                  "' has no fingers (links below its root)");
     }
-    link_body_[l] = static_cast<int>(scene.bodies.size());
-    if (link_finger_[l] >= 0) {
-      fingers_[static_cast<std::size_t>(link_finger_[l])].bodies.push_back(link_body_[l]);
+    for (const grippers::ContactCandidate& c : hands_[h].points.contacts) {
+      links.contact_link.push_back(tree.link_index(c.link));
     }
-    scene.bodies.push_back(std::move(body));
+    links.rest_poses =
+        tree.link_poses(Eigen::Isometry3d::Identity(), Eigen::VectorXd::Zero(tree.dof_count()));
+    links.body.assign(tree.links().size(), -1);
+    geometry::SurfaceMesh surface;
+    for (std::size_t l = 0; l < tree.links().size(); ++l) {
+      const grippers::KinematicLink& link = tree.links()[l];
+      if (link.surface.triangles.rows() == 0) continue;
+      solver::BodyDescription body;
+      body.name = link.name + suffix;
+      body.vertices = link.surface.vertices;
+      body.triangles = link.surface.triangles;
+      body.pose = to_pose(links.rest_poses[l]);
+      body.material.friction = parameters.rigid_finger_friction;
+      body.collision_group = static_cast<int>(h);
+      // A finger's links are driven: each follows the pose its joints command through a spring
+      // of hand_drive_stiffness inside the step (the drive's compliance); the palm is kinematic.
+      if (links.finger[l] >= 0) {
+        body.type = solver::BodyType::kAffine;
+        body.drive_stiffness = parameters.hand_drive_stiffness;
+      } else {
+        body.type = solver::BodyType::kKinematic;
+      }
+      links.body[l] = static_cast<int>(scene.bodies.size());
+      if (links.finger[l] >= 0) {
+        fingers_[static_cast<std::size_t>(links.finger[l])].bodies.push_back(links.body[l]);
+      }
+      scene.bodies.push_back(std::move(body));
 
-    const auto offset = static_cast<int>(rest_surface_.vertices.rows());
-    geometry::SurfaceMesh next;
-    next.vertices.resize(offset + link.surface.vertices.rows(), 3);
-    next.vertices << rest_surface_.vertices,
-        (link.surface.vertices * rest_link_poses_[l].linear().transpose()).rowwise() +
-            rest_link_poses_[l].translation().transpose();
-    next.triangles.resize(rest_surface_.triangles.rows() + link.surface.triangles.rows(), 3);
-    next.triangles << rest_surface_.triangles, (link.surface.triangles.array() + offset).matrix();
-    rest_surface_ = std::move(next);
+      geometry::SurfaceMesh posed;
+      posed.vertices =
+          (link.surface.vertices * links.rest_poses[l].linear().transpose()).rowwise() +
+          links.rest_poses[l].translation().transpose();
+      posed.triangles = link.surface.triangles;
+      surface = joined(surface, posed);
+    }
+    rest_surface_ = joined(rest_surface_, surface);
+    hand_surfaces.push_back(std::move(surface));
   }
 
   try {
@@ -113,13 +144,22 @@ HandTrialScene::HandTrialScene(const TrialObject& object, grippers::HandModel ha
   }
   hand_points_ = std::make_unique<metrics::SurfacePoints>(rest_surface_, parameters.metric_samples,
                                                           parameters.metric_seed);
+  if (hands_.size() > 1) {
+    for (const geometry::SurfaceMesh& surface : hand_surfaces) {
+      each_hand_points_.emplace_back(surface, parameters.metric_samples, parameters.metric_seed);
+    }
+  }
   object_.bind(model_);
 }
 
 HandTrialScene::~HandTrialScene() = default;
 
-void HandTrialScene::check(const HandTrialGrasp& grasp) const {
-  const grippers::KinematicTree& tree = hand_.kinematics;
+const HandTrialScene::HandLinks& HandTrialScene::links_of(int finger) const {
+  return links_[static_cast<std::size_t>(fingers_.at(static_cast<std::size_t>(finger)).hand)];
+}
+
+void HandTrialScene::check(const HandTrialGrasp& grasp, int h) const {
+  const grippers::KinematicTree& tree = kinematics(h);
   if (grasp.joints.size() != tree.dof_count()) {
     throw std::out_of_range("hand '" + name_ + "' takes " + std::to_string(tree.dof_count()) +
                             " joint values, not " + std::to_string(grasp.joints.size()));
@@ -133,19 +173,24 @@ void HandTrialScene::check(const HandTrialGrasp& grasp) const {
   }
 }
 
-void HandTrialScene::place(solver::Environment& environment, const HandTrialGrasp& grasp) const {
-  check(grasp);
-  const std::vector<Eigen::Isometry3d> poses = kinematics().link_poses(grasp.pose, grasp.joints);
+void HandTrialScene::place(solver::Environment& environment, const HandTrialGrasp& grasp,
+                           int h) const {
+  check(grasp, h);
+  const HandLinks& links = links_[static_cast<std::size_t>(h)];
+  const std::vector<Eigen::Isometry3d> poses = kinematics(h).link_poses(grasp.pose, grasp.joints);
   for (std::size_t l = 0; l < poses.size(); ++l) {
-    if (link_body_[l] < 0) continue;
-    environment.place(link_body_[l], poses[l] * rest_link_poses_[l].inverse());
-    environment.set_script(link_body_[l], solver::Script{});
+    if (links.body[l] < 0) continue;
+    environment.place(links.body[l], poses[l] * links.rest_poses[l].inverse());
+    environment.set_script(links.body[l], solver::Script{});
   }
   environment.set_gravity(Eigen::Vector3d::Zero());
 }
 
 Eigen::VectorXd HandTrialScene::closing_direction(const HandTrialGrasp& grasp, int finger) const {
-  const grippers::KinematicTree& tree = kinematics();
+  const int h = fingers_.at(static_cast<std::size_t>(finger)).hand;
+  const grippers::KinematicTree& tree = kinematics(h);
+  const std::vector<int>& contact_link = links_of(finger).contact_link;
+  const std::vector<int>& link_finger = links_of(finger).finger;
   const std::vector<Eigen::Isometry3d> poses = tree.link_poses(grasp.pose, grasp.joints);
   struct Push {
     int link;
@@ -154,29 +199,29 @@ Eigen::VectorXd HandTrialScene::closing_direction(const HandTrialGrasp& grasp, i
   };
   std::vector<Push> pushes;
   // A synthesized contact lies on the contact candidate nearest to it (it was one).
-  const auto& candidates = hand_.points.contacts;
+  const auto& candidates = hand(h).points.contacts;
   for (Eigen::Index i = 0; i < grasp.contacts.rows(); ++i) {
     const Eigen::Vector3d x = grasp.contacts.row(i).transpose();
     double nearest = std::numeric_limits<double>::infinity();
     int link = -1;
     for (std::size_t c = 0; c < candidates.size(); ++c) {
-      const auto on = static_cast<std::size_t>(contact_link_[c]);
+      const auto on = static_cast<std::size_t>(contact_link[c]);
       const double d = (poses[on] * candidates[c].position - x).norm();
       if (d < nearest) {
         nearest = d;
-        link = contact_link_[c];
+        link = contact_link[c];
       }
     }
-    if (link >= 0 && link_finger_[static_cast<std::size_t>(link)] == finger) {
+    if (link >= 0 && link_finger[static_cast<std::size_t>(link)] == finger) {
       pushes.push_back({link, poses[static_cast<std::size_t>(link)].inverse() * x,
                         -grasp.contact_normals.row(i).transpose().normalized()});
     }
   }
   if (pushes.empty()) {
     for (std::size_t c = 0; c < candidates.size(); ++c) {
-      const auto link = static_cast<std::size_t>(contact_link_[c]);
-      if (link_finger_[link] != finger) continue;
-      pushes.push_back({contact_link_[c], candidates[c].position,
+      const auto link = static_cast<std::size_t>(contact_link[c]);
+      if (link_finger[link] != finger) continue;
+      pushes.push_back({contact_link[c], candidates[c].position,
                         poses[link].linear() * candidates[c].normal.normalized()});
     }
   }
@@ -208,7 +253,8 @@ Eigen::VectorXd HandTrialScene::closing_direction(const HandTrialGrasp& grasp, i
 Eigen::VectorXd HandTrialScene::finger_joints(const Eigen::VectorXd& start,
                                               const Eigen::VectorXd& direction, int finger,
                                               double travel) const {
-  const grippers::KinematicTree& tree = kinematics();
+  const grippers::KinematicTree& tree =
+      kinematics(fingers_.at(static_cast<std::size_t>(finger)).hand);
   Eigen::VectorXd joints = start;
   for (int dof : fingers_.at(static_cast<std::size_t>(finger)).dofs) {
     joints[dof] = std::clamp(start[dof] + travel * direction[dof], tree.lower_limits()[dof],
@@ -219,7 +265,8 @@ Eigen::VectorXd HandTrialScene::finger_joints(const Eigen::VectorXd& start,
 
 double HandTrialScene::closing_travel(const Eigen::VectorXd& start,
                                       const Eigen::VectorXd& direction, int finger) const {
-  const grippers::KinematicTree& tree = kinematics();
+  const grippers::KinematicTree& tree =
+      kinematics(fingers_.at(static_cast<std::size_t>(finger)).hand);
   double travel = std::numeric_limits<double>::infinity();
   for (int dof : fingers_.at(static_cast<std::size_t>(finger)).dofs) {
     if (direction[dof] == 0.0) continue;
@@ -231,13 +278,14 @@ double HandTrialScene::closing_travel(const Eigen::VectorXd& start,
 
 void HandTrialScene::move_finger(solver::Environment& environment, const Eigen::Isometry3d& pose,
                                  int finger, const Eigen::VectorXd& joints) const {
-  const std::vector<Eigen::Isometry3d> poses = kinematics().link_poses(pose, joints);
+  const HandFinger& f = fingers_.at(static_cast<std::size_t>(finger));
+  const std::vector<Eigen::Isometry3d> poses = kinematics(f.hand).link_poses(pose, joints);
   // One keyframe: the pose the link reaches at the end of the step (and holds after it).
   solver::Script script;
   script.keyframes.resize(1);
   script.keyframes[0].time = environment.time() + parameters_.sim.dt;
-  for (int link : fingers_.at(static_cast<std::size_t>(finger)).links) {
-    const int body = link_body_[static_cast<std::size_t>(link)];
+  for (int link : f.links) {
+    const int body = links_of(finger).body[static_cast<std::size_t>(link)];
     if (body < 0) continue;
     script.keyframes[0].pose = to_pose(poses[static_cast<std::size_t>(link)]);
     environment.set_script(body, script);
@@ -247,12 +295,14 @@ void HandTrialScene::move_finger(solver::Environment& environment, const Eigen::
 void HandTrialScene::place_finger(solver::Environment& environment, const Eigen::Isometry3d& pose,
                                   int finger, const Eigen::VectorXd& from,
                                   const Eigen::VectorXd& to) const {
-  const std::vector<Eigen::Isometry3d> now = kinematics().link_poses(pose, from);
-  const std::vector<Eigen::Isometry3d> next = kinematics().link_poses(pose, to);
-  for (int link : fingers_.at(static_cast<std::size_t>(finger)).links) {
+  const HandFinger& f = fingers_.at(static_cast<std::size_t>(finger));
+  const std::vector<Eigen::Isometry3d> now = kinematics(f.hand).link_poses(pose, from);
+  const std::vector<Eigen::Isometry3d> next = kinematics(f.hand).link_poses(pose, to);
+  const std::vector<int>& body = links_of(finger).body;
+  for (int link : f.links) {
     const auto l = static_cast<std::size_t>(link);
-    if (link_body_[l] < 0) continue;
-    environment.place(link_body_[l], next[l] * now[l].inverse());
+    if (body[l] < 0) continue;
+    environment.place(body[l], next[l] * now[l].inverse());
   }
 }
 
@@ -262,23 +312,48 @@ void HandTrialScene::hold_finger(solver::Environment& environment, int finger) c
   }
 }
 
-geometry::Vertices HandTrialScene::hand_surface_vertices(
-    const solver::Environment& environment) const {
-  geometry::Vertices vertices(rest_surface_.vertices.rows(), 3);
-  Eigen::Index row = 0;
-  for (int body : link_body_) {
+geometry::Vertices HandTrialScene::hand_vertices(const solver::Environment& environment,
+                                                 int h) const {
+  Eigen::Index rows = 0;
+  std::vector<geometry::Vertices> links;
+  for (int body : links_[static_cast<std::size_t>(h)].body) {
     if (body < 0) continue;
-    const geometry::Vertices link = environment.body_vertices(body);
+    links.push_back(environment.body_vertices(body));
+    rows += links.back().rows();
+  }
+  geometry::Vertices vertices(rows, 3);
+  Eigen::Index row = 0;
+  for (const geometry::Vertices& link : links) {
     vertices.middleRows(row, link.rows()) = link;
     row += link.rows();
   }
   return vertices;
 }
 
+geometry::Vertices HandTrialScene::hand_surface_vertices(
+    const solver::Environment& environment) const {
+  if (hands_.size() == 1) return hand_vertices(environment, 0);
+  const geometry::Vertices right = hand_vertices(environment, 0);
+  const geometry::Vertices left = hand_vertices(environment, 1);
+  geometry::Vertices both(right.rows() + left.rows(), 3);
+  both << right, left;
+  return both;
+}
+
 metrics::DistanceMetrics HandTrialScene::grasp_distances(
     const solver::Environment& environment) const {
   return object_.distances(environment,
                            hand_points_->positions(hand_surface_vertices(environment)));
+}
+
+std::vector<metrics::DistanceMetrics> HandTrialScene::hand_distances(
+    const solver::Environment& environment) const {
+  std::vector<metrics::DistanceMetrics> distances;
+  for (std::size_t h = 0; h < each_hand_points_.size(); ++h) {
+    distances.push_back(object_.distances(environment, each_hand_points_[h].positions(hand_vertices(
+                                                           environment, static_cast<int>(h)))));
+  }
+  return distances;
 }
 
 }  // namespace grip::trial

@@ -1,8 +1,8 @@
 #pragma once
 // The static part shared by every trial of one object and one dexterous hand (the LEAP-style
-// hand): the solver scene in hand-canonical placement (object at the world origin, hand frame =
-// world, joints at 0) with one kinematic body per link, its Model, the hand's fingers, how a
-// candidate places the hand and how a finger's joints move it.
+// hand), or two (bimanual: a right and a left hand): the solver scene in hand-canonical placement
+// (object at the world origin, each hand frame = world, joints at 0) with one body per link, its
+// Model, the hands' fingers, how a candidate places a hand and how a finger's joints move it.
 #include <array>
 #include <memory>
 #include <string>
@@ -33,13 +33,15 @@ struct HandTrialGrasp {
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contact_normals;
 };
 
-// A finger: a subtree of links hanging from the palm (the root link), named by its first
-// link's name up to the first '_' ("index_knuckle": "index").
+// A finger: a subtree of links hanging from the palm (the root link) of one hand, named by its
+// first link's name up to the first '_' ("index_knuckle": "index"; the second hand's fingers
+// are suffixed " 2").
 struct HandFinger {
   std::string name;
-  std::vector<int> links;   // kinematic tree links
+  int hand = 0;             // the hand it belongs to
+  std::vector<int> links;   // its hand's kinematic tree links
   std::vector<int> bodies;  // their solver bodies (links with a surface)
-  std::vector<int> dofs;    // the degrees of freedom that move it
+  std::vector<int> dofs;    // its hand's degrees of freedom that move it
 };
 
 class HandTrialScene {
@@ -50,34 +52,44 @@ class HandTrialScene {
   // an unusable object or parameters, or a hand without fingers.
   HandTrialScene(const TrialObject& object, grippers::HandModel hand, std::string name,
                  const TrialParameters& parameters);
+  // The same with one or two hands (bimanual: the right hand first, then the left). Each hand's
+  // links are one collision group (they do not touch each other; the other hand's they do).
+  // The first hand's bodies come first, as with one hand; the second's names are suffixed " 2".
+  HandTrialScene(const TrialObject& object, std::vector<grippers::HandModel> hands,
+                 std::string name, const TrialParameters& parameters);
   ~HandTrialScene();
   HandTrialScene(const HandTrialScene&) = delete;
   HandTrialScene& operator=(const HandTrialScene&) = delete;
 
   const std::shared_ptr<const solver::Model>& model() const { return model_; }
-  const grippers::HandModel& hand() const { return hand_; }
-  const grippers::KinematicTree& kinematics() const { return hand_.kinematics; }
+  int hand_count() const { return static_cast<int>(hands_.size()); }
+  const grippers::HandModel& hand(int h = 0) const {
+    return hands_.at(static_cast<std::size_t>(h));
+  }
+  const grippers::KinematicTree& kinematics(int h = 0) const { return hand(h).kinematics; }
   const std::string& name() const { return name_; }
   const TrialParameters& parameters() const { return parameters_; }
   bool soft_object() const { return object_.soft(); }
   int object_body() const { return 0; }
+
+  // Every hand's fingers, hand by hand.
   const std::vector<HandFinger>& fingers() const { return fingers_; }
 
-  // Throws std::out_of_range unless the grasp has one joint value per degree of freedom,
-  // within the limits, and as many contact normals as contacts.
-  void check(const HandTrialGrasp& grasp) const;
+  // Throws std::out_of_range unless the grasp has one joint value per degree of freedom of hand
+  // h, within the limits, and as many contact normals as contacts.
+  void check(const HandTrialGrasp& grasp, int h = 0) const;
 
-  // Moves the links of a fresh environment to the candidate's pose and joints
+  // Moves hand h's links of a fresh environment to the candidate's pose and joints
   // (Environment::place), holds them still and turns gravity off. Throws as check() does.
-  void place(solver::Environment& environment, const HandTrialGrasp& grasp) const;
+  void place(solver::Environment& environment, const HandTrialGrasp& grasp, int h = 0) const;
 
-  // The finger's closing direction in joint space at the candidate (zero outside its degrees of
-  // freedom), scaled so that its fastest pushed point moves 1 m per unit: the joint velocity
-  // J^T d summed over the points it pushes, each point p along d. Those are the candidate's
-  // contacts on this finger, pushed into the object (d = -normal), as DexGraspNet's evaluation
-  // does; a finger without one pushes its contact candidates (the hand points) along their own
-  // outward normals, i.e. the way its pad faces. A joint already at a limit is not pushed past
-  // it. Zero when the finger cannot move so.
+  // The finger's closing direction in its hand's joint space at `grasp`, its hand's candidate
+  // (zero outside its degrees of freedom), scaled so that its fastest pushed point moves 1 m per
+  // unit: the joint velocity J^T d summed over the points it pushes, each point p along d. Those
+  // are the candidate's contacts on this finger, pushed into the object (d = -normal), as
+  // DexGraspNet's evaluation does; a finger without one pushes its contact candidates (the hand
+  // points) along their own outward normals, i.e. the way its pad faces. A joint already at a limit
+  // is not pushed past it. Zero when the finger cannot move so.
   Eigen::VectorXd closing_direction(const HandTrialGrasp& grasp, int finger) const;
 
   // The finger's joints at `travel` along `direction` from `start` (clamped to the limits), and
@@ -98,8 +110,9 @@ class HandTrialScene {
                     const Eigen::VectorXd& from, const Eigen::VectorXd& to) const;
 
   // The hand's surface: every link with a surface in link order, each link's vertices in its
-  // mesh's order. rest_surface() has the joints at 0 in the hand frame (the dataset's gripper
-  // surface); hand_surface_vertices() is the same vertices in an environment now.
+  // mesh's order (hand after hand). rest_surface() has the joints at 0 in the hand frame (the
+  // dataset's gripper surface); hand_surface_vertices() is the same vertices in an environment
+  // now.
   const geometry::SurfaceMesh& rest_surface() const { return rest_surface_; }
   geometry::Vertices hand_surface_vertices(const solver::Environment& environment) const;
 
@@ -110,8 +123,11 @@ class HandTrialScene {
   }
 
   // D1/D2 now: the object's signed distance (its current surface) at the D1/D2 points, which
-  // are sampled once on the rest surface of the hand's links and follow them.
+  // are sampled once on the rest surface of the hands' links and follow them; and per hand, from
+  // points sampled on its own links (empty for one hand).
   metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const;
+  std::vector<metrics::DistanceMetrics> hand_distances(
+      const solver::Environment& environment) const;
 
   // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
   Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const {
@@ -119,18 +135,28 @@ class HandTrialScene {
   }
 
  private:
-  grippers::HandModel hand_;
+  // One hand's links: per link its body, finger and rest pose; its contact candidates' links.
+  struct HandLinks {
+    std::vector<int> body;          // its body, -1 without a surface
+    std::vector<int> finger;        // its finger (an index of fingers_), -1 for the palm
+    std::vector<int> contact_link;  // per contact candidate (hand points): its link
+    std::vector<Eigen::Isometry3d> rest_poses;  // joints at 0, hand frame = world
+  };
+
+  const HandLinks& links_of(int finger) const;
+  // Hand h's surface vertices now, the rows of hand_surface_vertices() it takes.
+  geometry::Vertices hand_vertices(const solver::Environment& environment, int h) const;
+
+  std::vector<grippers::HandModel> hands_;
   std::string name_;
   TrialParameters parameters_;
   ObjectBody object_;  // body 0
   std::vector<HandFinger> fingers_;
-  std::vector<int> link_body_;                      // per link: its body, -1 without a surface
-  std::vector<int> link_finger_;                    // per link: its finger, -1 for the palm
-  std::vector<int> contact_link_;                   // per contact candidate (hand points): its link
-  std::vector<Eigen::Isometry3d> rest_link_poses_;  // joints at 0, hand frame = world
+  std::vector<HandLinks> links_;
   geometry::SurfaceMesh rest_surface_;
   std::shared_ptr<const solver::Model> model_;
   std::unique_ptr<metrics::SurfacePoints> hand_points_;
+  std::vector<metrics::SurfacePoints> each_hand_points_;  // when there are two
 };
 
 }  // namespace grip::trial

@@ -12,6 +12,7 @@
 #include "io/candidate_record.hpp"
 #include "solver/diagnostics.hpp"
 #include "src/geometry/mesh.hpp"
+#include "src/metrics/distance_metrics.hpp"
 
 namespace grip::trial {
 
@@ -31,6 +32,9 @@ struct TrialOutcome {
   std::vector<long> steps_by_newton_iterations;
   // Where the solver's time went (solver::Environment::stage_seconds); not in the dataset.
   solver::StageSeconds stage_seconds;
+  // D1/D2 of each gripper's own surface at the settled grasp, for a bimanual trial (the record's
+  // d1/d2 are over both grippers' surfaces); empty for one gripper or no settled grasp.
+  std::vector<metrics::DistanceMetrics> gripper_distances;
   // Closing ended with every finger within force_tolerance of grip_force or at the end of its
   // path (TrialParameters), and the object was released.
   bool closed = false;

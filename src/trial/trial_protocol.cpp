@@ -93,6 +93,17 @@ io::FailureKind solver_failure_kind(solver::Failure failure) {
   return io::FailureKind::kNumerical;
 }
 
+// The dataset's layout of the grippers' poses: row-major 3x4 [R | t] per gripper.
+std::vector<double> pose_values(const std::vector<Eigen::Isometry3d>& poses) {
+  std::vector<double> values;
+  for (const Eigen::Isometry3d& pose : poses) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 4; ++c) values.push_back(pose.matrix()(r, c));
+    }
+  }
+  return values;
+}
+
 std::vector<float> as_floats(const geometry::Vertices& v) {
   std::vector<float> values(static_cast<std::size_t>(v.size()));
   for (Eigen::Index r = 0; r < v.rows(); ++r) {
@@ -158,13 +169,7 @@ class ProtocolRunner {
     TrialState& state = states_.back();
     io::CandidateRecord& record = state.outcome.result.record;
     record.id = options_.ids.empty() ? k : options_.ids.at(k);
-    record.hand_poses.resize(12);
-    const Eigen::Isometry3d& pose = gripper_.pose(k);
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 4; ++c) {
-        record.hand_poses[static_cast<std::size_t>(4 * r + c)] = pose.matrix()(r, c);
-      }
-    }
+    record.hand_poses = pose_values(gripper_.poses(k));
     record.joints = gripper_.joints(k, std::vector<double>(fingers_, 0.0));
     record.contact_friction =
         gripper_.model()->pair_friction(gripper_.object_body(), gripper_.finger_bodies(0).front());
@@ -286,10 +291,7 @@ class ProtocolRunner {
     }
     f.gripper_vertices = as_floats(gripper_.surface_vertices(env));
     f.object_pose = gripper_.object_pose(env);
-    const Eigen::Isometry3d& pose = gripper_.pose(state.candidate);
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 4; ++c) f.hand_pose[4 * r + c] = pose.matrix()(r, c);
-    }
+    f.hand_poses = pose_values(gripper_.poses(state.candidate));
     f.joints = gripper_.joints(state.candidate, state.travel());
     if (options_.body_frames) {
       f.bodies.time = env.time();
@@ -311,6 +313,7 @@ class ProtocolRunner {
     const metrics::DistanceMetrics d = gripper_.grasp_distances(env);
     state.outcome.result.record.d1 = d.d1;
     state.outcome.result.record.d2 = d.d2;
+    state.outcome.gripper_distances = gripper_.gripper_distances(env);
     if (gripper_.soft_object()) {
       const Eigen::VectorXd stress = gripper_.body_stress(env, gripper_.object_body());
       state.outcome.result.stress =

@@ -37,6 +37,7 @@ struct TrialRunOptions {
 // One gripper's side of a batch of trials: its scene (object, fingers, measurements) and its
 // candidates. Each finger closes along a path of its own, measured by its travel (m) from the
 // candidate's start: a parallel jaw along the closing axis, a hand's finger through its joints.
+// A bimanual trial is one TrialGripper with both grippers' fingers, the first gripper's first.
 class TrialGripper {
  public:
   virtual ~TrialGripper() = default;
@@ -65,18 +66,24 @@ class TrialGripper {
   // is kinematic and held as a spring by the protocol, a step behind.
   virtual bool driven_fingers() const { return false; }
 
-  // The candidate's pose (world from gripper) and joint values (the dataset's layout), and the
-  // joint values when its fingers have travelled `travel`.
-  virtual const Eigen::Isometry3d& pose(std::size_t k) const = 0;
+  // The candidate's pose per gripper (world from gripper; one, or two for a bimanual trial) and
+  // joint values (the dataset's layout: the grippers' one after the other), and the joint values
+  // when its fingers have travelled `travel`.
+  virtual std::vector<Eigen::Isometry3d> poses(std::size_t k) const = 0;
   virtual std::vector<double> joints(std::size_t k, const std::vector<double>& travel) const = 0;
 
   // The gripper's surface vertices in the dataset's order, now.
   virtual geometry::Vertices surface_vertices(const solver::Environment& environment) const = 0;
   // The object's pose now: row-major 3x4 [A | t], world from object frame.
   virtual std::array<double, 12> object_pose(const solver::Environment& environment) const = 0;
-  // D1/D2 now, from points fixed on the gripper's surface.
+  // D1/D2 now, from points fixed on the gripper's surface (both grippers' for a bimanual
+  // trial), and per gripper for a bimanual trial (empty for one gripper).
   virtual metrics::DistanceMetrics grasp_distances(
       const solver::Environment& environment) const = 0;
+  virtual std::vector<metrics::DistanceMetrics> gripper_distances(
+      const solver::Environment&) const {
+    return {};
+  }
   // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
   virtual Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const = 0;
 };

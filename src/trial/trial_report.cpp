@@ -19,6 +19,23 @@ nlohmann::ordered_json stage_json(const solver::StageSeconds& s) {
           {"diagnostics", s.diagnostics}};
 }
 
+// Per gripper: its fingers' closing forces (the record's, which lists the grippers' fingers one
+// gripper after the other) and its own D1/D2 at the settled grasp (NaN when not measured).
+nlohmann::ordered_json gripper_json(int grippers, const TrialOutcome& outcome) {
+  const std::vector<double>& forces = outcome.result.record.closing_forces;
+  const std::size_t per = forces.size() / static_cast<std::size_t>(grippers);
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (std::size_t g = 0; g < static_cast<std::size_t>(grippers); ++g) {
+    const bool measured = g < outcome.gripper_distances.size();
+    const auto first = forces.begin() + static_cast<std::ptrdiff_t>(g * per);
+    list.push_back(
+        {{"closing_forces", std::vector<double>(first, first + static_cast<std::ptrdiff_t>(per))},
+         {"d1", measured ? outcome.gripper_distances[g].d1 : TrialOutcome::nan},
+         {"d2", measured ? outcome.gripper_distances[g].d2 : TrialOutcome::nan}});
+  }
+  return list;
+}
+
 }  // namespace
 
 void write_report(std::ostream& out, const TrialReport& report,
@@ -27,6 +44,7 @@ void write_report(std::ostream& out, const TrialReport& report,
       {"object", report.object},       {"gripper", report.gripper},
       {"soft", report.soft},           {"threads", report.threads},
       {"candidates", outcomes.size()}, {"wall_seconds", report.wall_seconds}};
+  if (report.grippers > 1) root["bimanual"] = true;
   if (report.compared_solo) {
     root["solo_wall_seconds"] = report.solo_wall_seconds;
     root["speedup"] = report.solo_wall_seconds / report.wall_seconds;
@@ -35,24 +53,26 @@ void write_report(std::ostream& out, const TrialReport& report,
   nlohmann::ordered_json trials = nlohmann::ordered_json::array();
   for (const TrialOutcome& outcome : outcomes) {
     const io::CandidateRecord& r = outcome.result.record;
-    trials.push_back(nlohmann::ordered_json{{"id", r.id},
-                                            {"status", io::to_string(r.status)},
-                                            {"failure", io::to_string(r.failure)},
-                                            {"reason", outcome.failure_reason},
-                                            {"d1", r.d1},
-                                            {"d2", r.d2},
-                                            {"displacement", r.displacement},
-                                            {"closing_forces", r.closing_forces},
-                                            {"settle_displacement", outcome.settle_displacement},
-                                            {"center_displacement", outcome.center_displacement},
-                                            {"contact_friction", r.contact_friction},
-                                            {"newton",
-                                             {{"steps", r.newton.steps},
-                                              {"iterations", r.newton.iterations},
-                                              {"max_iterations", r.newton.max_iterations},
-                                              {"retries", r.newton.retries}}},
-                                            {"wall_time", r.wall_time},
-                                            {"stage_seconds", stage_json(outcome.stage_seconds)}});
+    nlohmann::ordered_json trial{{"id", r.id},
+                                 {"status", io::to_string(r.status)},
+                                 {"failure", io::to_string(r.failure)},
+                                 {"reason", outcome.failure_reason},
+                                 {"d1", r.d1},
+                                 {"d2", r.d2},
+                                 {"displacement", r.displacement},
+                                 {"closing_forces", r.closing_forces},
+                                 {"settle_displacement", outcome.settle_displacement},
+                                 {"center_displacement", outcome.center_displacement},
+                                 {"contact_friction", r.contact_friction},
+                                 {"newton",
+                                  {{"steps", r.newton.steps},
+                                   {"iterations", r.newton.iterations},
+                                   {"max_iterations", r.newton.max_iterations},
+                                   {"retries", r.newton.retries}}},
+                                 {"wall_time", r.wall_time},
+                                 {"stage_seconds", stage_json(outcome.stage_seconds)}};
+    if (report.grippers > 1) trial["grippers"] = gripper_json(report.grippers, outcome);
+    trials.push_back(std::move(trial));
   }
   root["trials"] = std::move(trials);
   // One line per candidate, with every double exactly (17 digits).

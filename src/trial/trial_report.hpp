@@ -1,7 +1,8 @@
 #pragma once
 // The JSON report of `grip trial` (docs/trial.md): the batch's object, gripper, threads and wall
 // time, the comparison with solo runs when asked for, and per candidate its verdict, the
-// solver's reason, D1/D2, displacements, closing forces, Newton statistics and wall time.
+// solver's reason, D1/D2, displacements, closing forces, Newton statistics and wall time; for a
+// bimanual trial also each gripper's closing forces and D1/D2.
 #include <ostream>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@ struct TrialReport {
   std::string object;  // the object's spec, as given
   std::string gripper;
   bool soft = false;
+  int grippers = 1;  // 2: a bimanual trial, reported per gripper too
   int threads = 1;
   double wall_seconds = 0.0;
   bool compared_solo = false;  // the candidates were also run one by one:

@@ -1,5 +1,6 @@
 #include "src/trial/trial_scene.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -30,25 +31,33 @@ solver::Pose to_pose(const Eigen::Isometry3d& isometry) {
 }  // namespace
 
 TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGripper& gripper,
-                       const TrialParameters& parameters)
+                       const TrialParameters& parameters, int grippers)
     : gripper_(gripper), parameters_(parameters), object_(object) {
   validate(parameters);
+  if (grippers < 1 || grippers > 2) {
+    throw std::invalid_argument("a trial takes one or two grippers, not " +
+                                std::to_string(grippers));
+  }
+  jaws_.resize(2 * static_cast<std::size_t>(grippers));
   solver::SceneDescription scene;
   scene.sim = parameters.sim;
   scene.sim.gravity = Eigen::Vector3d::Zero();
   scene.bodies.push_back(object_.description());
 
-  geometry::SurfaceMesh finger_mesh;  // both fingers over their body vertices
-  for (int j = 0; j < 2; ++j) {
+  geometry::SurfaceMesh finger_mesh;  // every finger over its body vertices
+  geometry::SurfaceMesh one_gripper;  // the first gripper's two fingers
+  for (std::size_t i = 0; i < jaws_.size(); ++i) {
+    const std::size_t j = i % 2;
+    const std::string suffix = std::string(kJawSuffix[j]) + (i < 2 ? "" : " 2");
     canonical_[j] = gripper.finger_pose(kJaws[j], gripper.max_opening);
     const solver::Pose pose = to_pose(canonical_[j]);
     solver::BodyDescription finger;
-    finger.name = std::string("finger") + kJawSuffix[j];
+    finger.name = "finger" + suffix;
     finger.pose = pose;
     if (gripper.soft_finger) {
       const grippers::FinRayFinger& soft = *gripper.soft_finger;
       solver::BodyDescription jaw;
-      jaw.name = std::string("jaw") + kJawSuffix[j];
+      jaw.name = "jaw" + suffix;
       jaw.type = solver::BodyType::kKinematic;
       jaw.pose = pose;
       const Eigen::Vector3d lower = soft.mesh.vertices.colwise().minCoeff();
@@ -60,7 +69,7 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
       block.vertices.col(2).array() += lower.z() - 0.5 * kJawBlockDepth;
       jaw.vertices = block.vertices;
       jaw.triangles = block.triangles;
-      jaws_[j].jaw = static_cast<int>(scene.bodies.size());
+      jaws_[i].jaw = static_cast<int>(scene.bodies.size());
       scene.bodies.push_back(std::move(jaw));
 
       finger.type = solver::BodyType::kFem;
@@ -69,14 +78,14 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
       finger.material.youngs = soft.material.youngs_modulus;
       finger.material.poisson = soft.material.poisson_ratio;
       finger.material.friction = soft.material.friction;
-      finger.pins.push_back({jaws_[j].jaw, soft.mount_vertices});
-      jaws_[j].finger = static_cast<int>(scene.bodies.size());
+      finger.pins.push_back({jaws_[i].jaw, soft.mount_vertices});
+      jaws_[i].finger = static_cast<int>(scene.bodies.size());
     } else {
       finger.type = solver::BodyType::kKinematic;
       finger.vertices = gripper.finger_surface.vertices;
       finger.triangles = gripper.finger_surface.triangles;
       finger.material.friction = parameters.rigid_finger_friction;
-      jaws_[j].jaw = jaws_[j].finger = static_cast<int>(scene.bodies.size());
+      jaws_[i].jaw = jaws_[i].finger = static_cast<int>(scene.bodies.size());
     }
     const int offset = static_cast<int>(finger_mesh.vertices.rows());
     geometry::SurfaceMesh next;
@@ -85,6 +94,7 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
     next.triangles.resize(finger_mesh.triangles.rows() + finger.triangles.rows(), 3);
     next.triangles << finger_mesh.triangles, (finger.triangles.array() + offset).matrix();
     finger_mesh = std::move(next);
+    if (i == 1) one_gripper = finger_mesh;
     scene.bodies.push_back(std::move(finger));
   }
 
@@ -92,9 +102,8 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
   // gripper, whatever the object); other fingers combine sqrt(mu_object mu_finger), so that the
   // object's own mu matters against rigid jaws and hand links (docs/trial.md, "Friction").
   if (gripper.soft_finger) {
-    for (int j = 0; j < 2; ++j) {
-      scene.contacts.push_back(
-          {object_body(), jaws_[j].finger, gripper.soft_finger->material.friction});
+    for (const JawBodies& jaw : jaws_) {
+      scene.contacts.push_back({object_body(), jaw.finger, gripper.soft_finger->material.friction});
     }
   }
 
@@ -112,19 +121,24 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
   }
   finger_points_ = std::make_unique<metrics::SurfacePoints>(finger_mesh, parameters.metric_samples,
                                                             parameters.metric_seed);
+  if (grippers > 1) {
+    gripper_points_ = std::make_unique<metrics::SurfacePoints>(
+        one_gripper, parameters.metric_samples, parameters.metric_seed);
+  }
 
   object_.bind(model_);
 }
 
 TrialScene::~TrialScene() = default;
 
-void TrialScene::place(solver::Environment& environment, const ParallelGrasp& grasp) const {
+void TrialScene::place(solver::Environment& environment, const ParallelGrasp& grasp, int g) const {
   for (int j = 0; j < 2; ++j) {
+    const JawBodies& bodies = jaws_.at(static_cast<std::size_t>(2 * g + j));
     const Eigen::Isometry3d motion =
         grasp.pose * gripper_.finger_pose(kJaws[j], grasp.opening) * canonical_[j].inverse();
-    environment.place(jaws_[j].jaw, motion);
-    if (jaws_[j].finger != jaws_[j].jaw) environment.place(jaws_[j].finger, motion);
-    environment.set_script(jaws_[j].jaw, solver::Script{});
+    environment.place(bodies.jaw, motion);
+    if (bodies.finger != bodies.jaw) environment.place(bodies.finger, motion);
+    environment.set_script(bodies.jaw, solver::Script{});
   }
   environment.set_gravity(Eigen::Vector3d::Zero());
 }
@@ -132,9 +146,10 @@ void TrialScene::place(solver::Environment& environment, const ParallelGrasp& gr
 void TrialScene::advance_jaw(solver::Environment& environment, const ParallelGrasp& grasp, int jaw,
                              double distance) const {
   const Eigen::Isometry3d motion(
-      Eigen::Translation3d(closing_velocity(grasp, kJaws[jaw], distance)));
-  environment.place(jaws_[jaw].jaw, motion);
-  if (jaws_[jaw].finger != jaws_[jaw].jaw) environment.place(jaws_[jaw].finger, motion);
+      Eigen::Translation3d(closing_velocity(grasp, kJaws[jaw % 2], distance)));
+  const JawBodies& bodies = jaws_.at(static_cast<std::size_t>(jaw));
+  environment.place(bodies.jaw, motion);
+  if (bodies.finger != bodies.jaw) environment.place(bodies.finger, motion);
 }
 
 Eigen::Vector3d TrialScene::closing_velocity(const ParallelGrasp& grasp, grippers::Jaw jaw,
@@ -146,8 +161,8 @@ Eigen::Vector3d TrialScene::closing_velocity(const ParallelGrasp& grasp, gripper
 geometry::Vertices TrialScene::gripper_surface_vertices(
     const solver::Environment& environment) const {
   const Eigen::Index per_finger = surface_to_body_.size();
-  geometry::Vertices vertices(2 * per_finger, 3);
-  for (int j = 0; j < 2; ++j) {
+  geometry::Vertices vertices(static_cast<Eigen::Index>(jaws_.size()) * per_finger, 3);
+  for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(jaws_.size()); ++j) {
     const geometry::Vertices body = environment.body_vertices(jaws_[j].finger);
     for (Eigen::Index v = 0; v < per_finger; ++v) {
       vertices.row(j * per_finger + v) = body.row(surface_to_body_[v]);
@@ -157,27 +172,50 @@ geometry::Vertices TrialScene::gripper_surface_vertices(
 }
 
 int TrialScene::gripper_surface_vertex_count() const {
-  return 2 * static_cast<int>(surface_to_body_.size());
+  return static_cast<int>(jaws_.size() * surface_to_body_.size());
 }
 
 metrics::DistanceMetrics TrialScene::grasp_distances(const solver::Environment& environment) const {
-  return object_.distances(environment, finger_points_->positions(finger_vertices(environment)));
+  return object_.distances(
+      environment, finger_points_->positions(finger_vertices(environment, 0, gripper_count())));
+}
+
+std::vector<metrics::DistanceMetrics> TrialScene::gripper_distances(
+    const solver::Environment& environment) const {
+  std::vector<metrics::DistanceMetrics> distances;
+  if (!gripper_points_) return distances;
+  for (int g = 0; g < gripper_count(); ++g) {
+    distances.push_back(object_.distances(
+        environment, gripper_points_->positions(finger_vertices(environment, g, g + 1))));
+  }
+  return distances;
 }
 
 Eigen::VectorXd TrialScene::body_stress(const solver::Environment& environment, int body) const {
   if (body == object_body()) return object_.stress(environment);
-  if (!gripper_.soft_finger || (body != jaws_[0].finger && body != jaws_[1].finger)) return {};
+  const bool finger = std::any_of(jaws_.begin(), jaws_.end(),
+                                  [&](const JawBodies& jaw) { return jaw.finger == body; });
+  if (!gripper_.soft_finger || !finger) return {};
   const solver::Material& material = model_->bodies()[body].material;
   return metrics::von_mises_stress(gripper_.soft_finger->mesh, environment.body_vertices(body),
                                    material.youngs, material.poisson);
 }
 
-geometry::Vertices TrialScene::finger_vertices(const solver::Environment& environment) const {
-  const geometry::Vertices a = environment.body_vertices(jaws_[0].finger);
-  const geometry::Vertices b = environment.body_vertices(jaws_[1].finger);
-  geometry::Vertices both(a.rows() + b.rows(), 3);
-  both << a, b;
-  return both;
+geometry::Vertices TrialScene::finger_vertices(const solver::Environment& environment, int first,
+                                               int last) const {
+  std::vector<geometry::Vertices> bodies;
+  Eigen::Index rows = 0;
+  for (int i = 2 * first; i < 2 * last; ++i) {
+    bodies.push_back(environment.body_vertices(jaws_[static_cast<std::size_t>(i)].finger));
+    rows += bodies.back().rows();
+  }
+  geometry::Vertices all(rows, 3);
+  Eigen::Index row = 0;
+  for (const geometry::Vertices& v : bodies) {
+    all.middleRows(row, v.rows()) = v;
+    row += v.rows();
+  }
+  return all;
 }
 
 }  // namespace grip::trial

@@ -1,8 +1,8 @@
 #pragma once
-// The static part shared by every trial of one object and one parallel gripper: the solver
-// scene in gripper-canonical placement (object at the world origin, gripper frame = world,
-// jaws at the widest opening), its Model, which body plays which role, and how one candidate
-// places the gripper in an environment of that Model.
+// The static part shared by every trial of one object and one parallel gripper, or two of one
+// kind (bimanual): the solver scene in gripper-canonical placement (object at the world origin,
+// each gripper's frame = world, jaws at the widest opening), its Model, which body plays which
+// role, and how one candidate places each gripper in an environment of that Model.
 #include <array>
 #include <memory>
 #include <vector>
@@ -28,7 +28,7 @@ struct ParallelGrasp {
   double opening = 0.0;
 };
 
-// Body roles per jaw, in grippers::Jaw order (kPositive, kNegative).
+// Body roles per jaw: gripper by gripper, each in grippers::Jaw order (kPositive, kNegative).
 struct JawBodies {
   int jaw = -1;     // the kinematic body that moves (rigid: the finger itself)
   int finger = -1;  // the body whose contact force with the object stops the jaw
@@ -38,9 +38,11 @@ class TrialScene {
  public:
   // Builds the scene and its Model. Soft fingers are FEM bodies pinned by their mount
   // vertices to a kinematic jaw block behind the mount; rigid fingers are kinematic.
+  // `grippers` copies of the gripper (1, or 2 for a bimanual trial); the first copy's bodies
+  // come first, named as one gripper's ("finger+"), the second's suffixed " 2".
   // Throws std::invalid_argument (naming the object) for an unusable object or parameters.
   TrialScene(const TrialObject& object, const grippers::ParallelGripper& gripper,
-             const TrialParameters& parameters);
+             const TrialParameters& parameters, int grippers = 1);
   ~TrialScene();
   TrialScene(const TrialScene&) = delete;
   TrialScene& operator=(const TrialScene&) = delete;
@@ -50,14 +52,16 @@ class TrialScene {
   const TrialParameters& parameters() const { return parameters_; }
   bool soft_object() const { return object_.soft(); }
   int object_body() const { return 0; }
-  const std::array<JawBodies, 2>& jaws() const { return jaws_; }
+  int gripper_count() const { return static_cast<int>(jaws_.size()) / 2; }
+  // 2 per gripper: jaws()[2 g + j] is jaw j of gripper g.
+  const std::vector<JawBodies>& jaws() const { return jaws_; }
 
-  // Moves the gripper's bodies of a fresh environment to the candidate's pose and opening
-  // (Environment::place) and holds its jaws still. Throws std::out_of_range for an opening
-  // outside the gripper's range.
-  void place(solver::Environment& environment, const ParallelGrasp& grasp) const;
-  // Before the first step: moves one jaw (and its finger) `distance` m further along its
-  // closing path (negative: back).
+  // Moves gripper g's bodies of a fresh environment to the candidate's pose and opening
+  // (Environment::place), holds its jaws still and turns gravity off. Throws std::out_of_range
+  // for an opening outside the gripper's range.
+  void place(solver::Environment& environment, const ParallelGrasp& grasp, int g = 0) const;
+  // Before the first step: moves one jaw (an index of jaws()) and its finger `distance` m
+  // further along its closing path (negative: back); `grasp` is its gripper's.
   void advance_jaw(solver::Environment& environment, const ParallelGrasp& grasp, int jaw,
                    double distance) const;
 
@@ -65,8 +69,8 @@ class TrialScene {
   Eigen::Vector3d closing_velocity(const ParallelGrasp& grasp, grippers::Jaw jaw,
                                    double speed) const;
 
-  // The gripper's surface vertices in the dataset's order (gripper.surface(): positive finger,
-  // then negative), gathered from the environment's finger bodies.
+  // The grippers' surface vertices in the dataset's order (per gripper gripper.surface():
+  // positive finger, then negative), gathered from the environment's finger bodies.
   geometry::Vertices gripper_surface_vertices(const solver::Environment& environment) const;
   int gripper_surface_vertex_count() const;
 
@@ -77,23 +81,30 @@ class TrialScene {
   }
 
   // D1/D2 now: the object's signed distance (its current surface) at the D1/D2 points, which
-  // are sampled once on the fingers' rest surfaces and follow the fingers.
+  // are sampled once on the fingers' rest surfaces (every gripper's) and follow the fingers;
+  // and per gripper, from points sampled on its own fingers (empty for one gripper).
   metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const;
+  std::vector<metrics::DistanceMetrics> gripper_distances(
+      const solver::Environment& environment) const;
 
   // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
   Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const;
 
  private:
-  geometry::Vertices finger_vertices(const solver::Environment& environment) const;
+  // The fingers' body vertices of grippers [first, last), in jaws() order.
+  geometry::Vertices finger_vertices(const solver::Environment& environment, int first,
+                                     int last) const;
 
   grippers::ParallelGripper gripper_;
   TrialParameters parameters_;
   ObjectBody object_;  // body 0
-  std::array<JawBodies, 2> jaws_;
+  std::vector<JawBodies> jaws_;
   std::array<Eigen::Isometry3d, 2> canonical_;  // finger frames at the widest opening
   Eigen::VectorXi surface_to_body_;             // finger_surface vertex -> finger body vertex
   std::shared_ptr<const solver::Model> model_;
   std::unique_ptr<metrics::SurfacePoints> finger_points_;
+  // On one gripper's fingers (every gripper's rest surface is the same), when there are two.
+  std::unique_ptr<metrics::SurfacePoints> gripper_points_;
 };
 
 }  // namespace grip::trial

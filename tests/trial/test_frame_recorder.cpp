@@ -9,6 +9,7 @@ namespace {
 RecordedFrame tagged(double step) {
   RecordedFrame frame;
   frame.joints = {step};
+  frame.hand_poses.assign(12, 0.0);
   frame.object_vertices = {float(step), 0.f, 0.f};
   frame.contact_forces = {0.f, float(step), 0.f};
   frame.friction_forces = {0.f, 0.f, float(step)};

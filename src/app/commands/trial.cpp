@@ -2,12 +2,15 @@
 // report, optional VTK frame series and an optional check against solo runs (docs/trial.md).
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "solver/batch/batch.hpp"
 #include "src/app/commands.hpp"
@@ -96,6 +99,7 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
   report.object = *args.object;
   report.gripper = *args.gripper;
   report.soft = args.soft;
+  report.grippers = args.bimanual ? 2 : 1;
   report.threads = solver::Batch(args.threads).threads();
   report.wall_seconds = seconds;
   report.compared_solo = args.compare_solo;
@@ -154,17 +158,33 @@ int trial(const TrialArgs& given) {
   if (candidates.empty()) throw std::invalid_argument(given.candidates + ": no candidates");
   const TrialArgs args = with_file_object(given, file);
   const grippers::GripperType& type = grippers::gripper_type(*args.gripper);
+  // A candidate file holds one kind of candidate (write_candidates refuses a mix): the first
+  // says whether the file is bimanual.
+  const bool file_bimanual = candidates.front().hands.size() == 2;
+  if (file_bimanual && !args.bimanual) {
+    throw std::invalid_argument(args.candidates +
+                                ": the candidates are bimanual (two grippers each); pass "
+                                "--bimanual to run them, or give a unimanual candidate file");
+  }
+  if (!file_bimanual && args.bimanual) {
+    throw std::invalid_argument(args.candidates +
+                                ": the candidates are unimanual (one gripper each), not bimanual; "
+                                "leave --bimanual out or synthesize with grip synth --bimanual");
+  }
+  const std::size_t hands = args.bimanual ? 2 : 1;
   const std::vector<std::size_t> indices = parse_indices(args.index, candidates.size());
   std::vector<std::uint64_t> ids;
   for (std::size_t i : indices) {
     const synth::Candidate& c = candidates[i];
-    if (c.gripper != type.kind || c.hands.size() != 1 ||
-        c.hands.front().joints.size() != type.joints) {
-      throw std::invalid_argument(args.candidates + ": candidate " + std::to_string(i) +
-                                  " is for '" +
-                                  std::string(grippers::gripper_type(c.gripper).name) + "' with " +
-                                  std::to_string(c.hands.size()) + " hand(s), not one '" +
-                                  *args.gripper + "'; synthesize with the same --gripper");
+    const bool joints_fit = std::all_of(c.hands.begin(), c.hands.end(), [&](const auto& hand) {
+      return hand.joints.size() == type.joints;
+    });
+    if (c.gripper != type.kind || c.hands.size() != hands || !joints_fit) {
+      throw std::invalid_argument(
+          args.candidates + ": candidate " + std::to_string(i) + " is for '" +
+          std::string(grippers::gripper_type(c.gripper).name) + "' with " +
+          std::to_string(c.hands.size()) + " hand(s), not " + (hands == 1 ? "one" : "two") + " '" +
+          *args.gripper + "'; synthesize with the same --gripper");
     }
     ids.push_back(i);
   }
@@ -196,25 +216,54 @@ int trial(const TrialArgs& given) {
   parameters.squeeze_speed = args.squeeze_speed;
   parameters.grip_force = args.grip_force;
 
+  const auto hand_grasp = [](const synth::HandGrasp& hand) {
+    return trial::HandTrialGrasp{hand.pose, hand.joints, hand.contacts, hand.contact_normals};
+  };
+  const auto parallel_grasp = [](const synth::HandGrasp& hand) {
+    return trial::ParallelGrasp{hand.pose, hand.joints[0]};
+  };
+  if (type.is_hand() && args.bimanual) {
+    // The file's second hand is the left one (grip synth --bimanual).
+    std::vector<grippers::HandModel> models;
+    models.push_back(grippers::make_hand(type.kind, grippers::HandSide::kRight));
+    models.push_back(grippers::make_hand(type.kind, grippers::HandSide::kLeft));
+    const trial::HandTrialScene scene(object, std::move(models), std::string(type.name),
+                                      parameters);
+    std::vector<std::array<trial::HandTrialGrasp, 2>> grasps;
+    for (std::size_t i : indices) {
+      grasps.push_back({hand_grasp(candidates[i].hands[0]), hand_grasp(candidates[i].hands[1])});
+    }
+    return run_and_report(args, scene, grasps, ids,
+                          [](const auto& s, const auto& g, const auto& o) {
+                            return trial::run_bimanual_hand_trials(s, g, o);
+                          });
+  }
   if (type.is_hand()) {
     const trial::HandTrialScene scene(object,
                                       grippers::make_hand(type.kind, grippers::HandSide::kRight),
                                       std::string(type.name), parameters);
     std::vector<trial::HandTrialGrasp> grasps;
-    for (std::size_t i : indices) {
-      const synth::HandGrasp& hand = candidates[i].hands.front();
-      grasps.push_back({hand.pose, hand.joints, hand.contacts, hand.contact_normals});
-    }
+    for (std::size_t i : indices) grasps.push_back(hand_grasp(candidates[i].hands.front()));
     return run_and_report(args, scene, grasps, ids,
                           [](const auto& s, const auto& g, const auto& o) {
                             return trial::run_hand_trials(s, g, o);
                           });
   }
-  const trial::TrialScene scene(object, grippers::make_parallel_gripper(type.kind), parameters);
-  std::vector<trial::ParallelGrasp> grasps;
-  for (std::size_t i : indices) {
-    grasps.push_back({candidates[i].hands.front().pose, candidates[i].hands.front().joints[0]});
+  const trial::TrialScene scene(object, grippers::make_parallel_gripper(type.kind), parameters,
+                                static_cast<int>(hands));
+  if (args.bimanual) {
+    std::vector<std::array<trial::ParallelGrasp, 2>> grasps;
+    for (std::size_t i : indices) {
+      grasps.push_back(
+          {parallel_grasp(candidates[i].hands[0]), parallel_grasp(candidates[i].hands[1])});
+    }
+    return run_and_report(args, scene, grasps, ids,
+                          [](const auto& s, const auto& g, const auto& o) {
+                            return trial::run_bimanual_trials(s, g, o);
+                          });
   }
+  std::vector<trial::ParallelGrasp> grasps;
+  for (std::size_t i : indices) grasps.push_back(parallel_grasp(candidates[i].hands.front()));
   return run_and_report(args, scene, grasps, ids, [](const auto& s, const auto& g, const auto& o) {
     return trial::run_trials(s, g, o);
   });
