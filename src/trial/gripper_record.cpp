@@ -6,11 +6,14 @@ namespace grip::trial {
 
 namespace {
 
-void set_surface(io::GripperRecord& record, const geometry::SurfaceMesh& surface) {
-  record.vertices.assign(surface.vertices.data(),
+// Appends one hand's surface (row-major, as the meshes store it) after the hands before it.
+void add_surface(io::GripperRecord& record, const geometry::SurfaceMesh& surface) {
+  const auto offset = static_cast<std::int32_t>(record.vertex_count());
+  record.vertices.insert(record.vertices.end(), surface.vertices.data(),
                          surface.vertices.data() + surface.vertices.size());
-  record.triangles.assign(surface.triangles.data(),
-                          surface.triangles.data() + surface.triangles.size());
+  for (Eigen::Index i = 0; i < surface.triangles.size(); ++i) {
+    record.triangles.push_back(surface.triangles.data()[i] + offset);
+  }
 }
 
 // A bimanual setting is its own gripper record, named apart from the one-gripper setting.
@@ -29,7 +32,8 @@ io::GripperRecord gripper_record(const TrialScene& scene) {
   record.soft = gripper.soft_finger.has_value();
   record.joint_names = {"opening"};
   record.finger_names = {"positive", "negative"};
-  set_surface(record, gripper.surface(gripper.max_opening));
+  const geometry::SurfaceMesh surface = gripper.surface(gripper.max_opening);
+  for (int g = 0; g < scene.gripper_count(); ++g) add_surface(record, surface);
   return record;
 }
 
@@ -59,7 +63,7 @@ io::GripperRecord gripper_record(const HandTrialScene& scene) {
                                   " differs from the first in its joints, fingers or surface size");
     }
   }
-  set_surface(record, scene.hand_rest_surface(0));
+  for (int h = 0; h < scene.hand_count(); ++h) add_surface(record, scene.hand_rest_surface(h));
   return record;
 }
 
