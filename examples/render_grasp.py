@@ -109,9 +109,8 @@ class Trial:
         self.triangles = obj["triangles"][:]
         self.object_vertices = [frames["object_vertices"][slot, i].astype(float)
                                 for i in self.frame_numbers]
-        hands, g = int(gripper.attrs["hands"]), len(gripper["vertices"])
-        self.gripper_triangles = np.concatenate(
-            [gripper["triangles"][:] + h * g for h in range(hands)])
+        # Every hand's surface, hand after hand, as the frames' gripper vertices run.
+        self.gripper_triangles = gripper["triangles"][:]
         self.gripper_vertices = [frames["gripper_vertices"][slot, i].astype(float)
                                  for i in self.frame_numbers]
         if self.info["soft"] and len(obj["tets"]):

@@ -101,9 +101,10 @@ class RunnerCache {
       if (k == key) return *runner;
     }
     if (runners_.size() == kKept) runners_.erase(runners_.begin());
-    runners_.emplace_back(key,
-                          std::make_unique<TrialRunner>(trial_object(plan_.dataset.objects[object]),
-                                                        job_.grippers[gripper].kind, job_.trial));
+    runners_.emplace_back(
+        key, std::make_unique<TrialRunner>(trial_object(plan_.dataset.objects[object]),
+                                           job_.grippers[gripper].kind,
+                                           job_.grippers[gripper].bimanual, job_.trial));
     return *runners_.back().second;
   }
 
@@ -139,7 +140,7 @@ std::string trial_failure(int rank, const WorkUnit& unit, const FarmPlan& plan, 
          std::to_string(unit.ids.front()) + " to " + std::to_string(unit.ids.back()) + " (" +
          plan.dataset.objects[unit.object].name + " with " +
          std::string(grippers::gripper_type(job.grippers[unit.gripper].kind).name) +
-         ") failed: " + what +
+         (job.grippers[unit.gripper].bimanual ? ", bimanual" : "") + ") failed: " + what +
          "; the results committed so far are kept (grip farm --resume continues)";
 }
 

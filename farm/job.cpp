@@ -122,13 +122,29 @@ GripperSetting read_gripper(const Table& t) {
     t.fail("name", "is \"" + name + "\" but must be one of " + names);
   }
   setting.kind = type->kind;
-  if (t.boolean_or("bimanual", false)) {
-    t.fail("bimanual",
-           "bimanual trials are not implemented yet (grip synth --bimanual "
-           "synthesizes bimanual candidates); set bimanual = false");
-  }
+  setting.bimanual = t.boolean_or("bimanual", false);
   setting.candidates = positive_integer(t, "candidates", setting.candidates);
   return setting;
+}
+
+// A setting (gripper and bimanual) given twice would be two gripper records of the same
+// grippers whose candidates differ only by their synthesis stream: refused on the second entry.
+void check_distinct_settings(const std::vector<Table>& tables,
+                             const std::vector<GripperSetting>& settings) {
+  for (std::size_t b = 1; b < settings.size(); ++b) {
+    for (std::size_t a = 0; a < b; ++a) {
+      if (settings[a].kind != settings[b].kind || settings[a].bimanual != settings[b].bimanual) {
+        continue;
+      }
+      const std::string which = std::string(settings[b].bimanual ? "bimanual " : "unimanual ") +
+                                "'" + std::string(grippers::gripper_type(settings[b].kind).name) +
+                                "'";
+      tables[b].fail(tables[b].has("bimanual") ? "bimanual" : "name",
+                     "repeats the " + which + " setting of the entry at " +
+                         tables[a].location("name") +
+                         "; give each setting once and raise its candidates instead");
+    }
+  }
 }
 
 void read_randomization(const Table& t, objects::RandomizationRanges& r) {
@@ -271,8 +287,9 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
   for (const Table& group : root.tables("objects"))
     job.objects.push_back(read_object_group(group, job_dir));
   if (job.objects.empty()) root.fail("objects", "the job needs at least one [[objects]] entry");
-  for (const Table& gripper : root.tables("grippers"))
-    job.grippers.push_back(read_gripper(gripper));
+  const std::vector<Table> gripper_tables = root.tables("grippers");
+  for (const Table& gripper : gripper_tables) job.grippers.push_back(read_gripper(gripper));
+  check_distinct_settings(gripper_tables, job.grippers);
   if (job.grippers.empty()) root.fail("grippers", "the job needs at least one [[grippers]] entry");
 
   if (auto t = root.optional_table("randomization")) read_randomization(*t, job.randomization);

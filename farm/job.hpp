@@ -33,7 +33,8 @@ struct ObjectGroup {
 // One [[grippers]] entry.
 struct GripperSetting {
   grippers::GripperKind kind = grippers::GripperKind::kParallelJaw;
-  int candidates = 16;  // synthesized per object
+  bool bimanual = false;  // two grippers of the kind (a hand: a right and a left one)
+  int candidates = 16;    // synthesized per object
 };
 
 struct Job {

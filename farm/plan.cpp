@@ -21,15 +21,16 @@ std::vector<synth::Candidate> synthesize_for(const Job& job, const FarmObject& o
   params.antipodal.d_hat = params.hand.clearance.d_hat = d_hat;
   params.antipodal.margin = params.hand.clearance.margin = job.synthesis_margin;
   params.hand.steps = job.synthesis_steps;
-  // Unimanual only: the job refuses bimanual settings until the trial runs them.
+  params.bimanual.hand_clearance = d_hat + job.synthesis_margin;
   synth::SynthesisResult result = synth::synthesize(
-      prepared, gripper.kind, /*bimanual=*/false, params, object.seed ^ stream, gripper.candidates);
+      prepared, gripper.kind, gripper.bimanual, params, object.seed ^ stream, gripper.candidates);
   if (static_cast<int>(result.candidates.size()) < gripper.candidates) {
     spdlog::warn(
-        "{} x {}: {} of {} candidates after {} attempts (the object may not fit the "
+        "{} x {}{}: {} of {} candidates after {} attempts (the object may not fit the "
         "gripper)",
-        object.name, grippers::gripper_type(gripper.kind).name, result.candidates.size(),
-        gripper.candidates, result.attempts);
+        object.name, grippers::gripper_type(gripper.kind).name,
+        gripper.bimanual ? " (bimanual)" : "", result.candidates.size(), gripper.candidates,
+        result.attempts);
   }
   return std::move(result.candidates);
 }
@@ -111,7 +112,8 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads, LiveProgress& pro
   // object's scene: a gripper's record does not depend on the object).
   const trial::TrialObject first = trial_object(plan.dataset.objects.front());
   for (const GripperSetting& gripper : job.grippers) {
-    io::GripperRecord record = TrialRunner(first, gripper.kind, job.trial).gripper_record();
+    io::GripperRecord record =
+        TrialRunner(first, gripper.kind, gripper.bimanual, job.trial).gripper_record();
     plan.dataset.grippers.push_back(std::move(record));
   }
   plan.dataset.closing_frames = static_cast<std::uint32_t>(job.trial.closing_frames);

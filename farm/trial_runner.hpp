@@ -1,6 +1,7 @@
 #pragma once
-// One object's trials with one gripper of the job, whichever kind: the trial scene (its solver
-// Model, shared by every environment) built once, then work units of candidates run through it.
+// One object's trials with one gripper setting of the job, whichever kind, one gripper or two
+// (bimanual): the trial scene (its solver Model, shared by every environment) built once, then
+// work units of candidates run through it.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -18,7 +19,9 @@ namespace grip::farm {
 
 class TrialRunner {
  public:
-  TrialRunner(const trial::TrialObject& object, grippers::GripperKind gripper,
+  // bimanual: two grippers of the kind (two parallel grippers, or a right and a left hand), run
+  // from candidates with two hands (the second hand is the left one).
+  TrialRunner(const trial::TrialObject& object, grippers::GripperKind gripper, bool bimanual,
               const trial::TrialParameters& parameters);
   ~TrialRunner();
   TrialRunner(const TrialRunner&) = delete;
@@ -27,6 +30,7 @@ class TrialRunner {
   io::GripperRecord gripper_record() const;
 
   // The candidates' trials as one solver::Batch on `threads` threads; outcome k carries ids[k].
+  // Throws std::invalid_argument for a candidate with other than the runner's number of hands.
   // after_step: trial::TrialRunOptions' (may be empty).
   std::vector<trial::TrialOutcome> run(const std::vector<const synth::Candidate*>& candidates,
                                        const std::vector<std::uint64_t>& ids, int threads,
@@ -36,6 +40,7 @@ class TrialRunner {
  private:
   struct Scene;
   std::unique_ptr<Scene> scene_;
+  bool bimanual_ = false;
 };
 
 }  // namespace grip::farm

@@ -72,9 +72,15 @@ DatasetLayout DatasetLayout::from_plan(const DatasetPlan& plan) {
       plan_error("gripper " + std::to_string(g) + " ('" + gripper.name +
                  "') has vertices or triangles that are not whole (3 values each)");
     }
+    if (gripper.vertex_count() % gripper.hands != 0) {
+      plan_error("gripper " + std::to_string(g) + " ('" + gripper.name + "') has " +
+                 std::to_string(gripper.vertex_count()) +
+                 " vertices, not as many for each of its " + std::to_string(gripper.hands) +
+                 " hands");
+    }
     const Gripper sizes{gripper.hands, static_cast<std::uint32_t>(gripper.joint_names.size()),
                         static_cast<std::uint32_t>(gripper.finger_names.size()),
-                        gripper.vertex_count()};
+                        gripper.vertex_count() / gripper.hands};
     layout.grippers.push_back(sizes);
     layout.max_hands = std::max(layout.max_hands, sizes.hands);
     layout.max_joints = std::max(layout.max_joints, sizes.joints);
@@ -222,7 +228,13 @@ void read_grippers(hid_t file, std::uint32_t count, DatasetLayout& layout) {
     gripper.hands = count_attribute(group, path, "hands", 1, layout.max_hands);
     gripper.joints = static_cast<std::uint32_t>(rows_of(file, path + "/joint_names", {}));
     gripper.fingers = static_cast<std::uint32_t>(rows_of(file, path + "/finger_names", {}));
-    gripper.vertices = rows_of(file, path + "/vertices", {3});
+    const std::uint64_t vertices = rows_of(file, path + "/vertices", {3});
+    if (vertices % gripper.hands != 0) {
+      throw DatasetError(path + "/vertices has " + std::to_string(vertices) +
+                         " rows, not as many for each of its " + std::to_string(gripper.hands) +
+                         " hands");
+    }
+    gripper.vertices = vertices / gripper.hands;
     rows_of(file, path + "/triangles", {3});
     if (gripper.joints > layout.max_joints || gripper.fingers > layout.max_fingers) {
       throw DatasetError(path + " has " + std::to_string(gripper.joints) + " joints and " +

@@ -15,10 +15,12 @@ struct GripperRecord {
   std::uint32_t hands = 1;                // 1, or 2 for bimanual
   std::vector<std::string> joint_names;   // per hand; m for prismatic, rad for revolute
   std::vector<std::string> finger_names;  // per hand; closing forces follow this order
-  std::vector<double> vertices;           // 3 per vertex, m, one hand's surface at rest
-  std::vector<std::int32_t> triangles;    // 3 per triangle
+  // 3 per vertex, m: every hand's surface at rest in its own hand frame, hand after hand, as
+  // many vertices each (a left hand mirrors the right: the same names, another surface).
+  std::vector<double> vertices;
+  std::vector<std::int32_t> triangles;  // 3 per triangle, into all hands' vertices
 
-  std::size_t vertex_count() const { return vertices.size() / 3; }
+  std::size_t vertex_count() const { return vertices.size() / 3; }  // of all hands
 };
 
 }  // namespace grip::io

@@ -149,6 +149,7 @@ HandTrialScene::HandTrialScene(const TrialObject& object, std::vector<grippers::
       each_hand_points_.emplace_back(surface, parameters.metric_samples, parameters.metric_seed);
     }
   }
+  hand_rest_surfaces_ = std::move(hand_surfaces);
   object_.bind(model_);
 }
 

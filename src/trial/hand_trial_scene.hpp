@@ -114,6 +114,10 @@ class HandTrialScene {
   // dataset's gripper surface); hand_surface_vertices() is the same vertices in an environment
   // now.
   const geometry::SurfaceMesh& rest_surface() const { return rest_surface_; }
+  // Hand h's rows of rest_surface(), in its own hand frame (the left hand mirrors the right).
+  const geometry::SurfaceMesh& hand_rest_surface(int h) const {
+    return hand_rest_surfaces_.at(static_cast<std::size_t>(h));
+  }
   geometry::Vertices hand_surface_vertices(const solver::Environment& environment) const;
 
   // The object's pose as a row-major 3x4 [A | t], world from object frame (A: the affine
@@ -154,6 +158,7 @@ class HandTrialScene {
   std::vector<HandFinger> fingers_;
   std::vector<HandLinks> links_;
   geometry::SurfaceMesh rest_surface_;
+  std::vector<geometry::SurfaceMesh> hand_rest_surfaces_;
   std::shared_ptr<const solver::Model> model_;
   std::unique_ptr<metrics::SurfacePoints> hand_points_;
   std::vector<metrics::SurfacePoints> each_hand_points_;  // when there are two

@@ -1,7 +1,7 @@
 #pragma once
-// A small job for the farm's tests: rigid cylinders and one coarse soft capsule grasped by the
-// rigid parallel-jaw gripper, few frames and D1/D2 samples, so a whole run takes seconds; and
-// the record-by-record comparison of two datasets.
+// Small jobs for the farm's tests: rigid cylinders and one coarse soft capsule grasped by the
+// rigid parallel-jaw gripper (or by two at once), few frames and D1/D2 samples, so a whole run
+// takes seconds; and the record-by-record comparison of two datasets.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -25,6 +25,16 @@ inline std::string small_job(int cylinders, int candidates, bool soft_object) {
           "\n[trial]\nmetric_samples = 2000\n\n[outputs]\nclosing_frames = 4\n"
           "validation_frames = 6\n";
   return text;
+}
+
+// One rigid cylinder held by two parallel-jaw grippers at once: `candidates` bimanual candidates.
+inline std::string bimanual_job(int candidates) {
+  return "[job]\nname = \"bimanual\"\nseed = 4\n\n[[objects]]\ncategory = \"cylinder\"\n"
+         "\n[[grippers]]\nname = \"parallel-jaw\"\nbimanual = true\ncandidates = " +
+         std::to_string(candidates) +
+         "\n\n[randomization]\nscale = [0.5, 0.6]\n"
+         "\n[trial]\nmetric_samples = 2000\n\n[outputs]\nclosing_frames = 4\n"
+         "validation_frames = 6\n";
 }
 
 inline void write_file(const std::filesystem::path& path, const std::string& text) {

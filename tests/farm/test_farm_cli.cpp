@@ -1,12 +1,15 @@
 // `grip farm` and `grip bench scaling` as a user runs them: a bad job file or an existing
 // dataset is one message naming the file and the fix with exit status 1, progress lines come
 // while the trials run, a trial failing on one rank of two is one message and resumable, the
-// scaling benchmark writes its table for every setting, and their JSON keeps any path as it is.
+// scaling benchmark writes its table for every setting, and their JSON keeps any path as it is;
+// a bimanual job's dataset holds both grippers' poses, joints and frames, the same on 1 and 2
+// ranks, and grip inspect reads it.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -179,6 +182,59 @@ TEST_F(FarmCli, ATrialFailingOnOneRankIsOneMessageAndResumable) {
                                              quoted(dir_ / "clean.h5") + " --threads 1");
   ASSERT_EQ(clean.exit_code, 0) << clean.err;
   testing::expect_same_dataset(dir_ / "clean.h5", dir_ / "data.h5");
+}
+
+// Two parallel-jaw grippers per trial: every record has two hands' poses and openings and four
+// closing forces, the gripper record says two hands, the frames hold both grippers; 2 ranks give
+// the dataset of 1, and grip inspect reads it.
+TEST_F(FarmCli, BimanualJobRecordsBothGrippersAlikeOnOneAndTwoRanks) {
+  testing::write_file(dir_ / "job.toml", testing::bimanual_job(2));
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  for (const int ranks : {1, 2}) {
+    const std::string command =
+        std::string(GRIP_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks) + " " +
+        GRIP_EXECUTABLE + " farm " + quoted(dir_ / "job.toml") + " --output " +
+        quoted(dir_ / ("ranks" + std::to_string(ranks) + ".h5")) +
+        " --threads 1 --batch 1 >/dev/null 2>" + quoted(dir_ / "mpirun.err");
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    ASSERT_EQ(WEXITSTATUS(status), 0) << grip::testing::slurp(dir_ / "mpirun.err");
+  }
+  testing::expect_same_dataset(dir_ / "ranks1.h5", dir_ / "ranks2.h5");
+
+  const io::DatasetReader reader(dir_ / "ranks2.h5");
+  const io::GripperRecord gripper = reader.gripper(0);
+  EXPECT_EQ(gripper.hands, 2u);
+  EXPECT_EQ(gripper.name, "rigid_jaw-bimanual");
+  EXPECT_EQ(gripper.joint_names, std::vector<std::string>{"opening"});
+  EXPECT_EQ(gripper.finger_names.size(), 2u);
+  const std::vector<io::CandidateRecord> records = reader.candidates();
+  ASSERT_EQ(records.size(), 2u);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const io::CandidateRecord& r = records[i];
+    EXPECT_EQ(r.status, io::Status::kSuccess) << i;
+    ASSERT_EQ(r.hand_poses.size(), 24u);
+    EXPECT_EQ(r.joints.size(), 2u);
+    EXPECT_EQ(r.closing_forces.size(), 4u);
+    // Two grippers at two places: the translations (entries 3, 7, 11 of each pose) differ.
+    const double apart =
+        std::hypot(r.hand_poses[3] - r.hand_poses[15], r.hand_poses[7] - r.hand_poses[19],
+                   r.hand_poses[11] - r.hand_poses[23]);
+    EXPECT_GT(apart, 0.02) << i;
+    const std::optional<io::TrajectoryRecord> t = reader.trajectory(i);
+    ASSERT_TRUE(t.has_value());
+    const std::size_t frames = 10;
+    EXPECT_EQ(t->hand_poses.size(), frames * 2 * 12);
+    EXPECT_EQ(t->joints.size(), frames * 2);
+    // The record holds both grippers' surfaces, as each frame does.
+    EXPECT_EQ(t->gripper_vertices.size(), frames * gripper.vertex_count() * 3);
+  }
+
+  const auto inspect = grip::testing::run_grip("inspect " + quoted(dir_ / "ranks2.h5"));
+  EXPECT_EQ(inspect.exit_code, 0) << inspect.err;
+  EXPECT_NE(inspect.out.find("rigid_jaw-bimanual"), std::string::npos) << inspect.out;
+  EXPECT_NE(inspect.out.find("2 (2 done, 0 pending)"), std::string::npos) << inspect.out;
 }
 
 }  // namespace

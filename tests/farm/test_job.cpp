@@ -136,7 +136,16 @@ TEST(Job, MistakesNameTheFileLineAndKey) {
       {"count = 3", "count = 0", "objects[0].count"},                      // out of range
       {"category = \"cylinder\"", "category = \"cylindre\"", "cylindre"},  // unknown category
       {"name = \"parallel-jaw\"", "name = \"robotiq\"", "fin-ray"},        // lists the choices
-      {"candidates = 4", "candidates = 4\nbimanual = true", "not implemented yet"},
+      {"candidates = 4", "candidates = 4\nbimanual = true", ""},           // two grippers per trial
+      {"candidates = 4", "candidates = 4\nbimanual = 1", "grippers[0].bimanual"},
+      {"candidates = 4", "candidates = 4\n[[grippers]]\nname = \"parallel-jaw\"",
+       "repeats the unimanual 'parallel-jaw' setting of the entry at job.toml:"},
+      {"candidates = 4",
+       "candidates = 4\nbimanual = true\n[[grippers]]\nname = \"parallel-jaw\"\n"
+       "bimanual = true",
+       "repeats the bimanual 'parallel-jaw' setting"},
+      {"candidates = 4", "candidates = 4\n[[grippers]]\nname = \"parallel-jaw\"\nbimanual = true",
+       ""},  // the one- and the two-gripper setting of a kind are two settings
       {"validation_frames = 12", "validation_frames = 10", "multiple of 6"},
       {"dt = 0.005", "dt = -1", "physics.dt"},
       {"hand_drive_stiffness = 1e5", "hand_drive_stiffness = 0", "hand_drive_stiffness"},
@@ -163,15 +172,22 @@ TEST(Job, MistakesNameTheFileLineAndKey) {
 }
 
 TEST(Job, EveryShippedJobReads) {
-  int jobs = 0;
+  int jobs = 0, bimanual = 0;
   for (const auto& entry : std::filesystem::directory_iterator(GRIP_JOBS_DIR)) {
     if (entry.path().extension() != ".toml") continue;
     ++jobs;
     const Job job = load_job(entry.path());
     EXPECT_EQ(job.name, entry.path().stem().string()) << entry.path();
     EXPECT_FALSE(list_objects(job).empty()) << entry.path();
+    // The bimanual jobs (and only they) have two grippers per trial.
+    const bool named_bimanual = job.name.rfind("bimanual-", 0) == 0;
+    for (const GripperSetting& gripper : job.grippers) {
+      EXPECT_EQ(gripper.bimanual, named_bimanual) << entry.path();
+    }
+    bimanual += named_bimanual;
   }
-  EXPECT_GE(jobs, 6);
+  EXPECT_GE(jobs, 8);
+  EXPECT_EQ(bimanual, 2);
 }
 
 }  // namespace

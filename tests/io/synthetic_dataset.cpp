@@ -33,7 +33,7 @@ GripperRecord gripper(const std::string& name, std::uint32_t hands, std::uint32_
   for (std::uint32_t j = 0; j < joints; ++j) g.joint_names.push_back("joint_" + std::to_string(j));
   for (std::uint32_t f = 0; f < fingers; ++f)
     g.finger_names.push_back("finger_" + std::to_string(f));
-  for (std::uint32_t v = 0; v < vertices; ++v) {
+  for (std::uint32_t v = 0; v < hands * vertices; ++v) {
     g.vertices.insert(g.vertices.end(), {0.01 * v, 0.02 * v, 0.03});
   }
   g.triangles = {0, 1, 2};

@@ -2,9 +2,9 @@
 // two fin-ray grippers pinching a 36 cm box near its ends close every finger on the grip force
 // and hold it, D1 = 0 for both; with frictionless pads the box is squeezed out of both; a right
 // and a left LEAP hand synthesized on a large box (grip synth --bimanual) close on it and hold
-// it; a batch matches solo runs; and a scene of two grippers refuses one-gripper candidates and
-// the reverse. Small meshes (a one-layer fin-ray finger, the coarse hand), so each test runs in
-// seconds.
+// it; a batch matches solo runs; a scene of two grippers refuses one-gripper candidates and
+// the reverse; and the dataset's gripper record of two grippers describes each one. Small meshes (a
+// one-layer fin-ray finger, the coarse hand), so each test runs in seconds.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 #include "src/grippers/coarse_leap_hand.hpp"
 #include "src/synth/synthesize.hpp"
 #include "src/trial/grasp_trial.hpp"
+#include "src/trial/gripper_record.hpp"
 #include "src/trial/hand_trial.hpp"
 #include "src/trial/hand_trial_scene.hpp"
 #include "src/trial/same_result.hpp"
@@ -262,6 +263,55 @@ TEST(BimanualTrial, AHandScenesCountMustMatchItsCandidates) {
   EXPECT_THROW(
       HandTrialScene(large_box(), std::vector<grippers::HandModel>{}, "leap", parameters()),
       std::invalid_argument);
+}
+
+// The dataset's record of two grippers: hands = 2, its own name, joint and finger names per
+// hand, and both hands' surfaces, each in its own frame, in the order of the frames' vertices.
+TEST(BimanualTrial, GripperRecordDescribesBothGrippers) {
+  std::vector<grippers::HandModel> hands = {coarse_hand(grippers::HandSide::kRight),
+                                            coarse_hand(grippers::HandSide::kLeft)};
+  const HandTrialScene two(large_box(), std::move(hands), "leap", parameters());
+  const HandTrialScene one(large_box(), coarse_hand(grippers::HandSide::kRight), "leap",
+                           parameters());
+  const io::GripperRecord r2 = gripper_record(two), r1 = gripper_record(one);
+  EXPECT_EQ(r1.hands, 1u);
+  EXPECT_EQ(r2.hands, 2u);
+  EXPECT_EQ(r1.name, "leap");
+  EXPECT_EQ(r2.name, "leap-bimanual");
+  EXPECT_EQ(r2.joint_names, r1.joint_names);
+  EXPECT_EQ(r2.joint_names.size(), 16u);
+  EXPECT_EQ(r2.finger_names, r1.finger_names);
+  EXPECT_EQ(r2.finger_names.size(), 4u);
+  // The right hand's surface as one hand's record has it, then the left hand's (its mirror
+  // through the x-z plane: the same extent in x and z, the other side in y).
+  const std::size_t n = r1.vertex_count();
+  ASSERT_EQ(r2.vertex_count(), 2 * n);
+  EXPECT_EQ(std::vector<double>(r2.vertices.begin(), r2.vertices.begin() + 3 * n), r1.vertices);
+  ASSERT_EQ(r2.triangles.size(), 2 * r1.triangles.size());
+  EXPECT_EQ(
+      std::vector<std::int32_t>(r2.triangles.begin(), r2.triangles.begin() + r1.triangles.size()),
+      r1.triangles);
+  const geometry::Vertices left =
+      Eigen::Map<const geometry::Vertices>(r2.vertices.data() + 3 * n, n, 3);
+  const geometry::Vertices right = Eigen::Map<const geometry::Vertices>(r2.vertices.data(), n, 3);
+  EXPECT_NEAR(left.col(1).minCoeff(), -right.col(1).maxCoeff(), 0.02);
+  EXPECT_NEAR(left.col(2).maxCoeff(), right.col(2).maxCoeff(), 1e-9);
+  for (std::size_t i = r1.triangles.size(); i < r2.triangles.size(); ++i) {
+    EXPECT_GE(r2.triangles[i], static_cast<std::int32_t>(n));
+    EXPECT_LT(r2.triangles[i], static_cast<std::int32_t>(2 * n));
+  }
+  // The frames' order: hand_surface_vertices at rest is the record's surface.
+  EXPECT_EQ(two.rest_surface().vertices.rows(), static_cast<Eigen::Index>(2 * n));
+
+  const TrialScene jaws(long_box(),
+                        grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw),
+                        parameters(), 2);
+  const io::GripperRecord parallel = gripper_record(jaws);
+  EXPECT_EQ(parallel.hands, 2u);
+  EXPECT_EQ(parallel.name.substr(parallel.name.size() - 9), "-bimanual");
+  EXPECT_EQ(parallel.joint_names, std::vector<std::string>{"opening"});
+  EXPECT_EQ(parallel.finger_names.size(), 2u);
+  EXPECT_EQ(jaws.gripper_surface_vertex_count(), static_cast<int>(parallel.vertex_count()));
 }
 
 }  // namespace
