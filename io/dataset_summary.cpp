@@ -27,7 +27,7 @@ Statistics statistics(std::vector<double> values) {
 
 namespace {
 
-// Per candidate, the last commit round of the journal beside `dataset` that lists it; 0 where
+// Per candidate, the last line (from 1) of the journal beside `dataset` that lists it; 0 where
 // none does, or there is no readable journal (the file is summarized all the same).
 std::vector<std::uint64_t> commit_rounds(const std::filesystem::path& dataset,
                                          std::uint64_t candidates) {

@@ -2,7 +2,7 @@
 // writes: an out-of-range object index, a gripper index of 77, a flipped byte in a contact
 // force. Bad indices are one message naming the file, dataset, row, value and valid range, with
 // exit 1 and the files byte-identical afterwards; a damaged committed row is reported by inspect
-// (exit 1, the file, candidate, commit round and dataset named) and redone by resume.
+// (exit 1, the file, candidate, journal line and dataset named) and redone by resume.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -97,7 +97,7 @@ TEST_F(DamagedDatasetCli, ResumeRefusesAGripperIndexOf77BeforeWritingAnything) {
 
 TEST_F(DamagedDatasetCli, AFlippedContactForceIsReportedByInspectAndRedoneByResume) {
   const fs::path dataset = copy("flipped.h5");
-  // Candidate 5 (object 1, committed in round 3: rounds of 2 candidates) keeps its trajectory.
+  // Candidate 5 (object 1, journaled on line 3: lines of 2 candidates) keeps its trajectory.
   std::size_t byte = 0;
   {
     const DatasetReader reader(dataset);
@@ -115,7 +115,7 @@ TEST_F(DamagedDatasetCli, AFlippedContactForceIsReportedByInspectAndRedoneByResu
   EXPECT_NE(inspect.out.find("damaged     1 committed candidates"), std::string::npos)
       << inspect.out;
   EXPECT_NE(inspect.err.find(dataset.string() +
-                             ": candidate 5 (commit round 3): "
+                             ": candidate 5 (journal line 3): "
                              "/objects/000001/trajectories/000/contact_forces does not match the "
                              "checksum written with it"),
             std::string::npos)

@@ -57,8 +57,8 @@ void report_damage(const std::string& dataset, const std::vector<io::DamagedRow>
   constexpr std::size_t kShown = 20;
   for (std::size_t i = 0; i < std::min(damaged.size(), kShown); ++i) {
     const io::DamagedRow& row = damaged[i];
-    const std::string round = row.round > 0 ? "commit round " + std::to_string(row.round)
-                                            : "no journal names its commit round";
+    const std::string round =
+        row.round > 0 ? "journal line " + std::to_string(row.round) : "no journal line names it";
     spdlog::error(
         "{}: candidate {} ({}): {} does not match the checksum written with it; the candidate is "
         "not counted as done (grip farm --resume redoes it)",
