@@ -20,36 +20,16 @@
 #include "src/trial/hand_trial.hpp"
 #include "src/trial/hand_trial_scene.hpp"
 #include "src/trial/same_result.hpp"
+#include "tests/trial/short_trial.hpp"
 
 namespace grip::trial {
 namespace {
 
-// The paper's protocol with shorter gravity phases (5 steps), fewer recorded frames and D1/D2
-// points, so that every trial takes seconds.
-TrialParameters parameters() {
-  TrialParameters p;
-  p.phase_duration = 0.05;
-  p.closing_frames = 8;
-  p.validation_frames = 12;
-  p.metric_samples = 20000;
-  return p;
-}
-
-double largest(const std::array<double, 6>& values) {
-  return *std::max_element(values.begin(), values.end());
-}
+using testing::largest;
+using testing::one_layer_fin_ray;
+using testing::short_parameters;
 
 // ---- Two fin-ray grippers ----
-
-// A fin-ray finger with one tet layer across its depth instead of eight (same profile).
-const grippers::ParallelGripper& fin_ray() {
-  static const grippers::ParallelGripper gripper = [] {
-    grippers::FinRayOptions options;
-    options.layers = 1;
-    return grippers::make_umi_soft_gripper(options);
-  }();
-  return gripper;
-}
 
 // A rigid box 36 cm long (x), 4 cm wide (y) and 3 cm high (z): too long for one gripper to
 // hold by its middle under gravity along its length, pinched by two across its width.
@@ -64,7 +44,7 @@ TrialObject long_box() {
 // As GraspTrial's centred fin-ray grasp of a 4 cm box: the one-layer finger is far softer than
 // the production one, so it squeezes to 10 N and may close 15 mm past the box per jaw.
 TrialParameters fin_ray_parameters() {
-  TrialParameters p = parameters();
+  TrialParameters p = short_parameters();
   p.squeeze_speed = 0.02;
   p.final_opening = 0.01;
   p.grip_force = 10.0;
@@ -84,7 +64,7 @@ std::array<ParallelGrasp, 2> pinched_near_the_ends() {
 
 TEST(BimanualTrial, TwoFinRayGrippersHoldALongBoxWithFrictionAndSqueezeItOutWithout) {
   const TrialParameters p = fin_ray_parameters();
-  const TrialScene scene(long_box(), fin_ray(), p, 2);
+  const TrialScene scene(long_box(), one_layer_fin_ray(), p, 2);
   ASSERT_EQ(scene.gripper_count(), 2);
   ASSERT_EQ(scene.jaws().size(), 4u);
   const TrialOutcome held = run_bimanual_trials(scene, {pinched_near_the_ends()}).front();
@@ -120,7 +100,7 @@ TEST(BimanualTrial, TwoFinRayGrippersHoldALongBoxWithFrictionAndSqueezeItOutWith
   // Frictionless pads (mu = 0): the same squeeze to the grip force, but, as with one gripper,
   // the wrapping fingers' converging normals push the released box out along their approach
   // axis (+z, the same for both grippers) before any gravity phase: it leaves every finger.
-  grippers::ParallelGripper slick = fin_ray();
+  grippers::ParallelGripper slick = one_layer_fin_ray();
   slick.soft_finger->material.friction = 0.0;
   const TrialScene slick_scene(long_box(), slick, p, 2);
   const TrialOutcome lost = run_bimanual_trials(slick_scene, {pinched_near_the_ends()}).front();
@@ -135,11 +115,11 @@ TEST(BimanualTrial, TwoFinRayGrippersHoldALongBoxWithFrictionAndSqueezeItOutWith
 
 TEST(BimanualTrial, AScenesGripperCountMustMatchItsCandidates) {
   const TrialParameters p = fin_ray_parameters();
-  const TrialScene one(long_box(), fin_ray(), p);
-  const TrialScene two(long_box(), fin_ray(), p, 2);
+  const TrialScene one(long_box(), one_layer_fin_ray(), p);
+  const TrialScene two(long_box(), one_layer_fin_ray(), p, 2);
   EXPECT_THROW(run_bimanual_trials(one, {pinched_near_the_ends()}), std::invalid_argument);
   EXPECT_THROW(run_trials(two, {pinched_near_the_ends()[0]}), std::invalid_argument);
-  EXPECT_THROW(TrialScene(long_box(), fin_ray(), p, 3), std::invalid_argument);
+  EXPECT_THROW(TrialScene(long_box(), one_layer_fin_ray(), p, 3), std::invalid_argument);
   // The second gripper's bodies follow the first's, named apart.
   const auto& bodies = two.model()->scene().bodies;
   EXPECT_EQ(bodies.size(), 1u + 2u * 2u * 2u);  // the object, then per jaw a jaw and a finger
@@ -151,7 +131,7 @@ TEST(BimanualTrial, BatchMatchesSoloRunsForAnyThreadCount) {
   // Rigid jaws (kinematic fingers, a fast trial): the grasp near the ends, one nearer the centre,
   // and one whose second gripper's jaws start inside the box (it leaves the batch at once).
   const grippers::ParallelGripper jaws = grippers::make_rigid_jaw_gripper();
-  const TrialScene scene(long_box(), jaws, parameters(), 2);
+  const TrialScene scene(long_box(), jaws, short_parameters(), 2);
   std::vector<std::array<ParallelGrasp, 2>> grasps(3, pinched_near_the_ends());
   grasps[1][0].pose.translation().x() = -0.05;
   grasps[1][1].pose.translation().x() = 0.05;
@@ -210,7 +190,7 @@ const std::array<HandTrialGrasp, 2>& synthesized_pair() {
 }
 
 TEST(BimanualTrial, ARightAndALeftHandHoldALargeBox) {
-  const TrialParameters p = parameters();
+  const TrialParameters p = short_parameters();
   std::vector<grippers::HandModel> hands = {coarse_hand(grippers::HandSide::kRight),
                                             coarse_hand(grippers::HandSide::kLeft)};
   const HandTrialScene scene(large_box(), std::move(hands), "leap", p);
@@ -250,18 +230,18 @@ TEST(BimanualTrial, ARightAndALeftHandHoldALargeBox) {
 
 TEST(BimanualTrial, AHandScenesCountMustMatchItsCandidates) {
   const HandTrialScene one(large_box(), coarse_hand(grippers::HandSide::kRight), "leap",
-                           parameters());
+                           short_parameters());
   HandTrialGrasp open;  // a hand 30 cm above the box, joints at 0
   open.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.3);
   open.joints = Eigen::VectorXd::Zero(16);
   EXPECT_THROW(run_bimanual_hand_trials(one, {{open, open}}), std::invalid_argument);
   std::vector<grippers::HandModel> hands = {coarse_hand(grippers::HandSide::kRight),
                                             coarse_hand(grippers::HandSide::kLeft)};
-  const HandTrialScene two(large_box(), std::move(hands), "leap", parameters());
+  const HandTrialScene two(large_box(), std::move(hands), "leap", short_parameters());
   EXPECT_THROW(run_hand_trials(two, {open}), std::invalid_argument);
   EXPECT_EQ(two.hand_count(), 2);
   EXPECT_THROW(
-      HandTrialScene(large_box(), std::vector<grippers::HandModel>{}, "leap", parameters()),
+      HandTrialScene(large_box(), std::vector<grippers::HandModel>{}, "leap", short_parameters()),
       std::invalid_argument);
 }
 
@@ -270,9 +250,9 @@ TEST(BimanualTrial, AHandScenesCountMustMatchItsCandidates) {
 TEST(BimanualTrial, GripperRecordDescribesBothGrippers) {
   std::vector<grippers::HandModel> hands = {coarse_hand(grippers::HandSide::kRight),
                                             coarse_hand(grippers::HandSide::kLeft)};
-  const HandTrialScene two(large_box(), std::move(hands), "leap", parameters());
+  const HandTrialScene two(large_box(), std::move(hands), "leap", short_parameters());
   const HandTrialScene one(large_box(), coarse_hand(grippers::HandSide::kRight), "leap",
-                           parameters());
+                           short_parameters());
   const io::GripperRecord r2 = gripper_record(two), r1 = gripper_record(one);
   EXPECT_EQ(r1.hands, 1u);
   EXPECT_EQ(r2.hands, 2u);
@@ -305,7 +285,7 @@ TEST(BimanualTrial, GripperRecordDescribesBothGrippers) {
 
   const TrialScene jaws(long_box(),
                         grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw),
-                        parameters(), 2);
+                        short_parameters(), 2);
   const io::GripperRecord parallel = gripper_record(jaws);
   EXPECT_EQ(parallel.hands, 2u);
   EXPECT_EQ(parallel.name.substr(parallel.name.size() - 9), "-bimanual");

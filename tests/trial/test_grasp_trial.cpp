@@ -18,42 +18,26 @@
 #include "src/geometry/primitives.hpp"
 #include "src/scene/primitives.hpp"
 #include "src/trial/same_result.hpp"
+#include "tests/trial/short_trial.hpp"
 
 namespace grip::trial {
 namespace {
 
-// A fin-ray finger with one tet layer across its depth instead of eight (same profile).
-const grippers::ParallelGripper& fin_ray() {
-  static const grippers::ParallelGripper gripper = [] {
-    grippers::FinRayOptions options;
-    options.layers = 1;
-    return grippers::make_umi_soft_gripper(options);
-  }();
-  return gripper;
-}
+using testing::largest;
+using testing::one_layer_fin_ray;
+using testing::short_parameters;
 
 const grippers::ParallelGripper& rigid_jaws() {
   static const grippers::ParallelGripper gripper = grippers::make_rigid_jaw_gripper();
   return gripper;
 }
 
-// The paper's protocol with shorter gravity phases (5 steps), fewer recorded frames and D1/D2
-// points, so that every trial takes seconds.
-TrialParameters parameters() {
-  TrialParameters p;
-  p.phase_duration = 0.05;
-  p.closing_frames = 8;
-  p.validation_frames = 12;
-  p.metric_samples = 20000;
-  return p;
-}
-
-TrialParameters rigid_parameters() { return parameters(); }
+TrialParameters rigid_parameters() { return short_parameters(); }
 
 // For the fin-ray gripper: its compliant fingers close at 2 cm/s and at most 7.5 mm past the
 // object per jaw.
 TrialParameters fin_ray_parameters(double width) {
-  TrialParameters p = parameters();
+  TrialParameters p = short_parameters();
   p.squeeze_speed = 0.02;
   p.final_opening = width - 0.015;
   return p;
@@ -83,10 +67,6 @@ ParallelGrasp centred(double width) {
   return grasp;
 }
 
-double largest(const std::array<double, 6>& values) {
-  return *std::max_element(values.begin(), values.end());
-}
-
 TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   // A 4 cm box at the paper's finger friction, mu 3.5; the fingers may close 15 mm past it per
   // jaw. The one-layer test finger is far softer than the production one (it pushes with about
@@ -97,7 +77,7 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   TrialParameters p = fin_ray_parameters(0.04);
   p.final_opening = 0.01;
   p.grip_force = 10.0;
-  const TrialScene held(box, fin_ray(), p);
+  const TrialScene held(box, one_layer_fin_ray(), p);
   const TrialOutcome with = run_trials(held, {centred(0.04)}).front();
   EXPECT_EQ(with.result.record.failure, io::FailureKind::kNone)
       << io::to_string(with.result.record.failure) << " " << with.failure_reason;
@@ -122,7 +102,7 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   EXPECT_EQ(h.contact_friction, 3.5);
   // Frictionless pads (mu = 0): the same squeeze, but the wrapping fingers' converging normals
   // squeeze the released box out along the approach axis before any gravity phase.
-  grippers::ParallelGripper slick = fin_ray();
+  grippers::ParallelGripper slick = one_layer_fin_ray();
   slick.soft_finger->material.friction = 0.0;
   const TrialScene scene(box, slick, p);
   const TrialOutcome without = run_trials(scene, {centred(0.04)}).front();
@@ -150,7 +130,7 @@ TEST(GraspTrial, AnOffCentreFinRayGraspTurnsWithTheFingersAndSlipsOnlyWhenTooHea
     bar.name = "bar";
     bar.surface = geometry::make_box(Eigen::Vector3d(0.16, 0.03, 0.03));
     bar.material.density = density;
-    return run_trials(TrialScene(bar, fin_ray(), p), {grasp}).front();
+    return run_trials(TrialScene(bar, one_layer_fin_ray(), p), {grasp}).front();
   };
   const TrialOutcome light = trial(1000.0);
   const io::CandidateRecord& held = light.result.record;
@@ -215,7 +195,7 @@ TEST(GraspTrial, ATrialThatIsNotSteadyInTimeIsUnsettled) {
 }
 
 TEST(GraspTrial, ClosingOnAirFindsNoContact) {
-  const TrialScene scene(rigid_cylinder(3.5), fin_ray(), fin_ray_parameters(0.04));
+  const TrialScene scene(rigid_cylinder(3.5), one_layer_fin_ray(), fin_ray_parameters(0.04));
   ParallelGrasp air = centred(0.04);
   air.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.05);  // the fingers miss the object
   const TrialOutcome outcome = run_trials(scene, {air}).front();
@@ -322,7 +302,7 @@ TEST(GraspTrial, SqueezedSoftBoxIsStressedUnderTheFingers) {
   TrialParameters p = fin_ray_parameters(0.03);
   p.phase_duration = p.sim.dt;
   p.validation_frames = 6;
-  const TrialScene scene(soft, fin_ray(), p);
+  const TrialScene scene(soft, one_layer_fin_ray(), p);
   const TrialOutcome outcome = run_trials(scene, {centred(0.03)}).front();
   const io::CandidateRecord& r = outcome.result.record;
   EXPECT_NE(r.failure, io::FailureKind::kNoContact) << outcome.failure_reason;

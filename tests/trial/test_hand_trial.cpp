@@ -19,9 +19,12 @@
 #include "src/synth/synthesize.hpp"
 #include "src/trial/gripper_record.hpp"
 #include "src/trial/same_result.hpp"
+#include "tests/trial/short_trial.hpp"
 
 namespace grip::trial {
 namespace {
+
+using testing::short_parameters;
 
 const grippers::HandModel& leap() {
   static const grippers::HandModel hand = grippers::coarse_leap_hand();
@@ -36,17 +39,6 @@ TrialObject cylinder() {
   object.material.density = 500.0;
   object.material.friction = 1.0;
   return object;
-}
-
-// The paper's protocol with shorter gravity phases (5 steps), fewer recorded frames and D1/D2
-// points, so that every trial takes seconds.
-TrialParameters parameters() {
-  TrialParameters p;
-  p.phase_duration = 0.05;
-  p.closing_frames = 8;
-  p.validation_frames = 12;
-  p.metric_samples = 20000;
-  return p;
 }
 
 // A hand candidate synthesized on the cylinder (300 annealing steps, seed 1) whose fingers all
@@ -105,7 +97,7 @@ int object_hand_intersections(const solver::Model& model, const BodyFrame& frame
 TEST(HandTrial, SynthesizedGraspClosesOnACylinderWithoutIntersecting) {
   // Every step is recorded: closing frames for more states than closing and settling take, and
   // one validation frame per gravity step.
-  TrialParameters p = parameters();
+  TrialParameters p = short_parameters();
   p.closing_frames = 600;
   p.validation_frames = 30;
   const HandTrialScene scene(cylinder(), leap(), "leap", p);
@@ -172,7 +164,7 @@ TEST(HandTrial, SynthesizedGraspClosesOnACylinderWithoutIntersecting) {
 }
 
 TEST(HandTrial, ClosingOnAirFindsNoContact) {
-  TrialParameters p = parameters();
+  TrialParameters p = short_parameters();
   const HandTrialScene scene(cylinder(), leap(), "leap", p);
   const HandTrialGrasp air = on_air();
   const TrialOutcome outcome = run_hand_trials(scene, {air}).front();
@@ -198,7 +190,7 @@ TEST(HandTrial, ClosingOnAirFindsNoContact) {
 }
 
 TEST(HandTrial, StartingInsideTheObjectIsAnInitialPenetration) {
-  const HandTrialScene scene(cylinder(), leap(), "leap", parameters());
+  const HandTrialScene scene(cylinder(), leap(), "leap", short_parameters());
   HandTrialGrasp inside = on_air();
   inside.pose.translation() = Eigen::Vector3d(-0.05, 0.0, 0.01);  // the palm through the cylinder
   const TrialOutcome outcome = run_hand_trials(scene, {inside}).front();
@@ -207,7 +199,7 @@ TEST(HandTrial, StartingInsideTheObjectIsAnInitialPenetration) {
 }
 
 TEST(HandTrial, BatchMatchesSoloRuns) {
-  const HandTrialScene scene(cylinder(), leap(), "leap", parameters());
+  const HandTrialScene scene(cylinder(), leap(), "leap", short_parameters());
   // A grasp that closes and one that starts inside the cylinder (and leaves the batch at once).
   std::vector<HandTrialGrasp> grasps = {closing_candidate(), on_air()};
   grasps.back().pose.translation() = Eigen::Vector3d(-0.05, 0.0, 0.01);
@@ -226,7 +218,7 @@ TEST(HandTrial, BatchMatchesSoloRuns) {
 }
 
 TEST(HandTrial, RejectsJointsTheHandCannotTake) {
-  const HandTrialScene scene(cylinder(), leap(), "leap", parameters());
+  const HandTrialScene scene(cylinder(), leap(), "leap", short_parameters());
   HandTrialGrasp bent = on_air();
   bent.joints[1] = 3.0;  // index MCP beyond its 2.23 rad limit
   EXPECT_THROW(run_hand_trials(scene, {bent}), std::out_of_range);
@@ -235,7 +227,7 @@ TEST(HandTrial, RejectsJointsTheHandCannotTake) {
 }
 
 TEST(HandTrial, GripperRecordDescribesTheHand) {
-  const HandTrialScene scene(cylinder(), leap(), "leap", parameters());
+  const HandTrialScene scene(cylinder(), leap(), "leap", short_parameters());
   const io::GripperRecord r = gripper_record(scene);
   EXPECT_EQ(r.name, "leap");
   EXPECT_EQ(r.kind, "hand");
