@@ -28,6 +28,9 @@ struct Aabb {
   GRIP_HD bool overlaps(const Aabb& other) const {
     return (min.array() <= other.max.array()).all() && (other.min.array() <= max.array()).all();
   }
+  GRIP_HD bool contains(const Aabb& other) const {
+    return (min.array() <= other.min.array()).all() && (other.max.array() <= max.array()).all();
+  }
   GRIP_HD Eigen::Vector3d center() const { return 0.5 * (min + max); }
 };
 

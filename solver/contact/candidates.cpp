@@ -21,31 +21,41 @@ bool on_untouching_body(const Model& model, int collision_vertex) {
 }
 
 // Only untouching bodies (Model::among_untouching) whose box reaches the other primitives' look
-// among them.
+// among them. Each vertex's triangles are listed by face index: the order of the tree's answers
+// depends on its shape, which depends on the boxes it was built over.
 void add_point_triangle_candidates(const Model& model, const std::vector<Aabb>& vertex_boxes,
                                    const std::vector<char>& reaches, PrimitiveTrees& faces,
-                                   std::vector<ContactCandidate>& candidates) {
+                                   std::vector<int>& hits,
+                                   std::vector<ContactCandidate>& candidates,
+                                   std::vector<std::array<int, 2>>& primitives) {
   const CollisionMesh& mesh = model.collision();
   for (int v = 0; v < mesh.size(); ++v) {
     const int body_v = mesh.vertex_body[v];
     const bool untouching = on_untouching_body(model, v);
     if (untouching && !reaches[body_v]) continue;
-    faces.query(untouching, vertex_boxes[v], [&](int f) {
+    hits.clear();
+    faces.query(untouching, vertex_boxes[v], [&](int f) { hits.push_back(f); });
+    std::sort(hits.begin(), hits.end());
+    for (const int f : hits) {
       const auto& t = mesh.faces[f];
-      if (t[0] == v || t[1] == v || t[2] == v) return;
+      if (t[0] == v || t[1] == v || t[2] == v) continue;
       const double mu = model.pair_friction(body_v, mesh.vertex_body[t[0]]);
-      if (mu < 0) return;
+      if (mu < 0) continue;
       const std::array<int, 4> pair{v, t[0], t[1], t[2]};
       const bool self = body_v == mesh.vertex_body[t[0]];
       candidates.push_back({false, pair, mu, 0.0, self && mesh.near_at_rest(false, pair)});
-    });
+      primitives.push_back({v, f});
+    }
   }
 }
 
 // A free edge keeps only free partners (its untouching ones are found from their side): one
 // whose body touches no free body's edges (a rigid object's among a hand's links) skips its query.
+// Each edge's partners are listed by edge index.
 void add_edge_edge_candidates(const Model& model, const std::vector<char>& reaches,
-                              PrimitiveTrees& edges, std::vector<ContactCandidate>& candidates) {
+                              PrimitiveTrees& edges, std::vector<int>& hits,
+                              std::vector<ContactCandidate>& candidates,
+                              std::vector<std::array<int, 2>>& primitives) {
   const CollisionMesh& mesh = model.collision();
   auto untouching = [&](int edge) { return on_untouching_body(model, mesh.edges[edge][0]); };
   const int body_count = static_cast<int>(model.bodies().size());
@@ -65,13 +75,18 @@ void add_edge_edge_candidates(const Model& model, const std::vector<char>& reach
     if (!(untouching(a) ? reaches[body_a] : touches_free_edges[body_a])) continue;
     // Each unordered pair once: found from its lower index when both trees hold the other
     // edge, from the untouching edge's side otherwise (only it looks in the smaller tree).
+    hits.clear();
     edges.query(untouching(a), edges.box(a), [&](int b) {
       if (b == a) return;
       if (untouching(a) == untouching(b) ? b < a : untouching(b)) return;
+      hits.push_back(b);
+    });
+    std::sort(hits.begin(), hits.end());
+    for (const int b : hits) {
       const auto& eb = mesh.edges[b];
-      if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) return;
+      if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
       const double mu = model.pair_friction(body_a, mesh.vertex_body[eb[0]]);
-      if (mu < 0) return;
+      if (mu < 0) continue;
       // The threshold depends on rest lengths only, so each edge may be in its own body frame.
       const double eps = kernels::edge_edge_mollifier_threshold(
           rest_position(model, ea[0]), rest_position(model, ea[1]), rest_position(model, eb[0]),
@@ -79,7 +94,8 @@ void add_edge_edge_candidates(const Model& model, const std::vector<char>& reach
       const std::array<int, 4> pair{ea[0], ea[1], eb[0], eb[1]};
       const bool self = body_a == mesh.vertex_body[eb[0]];
       candidates.push_back({true, pair, mu, eps, self && mesh.near_at_rest(true, pair)});
-    });
+      primitives.push_back({a, b});
+    }
   }
 }
 
@@ -90,17 +106,54 @@ std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const 
   const CollisionMesh& mesh = model.collision();
   // Two boxes each inflated by half of d_hat overlap whenever their contents come within d_hat.
   const double margin = 0.5 * d_hat * (1.0 + 1e-9);
-  // Each vertex's swept box, and each body's. A primitive's box is the union of its vertices'
-  // (inflating after the union or before gives the same bits: rounding is monotonic).
+  // Each vertex's swept box. A primitive's box is the union of its vertices' (inflating after
+  // the union or before gives the same bits: rounding is monotonic).
   vertex_boxes_.resize(static_cast<std::size_t>(mesh.size()));
-  body_boxes_.assign(model.bodies().size(), Aabb{});
+  bool kept_covers = kept_model_ == &model && kept_vertex_boxes_.size() == vertex_boxes_.size();
   for (int v = 0; v < mesh.size(); ++v) {
     Aabb& box = vertex_boxes_[v];
     box = Aabb{};
     box.expand(Eigen::Vector3d(start.row(v)));
     box.expand(Eigen::Vector3d(end.row(v)));
     box.inflate(margin);
-    body_boxes_[mesh.vertex_body[v]].expand(box);
+    kept_covers = kept_covers && kept_vertex_boxes_[v].contains(box);
+  }
+  if (!kept_covers) keep(model, d_hat);
+  // The kept pairs whose boxes overlap now: every pair that overlaps now, since each of its
+  // boxes lies in its kept box, in the kept pairs' order.
+  face_boxes_.resize(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    face_boxes_[f] = vertex_boxes_[t[0]];
+    face_boxes_[f].expand(vertex_boxes_[t[1]]);
+    face_boxes_[f].expand(vertex_boxes_[t[2]]);
+  }
+  edge_boxes_.resize(mesh.edges.size());
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    edge_boxes_[e] = vertex_boxes_[mesh.edges[e][0]];
+    edge_boxes_[e].expand(vertex_boxes_[mesh.edges[e][1]]);
+  }
+  std::vector<ContactCandidate> candidates;
+  for (std::size_t i = 0; i < kept_.size(); ++i) {
+    const auto [a, b] = kept_primitives_[i];
+    const bool overlap = kept_[i].edge_edge ? edge_boxes_[a].overlaps(edge_boxes_[b])
+                                            : vertex_boxes_[a].overlaps(face_boxes_[b]);
+    if (overlap) candidates.push_back(kept_[i]);
+  }
+  return candidates;
+}
+
+// The pairs whose boxes overlap once each vertex's box is grown by the skin: they hold every pair
+// of later calls whose vertex boxes stay inside these.
+void ContactBroadPhase::keep(const Model& model, double d_hat) {
+  const CollisionMesh& mesh = model.collision();
+  ++keeps_;
+  kept_model_ = &model;
+  kept_vertex_boxes_ = vertex_boxes_;
+  body_boxes_.assign(model.bodies().size(), Aabb{});
+  for (int v = 0; v < mesh.size(); ++v) {
+    kept_vertex_boxes_[v].inflate(0.5 * kSkin * d_hat);
+    body_boxes_[mesh.vertex_body[v]].expand(kept_vertex_boxes_[v]);
   }
   // Whether each body's box reaches the free primitives' boxes (it matters for untouching ones).
   const auto reaching = [&](const PrimitiveTrees& trees, std::vector<char>& reaches) {
@@ -113,26 +166,50 @@ std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const 
   first_vertex_.resize(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& t = mesh.faces[f];
-    boxes_[f] = vertex_boxes_[t[0]];
-    boxes_[f].expand(vertex_boxes_[t[1]]);
-    boxes_[f].expand(vertex_boxes_[t[2]]);
+    boxes_[f] = kept_vertex_boxes_[t[0]];
+    boxes_[f].expand(kept_vertex_boxes_[t[1]]);
+    boxes_[f].expand(kept_vertex_boxes_[t[2]]);
     first_vertex_[f] = t[0];
   }
   faces_.update(model, boxes_, first_vertex_);
   reaching(faces_, reaches_);
-  std::vector<ContactCandidate> candidates;
-  add_point_triangle_candidates(model, vertex_boxes_, reaches_, faces_, candidates);
+  kept_.clear();
+  kept_primitives_.clear();
+  add_point_triangle_candidates(model, kept_vertex_boxes_, reaches_, faces_, hits_, kept_,
+                                kept_primitives_);
   boxes_.resize(mesh.edges.size());
   first_vertex_.resize(mesh.edges.size());
   for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
-    boxes_[e] = vertex_boxes_[mesh.edges[e][0]];
-    boxes_[e].expand(vertex_boxes_[mesh.edges[e][1]]);
+    boxes_[e] = kept_vertex_boxes_[mesh.edges[e][0]];
+    boxes_[e].expand(kept_vertex_boxes_[mesh.edges[e][1]]);
     first_vertex_[e] = mesh.edges[e][0];
   }
   edges_.update(model, boxes_, first_vertex_);
   reaching(edges_, reaches_);
-  add_edge_edge_candidates(model, reaches_, edges_, candidates);
-  return candidates;
+  add_edge_edge_candidates(model, reaches_, edges_, hits_, kept_, kept_primitives_);
+}
+
+std::vector<ContactCandidate> within_reach(const std::vector<ContactCandidate>& candidates,
+                                           const Vertices& start, const Vertices& end,
+                                           double d_hat) {
+  const auto displacement = [&](int v) { return (end.row(v) - start.row(v)).norm(); };
+  std::vector<ContactCandidate> reachable;
+  for (const ContactCandidate& c : candidates) {
+    const auto& v = c.vertex;
+    // Every point of a triangle (an edge) moves at most as far as its farthest vertex, so the
+    // distance shrinks at most by the two sides' largest displacements.
+    const double reach =
+        d_hat +
+        (c.edge_edge ? std::max(displacement(v[0]), displacement(v[1])) : displacement(v[0])) +
+        (c.edge_edge ? std::max(displacement(v[2]), displacement(v[3]))
+                     : std::max({displacement(v[1]), displacement(v[2]), displacement(v[3])}));
+    const auto x = [&](int k) -> Eigen::Vector3d { return start.row(v[k]).transpose(); };
+    const double d_sq = c.edge_edge ? kernels::edge_edge_distance_sq(x(0), x(1), x(2), x(3))
+                                    : kernels::point_triangle_distance_sq(x(0), x(1), x(2), x(3));
+    // A relative margin far above round-off keeps every pair the rounding could bring in.
+    if (d_sq <= reach * reach * (1.0 + 1e-6)) reachable.push_back(c);
+  }
+  return reachable;
 }
 
 std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,

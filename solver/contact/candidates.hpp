@@ -24,27 +24,58 @@ struct ContactCandidate {
 };
 
 // Pairs near the path start -> end (both collision vertex positions, one row per vertex), in a
-// deterministic order. Pairs that share a vertex, and pairs of bodies that never touch, are left
-// out.
+// deterministic order: point-triangle pairs by vertex then face, then edge-edge pairs by edge
+// then partner edge (indices of the collision mesh). Pairs that share a vertex, and pairs of bodies
+// that never touch, are left out.
 std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
                                                       const Vertices& end, double d_hat);
 
-// The broad phase kept from call to call (one per environment), so that its trees keep their
-// storage and shape; it finds exactly what find_contact_candidates finds.
+// The candidates of the path start -> end that can come within d_hat on it, in their order. A
+// pair is left out when its distance at the start exceeds d_hat plus its vertices' largest
+// displacements (a point's and its triangle's farthest-moving vertex, or each edge's): no point of
+// the path brings it within d_hat, so its barrier is zero all along. Most pairs of a finely meshed
+// soft finger are neighbours on its surface, a few millimetres apart: their boxes overlap, their
+// barrier never acts.
+std::vector<ContactCandidate> within_reach(const std::vector<ContactCandidate>& candidates,
+                                           const Vertices& start, const Vertices& end,
+                                           double d_hat);
+
+// The broad phase kept from call to call (one per environment); it finds exactly what
+// find_contact_candidates finds, in the same order. It keeps the pairs whose boxes overlap once
+// every vertex's box is grown by a skin (a Verlet list): while each later call's vertex boxes
+// lie inside those grown boxes, that call's pairs are among the kept ones, and it only tests the
+// kept pairs' boxes instead of querying the trees. A Newton iteration moves vertices by far less
+// than the skin, so the trees are queried about once per step rather than twice per iteration.
 class ContactBroadPhase {
  public:
   std::vector<ContactCandidate> find(const Model& model, const Vertices& start, const Vertices& end,
                                      double d_hat);
 
+  // How many calls queried the trees (the others reused the kept pairs).
+  long keeps() const { return keeps_; }
+
  private:
+  // The skin, as a multiple of d_hat: each vertex's box is grown by half of it on every side.
+  static constexpr double kSkin = 1.0;
+  void keep(const Model& model, double d_hat);
+
   PrimitiveTrees faces_;
   PrimitiveTrees edges_;
+  // The kept pairs, their primitives ((vertex, face) or (edge, edge)) and vertex boxes.
+  const Model* kept_model_ = nullptr;
+  std::vector<ContactCandidate> kept_;
+  std::vector<std::array<int, 2>> kept_primitives_;
+  std::vector<Aabb> kept_vertex_boxes_;
+  long keeps_ = 0;
   // Scratch of one call.
   std::vector<Aabb> vertex_boxes_;
+  std::vector<Aabb> face_boxes_;
+  std::vector<Aabb> edge_boxes_;
   std::vector<Aabb> body_boxes_;
   std::vector<char> reaches_;
   std::vector<Aabb> boxes_;
   std::vector<int> first_vertex_;
+  std::vector<int> hits_;
 };
 
 // The FEM bodies' own pairs within d_hat at rest, point-triangle then edge-edge, each sorted:

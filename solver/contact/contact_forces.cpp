@@ -50,7 +50,9 @@ std::vector<PairForce> pair_forces(const Model& model, const IncrementalPotentia
   for (const ContactCandidate& c : near) {
     const ContactForce force = potential.barrier().contact_force(c, positions);
     // Pairs near at rest have no barrier: their distance would drive kappa's adaptation.
-    if (!c.near_at_rest) min_distance = std::min(min_distance, force.distance);
+    if (!c.near_at_rest && force.distance < model.sim().d_hat) {
+      min_distance = std::min(min_distance, force.distance);
+    }
     if (force.magnitude > 0.0) add(c.vertex, c.edge_edge, force.force, force.magnitude);
   }
   for (const FrictionContact& contact : potential.friction().contacts()) {

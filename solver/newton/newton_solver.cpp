@@ -58,7 +58,8 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
 const std::vector<ContactCandidate>& NewtonSolver::near(NewtonStep& step, const Vertices& x) {
   if (!step.near) {
     const StageTimer timer(stages_.broad_phase);
-    step.near = broad_phase_.find(model_, x, x, model_.sim().d_hat);
+    step.near =
+        within_reach(broad_phase_.find(model_, x, x, model_.sim().d_hat), x, x, model_.sim().d_hat);
   }
   return *step.near;
 }
@@ -210,16 +211,20 @@ bool NewtonSolver::converged(const NewtonStep& step, const System& system,
 }
 
 // CCD's safe fraction of the step, then positive volumes, then (once the prescribed motion is
-// done) Armijo on the incremental potential. On success the swept candidates become step.near.
+// done) Armijo on the incremental potential. On success the pairs within reach on the path become
+// step.near.
 bool NewtonSolver::filter_step(const State& state, NewtonStep& step, const System& system,
                                const Eigen::VectorXd& p, double& alpha,
                                StepDiagnostics& diagnostics, FailureReport& failure) {
   const SimParameters& sim = model_.sim();
   const Vertices x_end = collision_positions(model_, state.q + p, step.targets, 1.0);
-  std::vector<ContactCandidate> swept;
+  // CCD watches every pair whose boxes overlap; the barrier acts only on the pairs that can come
+  // within d_hat on the path.
+  std::vector<ContactCandidate> swept, reachable;
   {
     const StageTimer timer(stages_.broad_phase);
     swept = broad_phase_.find(model_, system.x, x_end, sim.d_hat);
+    reachable = within_reach(swept, system.x, x_end, sim.d_hat);
   }
   {
     const StageTimer timer(stages_.ccd);
@@ -235,14 +240,14 @@ bool NewtonSolver::filter_step(const State& state, NewtonStep& step, const Syste
     return false;
   }
   if (!system.moving) {
-    const double energy = potential_.energy(state.q, system.x, swept);
-    if (!armijo(potential_, model_, step.targets, swept, state.q, p, energy, step.gradient.dot(p),
-                step.held, alpha, diagnostics.line_search_steps)) {
+    const double energy = potential_.energy(state.q, system.x, reachable);
+    if (!armijo(potential_, model_, step.targets, reachable, state.q, p, energy,
+                step.gradient.dot(p), step.held, alpha, diagnostics.line_search_steps)) {
       failure = {Failure::kLineSearch, "line search cannot decrease the incremental potential"};
       return false;
     }
   }
-  step.near = std::move(swept);  // the step is taken along this path
+  step.near = std::move(reachable);  // the step is taken along this path
   return true;
 }
 

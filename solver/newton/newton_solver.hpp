@@ -43,9 +43,9 @@ struct NewtonStep {
   Eigen::VectorXd kinematic_force;
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<Eigen::Triplet<double>> free_triplets;
-  // Every pair within d_hat of the current positions, once found: after a line search, its swept
-  // list, which holds every pair that comes within d_hat anywhere on the path the step was
-  // taken along, so at the accepted point too. It spares a broad phase per iteration; the
+  // Every pair within d_hat of the current positions, once found (within_reach): after a line
+  // search, the pairs that can come within d_hat anywhere on the path the step was taken along,
+  // so at the accepted point too. It spares a broad phase per iteration; the
   // environment hands it on to the next step, which starts where this one ends.
   std::optional<std::vector<ContactCandidate>> near;
 };

@@ -1,15 +1,21 @@
 // The broad phase kept from call to call finds exactly what a fresh one finds, in the same
-// order: its lazily built trees answer as whole trees, whatever was built and asked before.
+// order: its lazily built trees answer as whole trees, whatever was built and asked before, and
+// the pairs it keeps between calls (grown by a skin) hold every pair of a call that stays inside
+// their boxes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "scene_builders.hpp"
 #include "solver/body/body.hpp"
 #include "solver/contact/bvh.hpp"
 #include "solver/contact/candidates.hpp"
+#include "solver/kernels/edge_edge_distance.hpp"
+#include "solver/kernels/point_triangle_distance.hpp"
 
 namespace grip::solver {
 namespace {
@@ -127,6 +133,55 @@ std::vector<SortedPair> brute_force(const Model& model, const Vertices& start, c
   return pairs;
 }
 
+// The documented order: point-triangle pairs by vertex then face index, then edge-edge pairs by
+// query edge then partner edge index.
+void expect_in_mesh_order(const Model& model, const std::vector<ContactCandidate>& candidates) {
+  const CollisionMesh& mesh = model.collision();
+  std::map<std::array<int, 3>, int> face_index;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    face_index[mesh.faces[f]] = static_cast<int>(f);
+  std::map<std::array<int, 2>, int> edge_index;
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e)
+    edge_index[mesh.edges[e]] = static_cast<int>(e);
+  std::vector<std::tuple<bool, int, int>> keys;
+  for (const ContactCandidate& c : candidates) {
+    const auto& v = c.vertex;
+    keys.emplace_back(
+        c.edge_edge, c.edge_edge ? edge_index.at({v[0], v[1]}) : v[0],
+        c.edge_edge ? edge_index.at({v[2], v[3]}) : face_index.at({v[1], v[2], v[3]}));
+  }
+  EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
+}
+
+// within_reach keeps, in order, every pair that comes within d_hat somewhere on the path (sampled
+// at 21 points); returns how many it left out.
+int expect_within_reach_keeps_what_comes_near(const std::vector<ContactCandidate>& candidates,
+                                              const Vertices& start, const Vertices& end,
+                                              double d_hat) {
+  const std::vector<ContactCandidate> reachable = within_reach(candidates, start, end, d_hat);
+  std::size_t next = 0;
+  for (const ContactCandidate& c : candidates) {
+    const bool kept = next < reachable.size() && reachable[next].vertex == c.vertex &&
+                      reachable[next].edge_edge == c.edge_edge;
+    if (kept) {
+      ++next;
+      continue;
+    }
+    for (int k = 0; k <= 20; ++k) {
+      const double t = k / 20.0;
+      Eigen::Vector3d x[4];
+      for (int i = 0; i < 4; ++i) {
+        x[i] = ((1.0 - t) * start.row(c.vertex[i]) + t * end.row(c.vertex[i])).transpose();
+      }
+      const double d_sq = c.edge_edge ? kernels::edge_edge_distance_sq(x[0], x[1], x[2], x[3])
+                                      : kernels::point_triangle_distance_sq(x[0], x[1], x[2], x[3]);
+      EXPECT_GE(d_sq, d_hat * d_hat) << "a pair left out comes within d_hat at t = " << t;
+    }
+  }
+  EXPECT_EQ(next, reachable.size()) << "within_reach keeps the candidates' order";
+  return static_cast<int>(candidates.size() - reachable.size());
+}
+
 std::vector<SortedPair> as_sorted(const std::vector<ContactCandidate>& candidates) {
   std::vector<SortedPair> pairs;
   for (const ContactCandidate& c : candidates) pairs.push_back(normalized(c.edge_edge, c.vertex));
@@ -156,6 +211,8 @@ void expect_kept_finds_what_fresh_finds(const SceneDescription& scene) {
   ContactBroadPhase kept;
   Vertices start = rest;
   int nonempty = 0;
+  int calls = 0;
+  int dropped = 0;
   for (int frame = 0; frame < 40; ++frame) {
     // Each body moves rigidly, the soft one vertex by vertex too; some frames keep the
     // kinematic bodies or everything where they were.
@@ -175,12 +232,20 @@ void expect_kept_finds_what_fresh_finds(const SceneDescription& scene) {
     const std::vector<ContactCandidate> fresh = find_contact_candidates(*model, start, end, d_hat);
     expect_same(kept.find(*model, start, end, d_hat), fresh);
     EXPECT_EQ(as_sorted(fresh), brute_force(*model, start, end, d_hat)) << "frame " << frame;
+    expect_in_mesh_order(*model, fresh);
+    dropped += expect_within_reach_keeps_what_comes_near(fresh, start, end, d_hat);
     expect_same(kept.find(*model, end, end, d_hat),
                 find_contact_candidates(*model, end, end, d_hat));
+    calls += 2;
     nonempty += fresh.empty() ? 0 : 1;
     start = end;
   }
   EXPECT_GT(nonempty, 30);
+  // Motions of up to 0.6 mm a frame against a skin of d_hat: most calls reuse the kept pairs,
+  // some (after a larger motion, with a larger d_hat) query the trees again.
+  EXPECT_GE(kept.keeps(), 3);
+  EXPECT_GT(dropped, 0);
+  EXPECT_LT(kept.keeps(), calls / 2);
 }
 
 TEST(ContactBroadPhase, KeptBetweenCallsFindsWhatAFreshOneFinds) {
