@@ -1,5 +1,7 @@
 #include "solver/linear/sparse_cholesky.hpp"
 
+#include "solver/linear/blas_threads.hpp"
+
 #include <cholmod.h>
 
 #include <algorithm>
@@ -97,6 +99,7 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
     impl.inner.assign(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros());
     ++impl.analyses;
   }
+  use_single_threaded_openmp();
   cholmod_factorize(&a, impl.factor, &impl.common);
   return impl.common.status == CHOLMOD_OK && impl.factor->minor == impl.factor->n;
 }

@@ -134,28 +134,24 @@ void NewtonSolver::eliminate_prescribed(const State& state, NewtonStep& step,
   const std::vector<char>& prescribed = model_.prescribed();
   // Held DOFs (Environment::hold) are prescribed to stay where they are.
   const std::vector<char>& held = state.held;
-  const auto fixed = [&](int i) { return prescribed[i] || (!held.empty() && held[i]); };
+  step.fixed.resize(n);
+  for (int i = 0; i < n; ++i) step.fixed[i] = prescribed[i] || (!held.empty() && held[i]);
   // The prescribed DOFs' motion still to come.
   Eigen::VectorXd lift = Eigen::VectorXd::Zero(n);
+  system.rhs = -step.gradient - step.kinematic_force;
   if (system.moving) {
     for (int i = 0; i < n; ++i) {
       if (prescribed[i]) lift[i] = step.targets.prescribed_target[i] - state.q[i];
     }
-  }
-  system.rhs = -step.gradient - step.kinematic_force;
-  step.free_triplets.clear();
-  for (const auto& e : step.triplets) {
-    const int r = static_cast<int>(e.row()), c = static_cast<int>(e.col());
-    if (system.moving) {
+    for (const auto& e : step.triplets) {
+      const int r = static_cast<int>(e.row()), c = static_cast<int>(e.col());
       system.rhs[r] -= e.value() * lift[c];
       if (r != c) system.rhs[c] -= e.value() * lift[r];
     }
-    if (!fixed(r) && !fixed(c)) step.free_triplets.push_back(e);
   }
   system.residual = 0.0;
   for (int i = 0; i < n; ++i) {
-    if (fixed(i)) {
-      step.free_triplets.emplace_back(i, i, 1.0);
+    if (step.fixed[i]) {
       system.rhs[i] = lift[i];
     } else {
       system.residual = std::max(system.residual, std::abs(step.gradient[i]));
@@ -172,7 +168,7 @@ bool NewtonSolver::solve(const State& state, NewtonStep& step, System& system, E
     const Eigen::SparseMatrix<double>* matrix = nullptr;
     {
       const StageTimer timer(stages_.assembly);
-      matrix = &assembly_.assemble(n, step.free_triplets);
+      matrix = &assembly_.assemble(n, step.triplets, step.fixed);
     }
     const StageTimer timer(stages_.factorization);
     return solver.factorize(*matrix);

@@ -42,7 +42,9 @@ struct NewtonStep {
   Eigen::VectorXd gradient;
   Eigen::VectorXd kinematic_force;
   std::vector<Eigen::Triplet<double>> triplets;
-  std::vector<Eigen::Triplet<double>> free_triplets;
+  // The DOFs eliminated from the system (prescribed or held): the assembly leaves out their
+  // rows and columns.
+  std::vector<char> fixed;
   // Every pair within d_hat of the current positions, once found (within_reach): after a line
   // search, the pairs that can come within d_hat anywhere on the path the step was taken along,
   // so at the accepted point too. It spares a broad phase per iteration; the

@@ -53,5 +53,38 @@ TEST(SparseAssembly, ANewPatternIsBuiltAgain) {
   EXPECT_EQ(assembly.pattern_builds(), 3);
 }
 
+// Fixed DOFs' rows and columns are left out and their diagonals are 1, as an elimination of
+// prescribed DOFs by hand gives; a new set of fixed DOFs is a new pattern.
+TEST(SparseAssembly, FixedDofsAreEliminatedWithAUnitDiagonal) {
+  SparseAssembly assembly;
+  const int n = 40;
+  const auto eliminated = [&](const std::vector<Eigen::Triplet<double>>& triplets,
+                              const std::vector<char>& fixed) {
+    std::vector<Eigen::Triplet<double>> kept;
+    for (const auto& t : triplets) {
+      if (!fixed[t.row()] && !fixed[t.col()]) kept.push_back(t);
+    }
+    for (int i = 0; i < n; ++i) {
+      if (fixed[i]) kept.emplace_back(i, i, 1.0);
+    }
+    return fresh(n, kept);
+  };
+  std::vector<char> fixed(n, 0);
+  for (int i = 0; i < n; i += 7) fixed[i] = 1;
+  for (unsigned values = 1; values <= 4; ++values) {
+    const auto triplets = random_triplets(n, 300, 7, values);
+    const Eigen::MatrixXd assembled(assembly.assemble(n, triplets, fixed));
+    EXPECT_EQ((assembled - eliminated(triplets, fixed)).norm(), 0.0) << "values " << values;
+    EXPECT_EQ(assembled(7, 7), 1.0);
+    EXPECT_EQ(assembled.row(7).cwiseAbs().sum(), 1.0);
+  }
+  EXPECT_EQ(assembly.pattern_builds(), 1);
+  fixed[1] = 1;
+  const auto triplets = random_triplets(n, 300, 7, 9);
+  const Eigen::MatrixXd assembled(assembly.assemble(n, triplets, fixed));
+  EXPECT_EQ((assembled - eliminated(triplets, fixed)).norm(), 0.0);
+  EXPECT_EQ(assembly.pattern_builds(), 2);
+}
+
 }  // namespace
 }  // namespace grip::solver
