@@ -13,55 +13,76 @@ long long key(int n, const Eigen::Triplet<double>& t) {
 
 const Eigen::SparseMatrix<double>& SparseAssembly::assemble(
     int n, const std::vector<Eigen::Triplet<double>>& triplets, const std::vector<char>& fixed) {
-  if (matrix_.rows() != n || positions_.size() != triplets.size() || fixed_ != fixed) {
-    return build(n, triplets, fixed);
+  if (matrix_.rows() != n || fixed_ != fixed) {
+    fixed_ = fixed;
+    positions_.clear();
+    build_pattern(n, triplets, false);
   }
+  // Each triplet's slot: the last assembly's at the same index if the position repeats, else
+  // looked up; a position the pattern lacks grows it.
+  positions_.resize(triplets.size(), -1);
+  slot_.resize(triplets.size());
+  for (std::size_t i = 0; i < triplets.size(); ++i) {
+    const auto& t = triplets[i];
+    const long long position = key(n, t);
+    if (positions_[i] == position) continue;
+    positions_[i] = position;
+    slot_[i] = is_fixed(t.row()) || is_fixed(t.col()) ? -1 : slot(t.row(), t.col());
+    if (slot_[i] == -1 && !is_fixed(t.row()) && !is_fixed(t.col())) {
+      const bool grow = matrix_.nonZeros() <= fresh_nonzeros_ + fresh_nonzeros_ / 5;
+      build_pattern(n, triplets, grow);
+      for (std::size_t j = 0; j < triplets.size(); ++j) {
+        const auto& u = triplets[j];
+        positions_[j] = key(n, u);
+        slot_[j] = is_fixed(u.row()) || is_fixed(u.col()) ? -1 : slot(u.row(), u.col());
+      }
+      break;
+    }
+  }
+  // Sums in the triplets' order, as setFromTriplets does.
   double* values = matrix_.valuePtr();
   std::fill(values, values + matrix_.nonZeros(), 0.0);
-  // Sums in the triplets' order, as setFromTriplets does; a position that moved means a new
-  // pattern (a contact came or went).
   for (std::size_t i = 0; i < triplets.size(); ++i) {
-    if (positions_[i] != key(n, triplets[i])) return build(n, triplets, fixed);
     if (slot_[i] >= 0) values[slot_[i]] += triplets[i].value();
   }
   for (const int s : unit_slots_) values[s] = 1.0;
   return matrix_;
 }
 
-const Eigen::SparseMatrix<double>& SparseAssembly::build(
-    int n, const std::vector<Eigen::Triplet<double>>& triplets, const std::vector<char>& fixed) {
-  const auto is_fixed = [&](int i) { return !fixed.empty() && fixed[i]; };
-  kept_.clear();
+void SparseAssembly::build_pattern(int n, const std::vector<Eigen::Triplet<double>>& triplets,
+                                   bool grow) {
+  pattern_.clear();
+  if (grow) {
+    for (int col = 0; col < matrix_.outerSize(); ++col) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(matrix_, col); it; ++it) {
+        pattern_.emplace_back(static_cast<int>(it.row()), col, 0.0);
+      }
+    }
+  }
   for (const auto& t : triplets) {
-    if (!is_fixed(t.row()) && !is_fixed(t.col())) kept_.push_back(t);
+    if (!is_fixed(t.row()) && !is_fixed(t.col())) pattern_.emplace_back(t.row(), t.col(), 0.0);
   }
   for (int i = 0; i < n; ++i) {
-    if (is_fixed(i)) kept_.emplace_back(i, i, 1.0);
+    if (is_fixed(i)) pattern_.emplace_back(i, i, 0.0);
   }
   matrix_.resize(n, n);
-  matrix_.setFromTriplets(kept_.begin(), kept_.end());
+  matrix_.setFromTriplets(pattern_.begin(), pattern_.end());
   matrix_.makeCompressed();
-  fixed_ = fixed;
-  // An entry's index in the compressed column: a binary search among the column's rows.
-  const auto slot = [&](int row, int col) {
-    const int* rows = matrix_.innerIndexPtr();
-    const int begin = matrix_.outerIndexPtr()[col];
-    const int end = matrix_.outerIndexPtr()[col + 1];
-    return static_cast<int>(std::lower_bound(rows + begin, rows + end, row) - rows);
-  };
-  positions_.resize(triplets.size());
-  slot_.resize(triplets.size());
-  for (std::size_t i = 0; i < triplets.size(); ++i) {
-    const auto& t = triplets[i];
-    positions_[i] = key(n, t);
-    slot_[i] = is_fixed(t.row()) || is_fixed(t.col()) ? -1 : slot(t.row(), t.col());
-  }
+  if (!grow) fresh_nonzeros_ = matrix_.nonZeros();
   unit_slots_.clear();
   for (int i = 0; i < n; ++i) {
     if (is_fixed(i)) unit_slots_.push_back(slot(i, i));
   }
   ++pattern_builds_;
-  return matrix_;
+}
+
+int SparseAssembly::slot(int row, int col) const {
+  // A binary search among the column's rows.
+  const int* rows = matrix_.innerIndexPtr();
+  const int* begin = rows + matrix_.outerIndexPtr()[col];
+  const int* end = rows + matrix_.outerIndexPtr()[col + 1];
+  const int* found = std::lower_bound(begin, end, row);
+  return found != end && *found == row ? static_cast<int>(found - rows) : -1;
 }
 
 }  // namespace grip::solver

@@ -1,7 +1,11 @@
 #pragma once
-// Assembles a sparse matrix from triplets, reusing the sparsity pattern while the triplets'
-// positions repeat from one Newton iteration to the next (the same elements and contacts):
-// then only the values are summed in place, with no sorting and no allocation.
+// Assembles a sparse matrix from triplets, keeping its sparsity pattern from one Newton
+// iteration to the next. The elements' entries repeat in place; a contact's entries come and go
+// at the end of the list. An entry whose position is already in the pattern is summed in
+// place; a new one grows the pattern, which keeps the entries of contacts that have gone as
+// explicit zeros, so that a grasp's contacts, once seen, cost no new pattern (nor CHOLMOD a new
+// symbolic analysis). A pattern grown by more than a fifth past its last fresh build is built
+// fresh again.
 #include <Eigen/SparseCore>
 #include <vector>
 
@@ -9,27 +13,31 @@ namespace grip::solver {
 
 class SparseAssembly {
  public:
-  // The matrix of `triplets` (duplicates summed), size n x n, compressed. Rows and columns i
-  // with fixed[i] set (prescribed DOFs) are left out and get a 1 on the diagonal instead; an
-  // empty `fixed` fixes none. One pass over the triplets while the pattern repeats.
+  // The matrix of `triplets` (duplicates summed in the triplets' order), size n x n, compressed,
+  // perhaps with explicit zeros. Rows and columns i with fixed[i] set (prescribed DOFs) are left
+  // out and get a 1 on the diagonal instead; an empty `fixed` fixes none.
   const Eigen::SparseMatrix<double>& assemble(int n,
                                               const std::vector<Eigen::Triplet<double>>& triplets,
                                               const std::vector<char>& fixed = {});
 
-  // How many times the pattern was built from scratch.
+  // How many times the pattern was built (fresh or grown).
   int pattern_builds() const { return pattern_builds_; }
 
  private:
-  const Eigen::SparseMatrix<double>& build(int n,
-                                           const std::vector<Eigen::Triplet<double>>& triplets,
-                                           const std::vector<char>& fixed);
+  // The pattern of `triplets` (their free entries, the fixed DOFs' diagonals), with the current
+  // pattern's entries too when `grow`.
+  void build_pattern(int n, const std::vector<Eigen::Triplet<double>>& triplets, bool grow);
+  // The index of entry (row, col) in the matrix's values, or -1 if the pattern lacks it.
+  int slot(int row, int col) const;
+  bool is_fixed(int i) const { return !fixed_.empty() && fixed_[i]; }
 
   Eigen::SparseMatrix<double> matrix_;
   std::vector<char> fixed_;
-  std::vector<long long> positions_;  // the triplets' (row, col) keys of the current pattern
-  std::vector<int> slot_;             // each triplet's index into the matrix's values, or -1
-  std::vector<int> unit_slots_;       // the fixed DOFs' diagonal entries
-  std::vector<Eigen::Triplet<double>> kept_;  // scratch of build()
+  std::vector<long long> positions_;             // the last triplets' (row, col) keys
+  std::vector<int> slot_;                        // each one's index into the matrix's values, or -1
+  std::vector<int> unit_slots_;                  // the fixed DOFs' diagonal entries
+  long long fresh_nonzeros_ = 0;                 // the pattern's size when it was last built fresh
+  std::vector<Eigen::Triplet<double>> pattern_;  // scratch of build_pattern()
   int pattern_builds_ = 0;
 };
 

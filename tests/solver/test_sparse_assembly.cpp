@@ -1,6 +1,7 @@
 // Pattern reuse gives exactly the matrix a fresh assembly gives, and rebuilds only on change.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "solver/linear/sparse_assembly.hpp"
@@ -28,6 +29,12 @@ Eigen::MatrixXd fresh(int n, const std::vector<Eigen::Triplet<double>>& triplets
   return Eigen::MatrixXd(m);
 }
 
+long long fresh_pattern_size(int n, const std::vector<Eigen::Triplet<double>>& triplets) {
+  Eigen::SparseMatrix<double> m(n, n);
+  m.setFromTriplets(triplets.begin(), triplets.end());
+  return m.nonZeros();
+}
+
 TEST(SparseAssembly, ReusedPatternGivesTheFreshMatrix) {
   SparseAssembly assembly;
   const int n = 40;
@@ -51,6 +58,48 @@ TEST(SparseAssembly, ANewPatternIsBuiltAgain) {
   const Eigen::MatrixXd grown(assembly.assemble(n, longer));
   EXPECT_EQ((grown - fresh(n, longer)).norm(), 0.0);
   EXPECT_EQ(assembly.pattern_builds(), 3);
+}
+
+// A contact's entries at the end of the list: once in the pattern, a contact that goes (its
+// entries stay as explicit zeros) and comes back costs no new pattern; the values are always the
+// fresh matrix's.
+TEST(SparseAssembly, AContactThatGoesAndComesBackCostsNoNewPattern) {
+  SparseAssembly assembly;
+  const int n = 40;
+  const auto elements = random_triplets(n, 300, 7, 1);
+  auto with_contact = elements;
+  for (const auto& t : random_triplets(n, 20, 8, 2)) with_contact.push_back(t);
+  const std::vector<Eigen::Triplet<double>>* order[] = {&with_contact, &elements, &with_contact,
+                                                        &elements};
+  for (const auto* triplets : order) {
+    const Eigen::MatrixXd assembled(assembly.assemble(n, *triplets));
+    EXPECT_EQ((assembled - fresh(n, *triplets)).norm(), 0.0);
+  }
+  EXPECT_EQ(assembly.pattern_builds(), 1);
+  EXPECT_GT(assembly.assemble(n, elements).nonZeros(), fresh_pattern_size(n, elements));
+}
+
+// Contacts that keep coming at new places grow the pattern; past a fifth more than its last
+// fresh build, it is built fresh, without the stale entries.
+TEST(SparseAssembly, APatternGrownTooFarIsBuiltFresh) {
+  SparseAssembly assembly;
+  const int n = 60;
+  const auto elements = random_triplets(n, 200, 7, 1);
+  long long largest = 0;
+  for (unsigned contact = 1; contact <= 12; ++contact) {
+    auto triplets = elements;
+    for (const auto& t : random_triplets(n, 30, 100 + contact, 2)) triplets.push_back(t);
+    const Eigen::SparseMatrix<double>& m = assembly.assemble(n, triplets);
+    EXPECT_EQ((Eigen::MatrixXd(m) - fresh(n, triplets)).norm(), 0.0) << "contact " << contact;
+    largest = std::max<long long>(largest, m.nonZeros());
+  }
+  const long long first = fresh_pattern_size(n, [&] {
+    auto triplets = elements;
+    for (const auto& t : random_triplets(n, 30, 101, 2)) triplets.push_back(t);
+    return triplets;
+  }());
+  EXPECT_GT(largest, first);
+  EXPECT_LE(largest, first + first / 5 + 60);  // at most one growth past the limit
 }
 
 // Fixed DOFs' rows and columns are left out and their diagonals are 1, as an elimination of
