@@ -1,6 +1,7 @@
 #include "solver/contact/candidates.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "solver/body/body.hpp"
 #include "solver/kernels/edge_edge_distance.hpp"
@@ -190,10 +191,14 @@ void ContactBroadPhase::keep(const Model& model, double d_hat) {
 }
 
 std::vector<ContactCandidate> within_reach(const std::vector<ContactCandidate>& candidates,
-                                           const Vertices& start, const Vertices& end,
-                                           double d_hat) {
+                                           const Vertices& start, const Vertices& end, double d_hat,
+                                           std::vector<ContactCandidate>* ccd,
+                                           double ccd_rescaling) {
   const auto displacement = [&](int v) { return (end.row(v) - start.row(v)).norm(); };
+  // Relative margins far above round-off keep every pair the rounding could bring in.
+  const double ccd_stops_sq = ccd ? std::pow(d_hat * (1.0 - 1e-6) / ccd_rescaling, 2) : 0.0;
   std::vector<ContactCandidate> reachable;
+  if (ccd) ccd->clear();
   for (const ContactCandidate& c : candidates) {
     const auto& v = c.vertex;
     // Every point of a triangle (an edge) moves at most as far as its farthest vertex, so the
@@ -206,8 +211,9 @@ std::vector<ContactCandidate> within_reach(const std::vector<ContactCandidate>& 
     const auto x = [&](int k) -> Eigen::Vector3d { return start.row(v[k]).transpose(); };
     const double d_sq = c.edge_edge ? kernels::edge_edge_distance_sq(x(0), x(1), x(2), x(3))
                                     : kernels::point_triangle_distance_sq(x(0), x(1), x(2), x(3));
-    // A relative margin far above round-off keeps every pair the rounding could bring in.
-    if (d_sq <= reach * reach * (1.0 + 1e-6)) reachable.push_back(c);
+    const bool within = d_sq <= reach * reach * (1.0 + 1e-6);
+    if (within) reachable.push_back(c);
+    if (ccd && (within || d_sq >= ccd_stops_sq)) ccd->push_back(c);
   }
   return reachable;
 }

@@ -36,9 +36,16 @@ std::vector<ContactCandidate> find_contact_candidates(const Model& model, const 
 // the path brings it within d_hat, so its barrier is zero all along. Most pairs of a finely meshed
 // soft finger are neighbours on its surface, a few millimetres apart: their boxes overlap, their
 // barrier never acts.
+//
+// With `ccd`, also the pairs continuous collision detection must watch, in order: those within
+// reach, and those that start farther than d_hat / ccd_rescaling. Additive CCD stops a pair only
+// once its distance falls below ccd_rescaling times its start distance; a pair that stays beyond
+// d_hat and starts nearer than d_hat / ccd_rescaling never gets there, so leaving it out leaves
+// the step's collision-free fraction as it was.
 std::vector<ContactCandidate> within_reach(const std::vector<ContactCandidate>& candidates,
-                                           const Vertices& start, const Vertices& end,
-                                           double d_hat);
+                                           const Vertices& start, const Vertices& end, double d_hat,
+                                           std::vector<ContactCandidate>* ccd = nullptr,
+                                           double ccd_rescaling = 0.0);
 
 // The broad phase kept from call to call (one per environment); it finds exactly what
 // find_contact_candidates finds, in the same order. It keeps the pairs whose boxes overlap once

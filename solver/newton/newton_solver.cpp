@@ -214,17 +214,17 @@ bool NewtonSolver::filter_step(const State& state, NewtonStep& step, const Syste
                                StepDiagnostics& diagnostics, FailureReport& failure) {
   const SimParameters& sim = model_.sim();
   const Vertices x_end = collision_positions(model_, state.q + p, step.targets, 1.0);
-  // CCD watches every pair whose boxes overlap; the barrier acts only on the pairs that can come
-  // within d_hat on the path.
-  std::vector<ContactCandidate> swept, reachable;
+  // The barrier acts only on the pairs that can come within d_hat on the path; CCD watches those
+  // and the far pairs it could stop at (within_reach).
+  std::vector<ContactCandidate> reachable, watched;
   {
     const StageTimer timer(stages_.broad_phase);
-    swept = broad_phase_.find(model_, system.x, x_end, sim.d_hat);
-    reachable = within_reach(swept, system.x, x_end, sim.d_hat);
+    reachable = within_reach(broad_phase_.find(model_, system.x, x_end, sim.d_hat), system.x, x_end,
+                             sim.d_hat, &watched, sim.ccd_rescaling);
   }
   {
     const StageTimer timer(stages_.ccd);
-    alpha = collision_free_fraction(swept, system.x, x_end, sim.ccd_rescaling);
+    alpha = collision_free_fraction(watched, system.x, x_end, sim.ccd_rescaling);
   }
   if (!(alpha > 0.0)) {
     failure = {Failure::kCcdNoMotion, "continuous collision detection allows no motion"};

@@ -14,6 +14,7 @@
 #include "solver/body/body.hpp"
 #include "solver/contact/bvh.hpp"
 #include "solver/contact/candidates.hpp"
+#include "solver/kernels/accd.hpp"
 #include "solver/kernels/edge_edge_distance.hpp"
 #include "solver/kernels/point_triangle_distance.hpp"
 
@@ -153,33 +154,53 @@ void expect_in_mesh_order(const Model& model, const std::vector<ContactCandidate
   EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
 }
 
+bool same_pair(const ContactCandidate& a, const ContactCandidate& b) {
+  return a.edge_edge == b.edge_edge && a.vertex == b.vertex;
+}
+
 // within_reach keeps, in order, every pair that comes within d_hat somewhere on the path (sampled
-// at 21 points); returns how many it left out.
+// at 21 points), and for CCD every pair additive CCD would stop at; returns how many it left out.
 int expect_within_reach_keeps_what_comes_near(const std::vector<ContactCandidate>& candidates,
                                               const Vertices& start, const Vertices& end,
                                               double d_hat) {
-  const std::vector<ContactCandidate> reachable = within_reach(candidates, start, end, d_hat);
-  std::size_t next = 0;
+  const double rescaling = 0.1;
+  std::vector<ContactCandidate> watched;
+  const std::vector<ContactCandidate> reachable =
+      within_reach(candidates, start, end, d_hat, &watched, rescaling);
+  EXPECT_EQ(within_reach(candidates, start, end, d_hat).size(), reachable.size());
+  std::size_t next = 0, next_watched = 0;
   for (const ContactCandidate& c : candidates) {
-    const bool kept = next < reachable.size() && reachable[next].vertex == c.vertex &&
-                      reachable[next].edge_edge == c.edge_edge;
-    if (kept) {
-      ++next;
-      continue;
+    const bool kept = next < reachable.size() && same_pair(reachable[next], c);
+    const bool is_watched = next_watched < watched.size() && same_pair(watched[next_watched], c);
+    EXPECT_TRUE(is_watched || !kept) << "a pair within reach is watched by CCD";
+    next += kept;
+    next_watched += is_watched;
+    const auto at = [&](int i, double t) -> Eigen::Vector3d {
+      return ((1.0 - t) * start.row(c.vertex[i]) + t * end.row(c.vertex[i])).transpose();
+    };
+    if (!is_watched) {
+      kernels::AccdOptions options;
+      options.rescaling = rescaling;
+      const kernels::AccdResult impact =
+          c.edge_edge
+              ? kernels::edge_edge_accd(at(0, 0), at(1, 0), at(2, 0), at(3, 0), at(0, 1), at(1, 1),
+                                        at(2, 1), at(3, 1), options)
+              : kernels::point_triangle_accd(at(0, 0), at(1, 0), at(2, 0), at(3, 0), at(0, 1),
+                                             at(1, 1), at(2, 1), at(3, 1), options);
+      EXPECT_FALSE(impact.impact) << "CCD would stop at a pair it does not watch";
     }
+    if (kept) continue;
     for (int k = 0; k <= 20; ++k) {
       const double t = k / 20.0;
-      Eigen::Vector3d x[4];
-      for (int i = 0; i < 4; ++i) {
-        x[i] = ((1.0 - t) * start.row(c.vertex[i]) + t * end.row(c.vertex[i])).transpose();
-      }
-      const double d_sq = c.edge_edge ? kernels::edge_edge_distance_sq(x[0], x[1], x[2], x[3])
-                                      : kernels::point_triangle_distance_sq(x[0], x[1], x[2], x[3]);
+      const double d_sq =
+          c.edge_edge ? kernels::edge_edge_distance_sq(at(0, t), at(1, t), at(2, t), at(3, t))
+                      : kernels::point_triangle_distance_sq(at(0, t), at(1, t), at(2, t), at(3, t));
       EXPECT_GE(d_sq, d_hat * d_hat) << "a pair left out comes within d_hat at t = " << t;
     }
   }
   EXPECT_EQ(next, reachable.size()) << "within_reach keeps the candidates' order";
-  return static_cast<int>(candidates.size() - reachable.size());
+  EXPECT_EQ(next_watched, watched.size()) << "and so does the pairs CCD watches";
+  return static_cast<int>(candidates.size() - watched.size());
 }
 
 std::vector<SortedPair> as_sorted(const std::vector<ContactCandidate>& candidates) {
@@ -275,6 +296,38 @@ TEST(ContactBroadPhase, ACollisionGroupLooksOnlyAmongTheOthers) {
   EXPECT_FALSE(mixed->among_untouching(0) || mixed->among_untouching(1));
   EXPECT_TRUE(mixed->among_untouching(3));
   expect_kept_finds_what_fresh_finds(scene);
+}
+
+// A point closing on a triangle from 20 cm to 1.5 mm in one step never comes within d_hat (1 mm),
+// but additive CCD (rescaling 0.1) stops it once it has closed 90 % of its gap: CCD watches it.
+// From 8 mm to 1.5 mm it neither comes within d_hat nor reaches CCD's stop: neither list has it.
+TEST(WithinReach, CcdWatchesTheFarPairsItWouldStop) {
+  const double d_hat = 1e-3;
+  Vertices start(8, 3), end(8, 3);
+  for (const int first : {0, 4}) {
+    const double height = first == 0 ? 0.2 : 0.008;
+    start.row(first) << 0.0, 0.0, height;
+    end.row(first) << 0.0, 0.0, 0.0015;
+    start.row(first + 1) << -0.1, -0.1, 0.0;
+    start.row(first + 2) << 0.1, -0.1, 0.0;
+    start.row(first + 3) << 0.0, 0.1, 0.0;
+    for (int k = 1; k <= 3; ++k) end.row(first + k) = start.row(first + k);
+  }
+  const std::vector<ContactCandidate> pairs{{false, {0, 1, 2, 3}, 0.5, 0.0, false},
+                                            {false, {4, 5, 6, 7}, 0.5, 0.0, false}};
+  std::vector<ContactCandidate> watched;
+  EXPECT_TRUE(within_reach(pairs, start, end, d_hat, &watched, 0.1).empty());
+  ASSERT_EQ(watched.size(), 1u);
+  EXPECT_EQ(watched[0].vertex[0], 0);
+  kernels::AccdOptions options;
+  options.rescaling = 0.1;
+  const auto accd = [&](int first) {
+    const auto s = [&](int k) -> Eigen::Vector3d { return start.row(first + k).transpose(); };
+    const auto e = [&](int k) -> Eigen::Vector3d { return end.row(first + k).transpose(); };
+    return kernels::point_triangle_accd(s(0), s(1), s(2), s(3), e(0), e(1), e(2), e(3), options);
+  };
+  EXPECT_TRUE(accd(0).impact);
+  EXPECT_FALSE(accd(4).impact);
 }
 
 }  // namespace
