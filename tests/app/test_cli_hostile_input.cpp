@@ -200,6 +200,31 @@ TEST(HostileInput, SynthOptionsOutOfTheirRangeAreUsageErrors) {
   fs::remove_all(dir);
 }
 
+// A 4 cm cube written in centimetres is a 4 m cube: no gripper takes it, and the warning names its
+// size and the --scale that fixes it; with --scale 0.01 it takes candidates.
+TEST(HostileInput, AMeshInCentimetresNamesItsSizeAndTheScaleThatFixesIt) {
+  const fs::path dir = scratch("units");
+  const fs::path mesh = dir / "cube_cm.obj";
+  std::ofstream obj(mesh);
+  for (const int x : {-2, 2})
+    for (const int y : {-2, 2})
+      for (const int z : {-2, 2}) obj << "v " << x << ' ' << y << ' ' << z << '\n';
+  obj << "f 1 2 4\nf 1 4 3\nf 5 7 8\nf 5 8 6\nf 1 5 6\nf 1 6 2\n"
+         "f 3 4 8\nf 3 8 7\nf 1 3 7\nf 1 7 5\nf 2 6 8\nf 2 8 4\n";
+  obj.close();
+  const std::string synth = "synth --object " + quoted(mesh) +
+                            " --gripper parallel-jaw --count 1 --seed 1 --out " +
+                            quoted(dir / "c.txt");
+  const GripRun metres = run_grip(synth);
+  EXPECT_EQ(metres.exit_code, 1) << metres.err;
+  EXPECT_NE(metres.err.find("the object (4 x 4 x 4 m at --scale 1)"), std::string::npos)
+      << metres.err;
+  EXPECT_NE(metres.err.find("--scale 0.01"), std::string::npos) << metres.err;
+  const GripRun centimetres = run_grip(synth + " --scale 0.01");
+  EXPECT_EQ(centimetres.exit_code, 0) << centimetres.err;
+  fs::remove_all(dir);
+}
+
 // `grip farm` on a small job with `extra` appended (it may reopen a table): refused in one line
 // holding `expected`, exit 1, and no dataset nor its folder created.
 void expect_job_refused(const fs::path& dir, const std::string& extra,

@@ -52,8 +52,15 @@ int synth(const SynthArgs& args) {
       static_cast<double>(result.candidates.size()) / result.seconds,
       static_cast<long long>(result.attempts), result.accepted_fraction(), args.out.c_str());
   if (static_cast<int>(result.candidates.size()) < args.count) {
-    spdlog::warn("only {} of {} candidates after {} attempts: the object may not fit the gripper",
-                 result.candidates.size(), args.count, result.attempts);
+    // The usual cause with a mesh file is its unit: grippers hold objects of a few centimetres.
+    const auto& v = object.surface().vertices;
+    const Eigen::Vector3d size = (v.colwise().maxCoeff() - v.colwise().minCoeff()).transpose();
+    spdlog::warn(
+        "only {} of {} candidates after {} attempts: the object ({:.3g} x {:.3g} x {:.3g} m at "
+        "--scale {:g}) may not fit the gripper; a mesh in centimetres or millimetres needs "
+        "--scale 0.01 or 0.001",
+        result.candidates.size(), args.count, result.attempts, size.x(), size.y(), size.z(),
+        args.scale);
     return 1;
   }
   return 0;
