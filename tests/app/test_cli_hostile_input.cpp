@@ -45,6 +45,16 @@ void expect_scene_refused(const fs::path& dir, const std::string& text,
   EXPECT_TRUE(run.out.empty()) << run.out;
 }
 
+// An OBJ cube of half-width `half`, centred on the origin, faces outward.
+void write_cube(const fs::path& path, double half) {
+  std::ofstream obj(path);
+  for (const double x : {-half, half})
+    for (const double y : {-half, half})
+      for (const double z : {-half, half}) obj << "v " << x << ' ' << y << ' ' << z << '\n';
+  obj << "f 1 2 4\nf 1 4 3\nf 5 7 8\nf 5 8 6\nf 1 5 6\nf 1 6 2\n"
+         "f 3 4 8\nf 3 8 7\nf 1 3 7\nf 1 7 5\nf 2 6 8\nf 2 8 4\n";
+}
+
 TEST(HostileInput, SceneDurationsOfNoStepOrTooManyStepsAreRefused) {
   const fs::path dir = scratch("steps");
   // 2^32 steps once wrapped to 0 steps and "ok"; 2^31 to a run that never ended.
@@ -205,13 +215,7 @@ TEST(HostileInput, SynthOptionsOutOfTheirRangeAreUsageErrors) {
 TEST(HostileInput, AMeshInCentimetresNamesItsSizeAndTheScaleThatFixesIt) {
   const fs::path dir = scratch("units");
   const fs::path mesh = dir / "cube_cm.obj";
-  std::ofstream obj(mesh);
-  for (const int x : {-2, 2})
-    for (const int y : {-2, 2})
-      for (const int z : {-2, 2}) obj << "v " << x << ' ' << y << ' ' << z << '\n';
-  obj << "f 1 2 4\nf 1 4 3\nf 5 7 8\nf 5 8 6\nf 1 5 6\nf 1 6 2\n"
-         "f 3 4 8\nf 3 8 7\nf 1 3 7\nf 1 7 5\nf 2 6 8\nf 2 8 4\n";
-  obj.close();
+  write_cube(mesh, 2.0);
   const std::string synth = "synth --object " + quoted(mesh) +
                             " --gripper parallel-jaw --count 1 --seed 1 --out " +
                             quoted(dir / "c.txt");
@@ -338,13 +342,7 @@ TEST(HostileInput, PathsWithQuotesAndBackslashesRoundTripThroughTheReports) {
 
   // grip trial names the mesh file its object came from: a 4 cm cube.
   const fs::path mesh = dir / "cu\"be\\1.obj";
-  std::ofstream obj(mesh);
-  for (const double x : {-0.02, 0.02})
-    for (const double y : {-0.02, 0.02})
-      for (const double z : {-0.02, 0.02}) obj << "v " << x << ' ' << y << ' ' << z << '\n';
-  obj << "f 1 2 4\nf 1 4 3\nf 5 7 8\nf 5 8 6\nf 1 5 6\nf 1 6 2\n"
-         "f 3 4 8\nf 3 8 7\nf 1 3 7\nf 1 7 5\nf 2 6 8\nf 2 8 4\n";
-  obj.close();
+  write_cube(mesh, 0.02);
   const fs::path candidates = dir / "c.txt";
   const GripRun synth =
       run_grip("synth --object " + quoted(mesh) +
