@@ -23,18 +23,16 @@ const Eigen::SparseMatrix<double>& SparseAssembly::assemble(
   positions_.resize(triplets.size(), -1);
   slot_.resize(triplets.size());
   for (std::size_t i = 0; i < triplets.size(); ++i) {
-    const auto& t = triplets[i];
-    const long long position = key(n, t);
+    const long long position = key(n, triplets[i]);
     if (positions_[i] == position) continue;
     positions_[i] = position;
-    slot_[i] = is_fixed(t.row()) || is_fixed(t.col()) ? -1 : slot(t.row(), t.col());
-    if (slot_[i] == -1 && !is_fixed(t.row()) && !is_fixed(t.col())) {
+    slot_[i] = triplet_slot(triplets[i]);
+    if (slot_[i] == kNotInPattern) {
       const bool grow = matrix_.nonZeros() <= fresh_nonzeros_ + fresh_nonzeros_ / 5;
       build_pattern(n, triplets, grow);
       for (std::size_t j = 0; j < triplets.size(); ++j) {
-        const auto& u = triplets[j];
-        positions_[j] = key(n, u);
-        slot_[j] = is_fixed(u.row()) || is_fixed(u.col()) ? -1 : slot(u.row(), u.col());
+        positions_[j] = key(n, triplets[j]);
+        slot_[j] = triplet_slot(triplets[j]);
       }
       break;
     }
@@ -82,7 +80,11 @@ int SparseAssembly::slot(int row, int col) const {
   const int* begin = rows + matrix_.outerIndexPtr()[col];
   const int* end = rows + matrix_.outerIndexPtr()[col + 1];
   const int* found = std::lower_bound(begin, end, row);
-  return found != end && *found == row ? static_cast<int>(found - rows) : -1;
+  return found != end && *found == row ? static_cast<int>(found - rows) : kNotInPattern;
+}
+
+int SparseAssembly::triplet_slot(const Eigen::Triplet<double>& t) const {
+  return is_fixed(t.row()) || is_fixed(t.col()) ? kLeftOut : slot(t.row(), t.col());
 }
 
 }  // namespace grip::solver

@@ -27,14 +27,18 @@ class SparseAssembly {
   // The pattern of `triplets` (their free entries, the fixed DOFs' diagonals), with the current
   // pattern's entries too when `grow`.
   void build_pattern(int n, const std::vector<Eigen::Triplet<double>>& triplets, bool grow);
-  // The index of entry (row, col) in the matrix's values, or -1 if the pattern lacks it.
+  static constexpr int kLeftOut = -1;       // a fixed DOF's row or column
+  static constexpr int kNotInPattern = -2;  // a position the pattern lacks
+  // The index of entry (row, col) in the matrix's values, or kNotInPattern.
   int slot(int row, int col) const;
+  // A triplet's index into the matrix's values, kLeftOut or kNotInPattern.
+  int triplet_slot(const Eigen::Triplet<double>& t) const;
   bool is_fixed(int i) const { return !fixed_.empty() && fixed_[i]; }
 
   Eigen::SparseMatrix<double> matrix_;
   std::vector<char> fixed_;
   std::vector<long long> positions_;             // the last triplets' (row, col) keys
-  std::vector<int> slot_;                        // each one's index into the matrix's values, or -1
+  std::vector<int> slot_;                        // each one's triplet_slot
   std::vector<int> unit_slots_;                  // the fixed DOFs' diagonal entries
   long long fresh_nonzeros_ = 0;                 // the pattern's size when it was last built fresh
   std::vector<Eigen::Triplet<double>> pattern_;  // scratch of build_pattern()
