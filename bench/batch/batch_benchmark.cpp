@@ -1,17 +1,16 @@
 #include "bench/batch/batch_benchmark.hpp"
 
-#include <malloc.h>
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <random>
 #include <utility>
 
+#include "bench/common/process_memory.hpp"
 #include "solver/batch/batch.hpp"
 #include "src/json/json_text.hpp"
 
@@ -22,29 +21,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// A field of /proc/self/status in kB (VmRSS: resident now, VmHWM: peak resident).
-double proc_status_kib(const std::string& field) {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  double value = 0.0;
-  while (status >> key) {
-    if (key == field + ":") {
-      status >> value;
-      return value;
-    }
-    status.ignore(1 << 12, '\n');
-  }
-  return 0.0;
-}
-
-// Returns freed heap pages to the system and restarts the kernel's peak-RSS counter, so that
-// the next VmHWM reading is the peak of what runs from here on.
-double reset_memory_baseline() {
-  malloc_trim(0);
-  std::ofstream("/proc/self/clear_refs") << "5";
-  return proc_status_kib("VmRSS");
 }
 
 // Where each copy starts: the scene's placement moved by a seeded jitter of its free bodies.
@@ -82,7 +58,7 @@ BatchBenchmarkResult run_batch_benchmark(const scene::SceneFile& scene, const st
 
     // Batched first, on a trimmed heap, so that its memory is measured from a clean baseline:
     // the model (shared by all copies) and every environment's own state.
-    const double baseline_kib = reset_memory_baseline();
+    const MemoryPeak memory;
     const std::shared_ptr<const solver::Model> model = solver::Model::build(scene.scene);
     std::vector<Eigen::VectorXd> batched_state;
     {
@@ -97,7 +73,7 @@ BatchBenchmarkResult run_batch_benchmark(const scene::SceneFile& scene, const st
         frozen += report.frozen;
       }
       row.batched_s = seconds_since(start);
-      row.memory_mib = (proc_status_kib("VmHWM") - baseline_kib) / 1024.0;
+      row.memory_mib = memory.mib();
       row.frozen_fraction =
           iterations + frozen > 0 ? static_cast<double>(frozen) / (iterations + frozen) : 0.0;
       for (int e = 0; e < n; ++e) {

@@ -158,7 +158,8 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
   std::ofstream csv(out / "labels.csv");
   csv << "arm,category,seed,candidate,verdict,verdict_reference,closed,closing_forces_n,"
          "settle_displacement_mm,slip_mm,center_displacement_mm,slip_reference_mm,"
-         "closing_forces_reference_n,settle_displacement_reference_mm\n";
+         "closing_forces_reference_n,settle_displacement_reference_mm,end_speed_mm_s,"
+         "end_speed_reference_mm_s\n";
   for (const LabelsArmResult& arm : result.arms) {
     for (const LabelsPair& pair : pair_trials(arm)) {
       const RobustnessTrial& t = *pair.defaults;
@@ -171,6 +172,8 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
           << (pair.reference ? fixed_or_dash(pair.reference->largest_slip * 1e3, 4) : "-") << ','
           << (pair.reference ? forces_text(pair.reference->closing_forces) : "-") << ','
           << (pair.reference ? fixed_or_dash(pair.reference->settle_displacement * 1e3, 4) : "-")
+          << ',' << fixed_or_dash(t.largest_end_speed * 1e3, 3) << ','
+          << (pair.reference ? fixed_or_dash(pair.reference->largest_end_speed * 1e3, 3) : "-")
           << '\n';
     }
   }

@@ -75,6 +75,7 @@ struct RobustnessTrial {
   double settle_displacement = 0.0;       // m; NaN if it did not settle
   double largest_slip = 0.0;  // m, the verdict's, over the gravity phases run; NaN if none
   double largest_center_displacement = 0.0;  // m, the centre of mass's (sag and slip); NaN if none
+  double largest_end_speed = 0.0;  // m/s, trial::TrialOutcome::end_speed's largest; NaN if none
 };
 
 // "success" or the trial's failure kind.

@@ -169,7 +169,8 @@ RobustnessTrial robustness_trial(const RobustnessSet& set, std::uint64_t seed, s
           outcome.closed,
           outcome.settle_displacement,
           largest_measured(record.displacement),
-          largest_measured(outcome.center_displacement)};
+          largest_measured(outcome.center_displacement),
+          largest_measured(outcome.end_speed)};
 }
 
 }  // namespace grip::bench

@@ -44,6 +44,12 @@ struct TrialOutcome {
   // The object's centre-of-mass displacement from the settled grasp after each gravity phase (m),
   // sag and slip together (the record's `displacement` is the slip alone); NaN for phases not run.
   std::array<double, 6> center_displacement = {nan, nan, nan, nan, nan, nan};
+  // The object's largest centre-of-mass speed over the last kEndSpeedSteps steps of each gravity
+  // phase (m/s); NaN for phases not run. An object held by static friction creeps at most at
+  // about eps_v; one that swings on compliant fingers or slides moves orders of magnitude faster
+  // (docs/trial.md, "Verdict"). Recorded, not yet part of the verdict; not in the dataset.
+  std::array<double, 6> end_speed = {nan, nan, nan, nan, nan, nan};
+  static constexpr int kEndSpeedSteps = 3;
 };
 
 }  // namespace grip::trial

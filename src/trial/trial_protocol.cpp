@@ -503,6 +503,11 @@ class ProtocolRunner {
     for (int j = 0; j < fingers_; ++j) state.fingers[j].observe(finger_force(env, j));
     command(i);
     if (state.recorder.validation_due(state.phase_step)) state.recorder.add_validation(frame(i));
+    if (state.phase_step > steps_per_phase_ - TrialOutcome::kEndSpeedSteps) {
+      double& end_speed = state.outcome.end_speed[state.gravity_phase];
+      const double speed = env.center_of_mass_velocity(gripper_.object_body()).norm();
+      end_speed = std::isnan(end_speed) ? speed : std::max(end_speed, speed);
+    }
     if (state.phase_step < steps_per_phase_) return;
     io::CandidateRecord& record = state.outcome.result.record;
     record.displacement[state.gravity_phase] = slip(i);

@@ -49,6 +49,13 @@ void write_report(std::ostream& out, const TrialReport& report,
     root["solo_wall_seconds"] = report.solo_wall_seconds;
     root["speedup"] = report.solo_wall_seconds / report.wall_seconds;
     root["identical_to_solo"] = report.identical_to_solo;
+    root["batch_memory_mib"] = report.batch_memory_mib;
+    root["solo_memory_mib"] = report.solo_memory_mib;
+    if (outcomes.size() > 1) {
+      root["memory_per_added_environment_mib"] =
+          (report.batch_memory_mib - report.solo_memory_mib) /
+          static_cast<double>(outcomes.size() - 1);
+    }
   }
   nlohmann::ordered_json trials = nlohmann::ordered_json::array();
   for (const TrialOutcome& outcome : outcomes) {
@@ -63,6 +70,7 @@ void write_report(std::ostream& out, const TrialReport& report,
                                  {"closing_forces", r.closing_forces},
                                  {"settle_displacement", outcome.settle_displacement},
                                  {"center_displacement", outcome.center_displacement},
+                                 {"end_speed", outcome.end_speed},
                                  {"contact_friction", r.contact_friction},
                                  {"newton",
                                   {{"steps", r.newton.steps},

@@ -21,6 +21,9 @@ struct TrialReport {
   bool compared_solo = false;  // the candidates were also run one by one:
   double solo_wall_seconds = 0.0;
   bool identical_to_solo = true;
+  // Peak resident memory above the start (MiB): the batch's, and the largest of one alone.
+  double batch_memory_mib = 0.0;
+  double solo_memory_mib = 0.0;
 };
 
 void write_report(std::ostream& out, const TrialReport& report,

@@ -92,6 +92,9 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   // The verdict measures slip, not the fingers' sag: under gravity across the fingers the box
   // sinks with them by more than it slips.
   EXPECT_GT(largest(with.center_displacement), largest(h.displacement));
+  // ... and comes to rest in them: held by static friction, it creeps at most at about eps_v at
+  // the end of each phase.
+  EXPECT_LT(largest(with.end_speed), 2.0 * p.sim.eps_v);
   EXPECT_EQ(h.d1, 0.0);  // IPC never penetrates
   EXPECT_GT(h.d2, 0.0);
   EXPECT_LT(h.d2, p.sim.d_hat);                  // held within the barrier's reach
@@ -138,6 +141,9 @@ TEST(GraspTrial, AnOffCentreFinRayGraspTurnsWithTheFingersAndSlipsOnlyWhenTooHea
       << io::to_string(held.failure) << " " << light.failure_reason;
   EXPECT_GT(largest(light.center_displacement), p.displacement_threshold());
   EXPECT_LT(largest(held.displacement), 0.3 * p.displacement_threshold());
+  // Its contacts stick, yet it still swings on the fingers at the end of each phase, far faster
+  // than eps_v: a verdict on the object's speed would call this held grasp moving.
+  EXPECT_GT(largest(light.end_speed), 10.0 * p.sim.eps_v);
 
   const TrialOutcome heavy = trial(2000.0);
   EXPECT_EQ(heavy.result.record.failure, io::FailureKind::kDisplaced)

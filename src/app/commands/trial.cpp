@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "bench/common/process_memory.hpp"
 #include "solver/batch/batch.hpp"
 #include "src/app/commands.hpp"
 #include "src/geometry/boundary_surface.hpp"
@@ -62,13 +63,16 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
   options.threads = args.threads;
   options.ids = ids;
   options.body_frames = !args.vtk.empty();
+  const bench::MemoryPeak batch_memory;
   const auto start = std::chrono::steady_clock::now();
   const std::vector<trial::TrialOutcome> outcomes = run(scene, grasps, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double batch_mib = batch_memory.mib();
   spdlog::info("{} trial(s) in {:.3f} s", outcomes.size(), seconds);
 
   double solo_seconds = 0.0;
+  double solo_mib = 0.0;
   bool identical = true;
   if (args.compare_solo) {
     for (std::size_t k = 0; k < grasps.size(); ++k) {
@@ -76,10 +80,12 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
       solo.threads = 1;
       solo.ids = {ids[k]};
       solo.body_frames = false;
+      const bench::MemoryPeak solo_memory;
       const auto solo_start = std::chrono::steady_clock::now();
       const trial::TrialOutcome alone = run(scene, std::vector<Grasp>{grasps[k]}, solo).front();
       solo_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - solo_start).count();
+      solo_mib = std::max(solo_mib, solo_memory.mib());
       if (!trial::same_result(alone.result, outcomes[k].result)) {
         identical = false;
         spdlog::error("candidate {}: the solo run differs from the batch", ids[k]);
@@ -87,6 +93,12 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
     }
     spdlog::info("solo runs: {:.3f} s; batch speedup {:.2f}; identical: {}", solo_seconds,
                  solo_seconds / seconds, identical);
+    spdlog::info("peak memory: the batch {:.1f} MiB, one candidate alone {:.1f} MiB{}", batch_mib,
+                 solo_mib,
+                 grasps.size() > 1
+                     ? fmt::format(", {:.2f} MiB per added environment",
+                                   (batch_mib - solo_mib) / static_cast<double>(grasps.size() - 1))
+                     : std::string());
   }
 
   if (!args.vtk.empty()) {
@@ -105,6 +117,8 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
   report.compared_solo = args.compare_solo;
   report.solo_wall_seconds = solo_seconds;
   report.identical_to_solo = identical;
+  report.batch_memory_mib = batch_mib;
+  report.solo_memory_mib = solo_mib;
   if (args.report.empty()) {
     trial::write_report(std::cout, report, outcomes);
   } else {
