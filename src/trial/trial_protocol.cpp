@@ -505,8 +505,8 @@ class ProtocolRunner {
     if (state.recorder.validation_due(state.phase_step)) state.recorder.add_validation(frame(i));
     if (state.phase_step > steps_per_phase_ - TrialOutcome::kEndSpeedSteps) {
       double& end_speed = state.outcome.end_speed[state.gravity_phase];
-      const double speed = env.center_of_mass_velocity(gripper_.object_body()).norm();
-      end_speed = std::isnan(end_speed) ? speed : std::max(end_speed, speed);
+      // fmax: the phase's first sample replaces the NaN.
+      end_speed = std::fmax(end_speed, env.center_of_mass_velocity(gripper_.object_body()).norm());
     }
     if (state.phase_step < steps_per_phase_) return;
     io::CandidateRecord& record = state.outcome.result.record;

@@ -53,8 +53,7 @@ void write_report(std::ostream& out, const TrialReport& report,
     root["solo_memory_mib"] = report.solo_memory_mib;
     if (outcomes.size() > 1) {
       root["memory_per_added_environment_mib"] =
-          (report.batch_memory_mib - report.solo_memory_mib) /
-          static_cast<double>(outcomes.size() - 1);
+          report.memory_per_added_environment_mib(outcomes.size());
     }
   }
   nlohmann::ordered_json trials = nlohmann::ordered_json::array();

@@ -3,6 +3,7 @@
 // time, the comparison with solo runs when asked for, and per candidate its verdict, the
 // solver's reason, D1/D2, displacements, closing forces, Newton statistics and wall time; for a
 // bimanual trial also each gripper's closing forces and D1/D2.
+#include <cstddef>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -24,6 +25,10 @@ struct TrialReport {
   // Peak resident memory above the start (MiB): the batch's, and the largest of one alone.
   double batch_memory_mib = 0.0;
   double solo_memory_mib = 0.0;
+  // What each candidate after the first added to the batch's peak (MiB); `candidates` > 1.
+  double memory_per_added_environment_mib(std::size_t candidates) const {
+    return (batch_memory_mib - solo_memory_mib) / static_cast<double>(candidates - 1);
+  }
 };
 
 void write_report(std::ostream& out, const TrialReport& report,

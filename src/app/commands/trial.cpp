@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -63,18 +64,19 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
   options.threads = args.threads;
   options.ids = ids;
   options.body_frames = !args.vtk.empty();
-  const bench::MemoryPeak batch_memory;
+  // Memory is measured only to compare with solo runs (it trims the heap first).
+  std::optional<bench::MemoryPeak> batch_memory;
+  if (args.compare_solo) batch_memory.emplace();
   const auto start = std::chrono::steady_clock::now();
   const std::vector<trial::TrialOutcome> outcomes = run(scene, grasps, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const double batch_mib = batch_memory.mib();
   spdlog::info("{} trial(s) in {:.3f} s", outcomes.size(), seconds);
 
-  double solo_seconds = 0.0;
-  double solo_mib = 0.0;
-  bool identical = true;
+  trial::TrialReport report;
+  report.compared_solo = args.compare_solo;
   if (args.compare_solo) {
+    report.batch_memory_mib = batch_memory->mib();
     for (std::size_t k = 0; k < grasps.size(); ++k) {
       trial::TrialRunOptions solo = options;
       solo.threads = 1;
@@ -83,21 +85,22 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
       const bench::MemoryPeak solo_memory;
       const auto solo_start = std::chrono::steady_clock::now();
       const trial::TrialOutcome alone = run(scene, std::vector<Grasp>{grasps[k]}, solo).front();
-      solo_seconds +=
+      report.solo_wall_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - solo_start).count();
-      solo_mib = std::max(solo_mib, solo_memory.mib());
+      report.solo_memory_mib = std::max(report.solo_memory_mib, solo_memory.mib());
       if (!trial::same_result(alone.result, outcomes[k].result)) {
-        identical = false;
+        report.identical_to_solo = false;
         spdlog::error("candidate {}: the solo run differs from the batch", ids[k]);
       }
     }
-    spdlog::info("solo runs: {:.3f} s; batch speedup {:.2f}; identical: {}", solo_seconds,
-                 solo_seconds / seconds, identical);
-    spdlog::info("peak memory: the batch {:.1f} MiB, one candidate alone {:.1f} MiB{}", batch_mib,
-                 solo_mib,
+    spdlog::info("solo runs: {:.3f} s; batch speedup {:.2f}; identical: {}",
+                 report.solo_wall_seconds, report.solo_wall_seconds / seconds,
+                 report.identical_to_solo);
+    spdlog::info("peak memory: the batch {:.1f} MiB, one candidate alone {:.1f} MiB{}",
+                 report.batch_memory_mib, report.solo_memory_mib,
                  grasps.size() > 1
                      ? fmt::format(", {:.2f} MiB per added environment",
-                                   (batch_mib - solo_mib) / static_cast<double>(grasps.size() - 1))
+                                   report.memory_per_added_environment_mib(grasps.size()))
                      : std::string());
   }
 
@@ -107,18 +110,12 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
                               *scene.model(), outcome.body_frames);
     }
   }
-  trial::TrialReport report;
   report.object = *args.object;
   report.gripper = *args.gripper;
   report.soft = args.soft;
   report.grippers = args.bimanual ? 2 : 1;
   report.threads = solver::Batch(args.threads).threads();
   report.wall_seconds = seconds;
-  report.compared_solo = args.compare_solo;
-  report.solo_wall_seconds = solo_seconds;
-  report.identical_to_solo = identical;
-  report.batch_memory_mib = batch_mib;
-  report.solo_memory_mib = solo_mib;
   if (args.report.empty()) {
     trial::write_report(std::cout, report, outcomes);
   } else {
@@ -126,7 +123,7 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
     if (!out) throw std::runtime_error("--report " + args.report + ": cannot write the file");
     trial::write_report(out, report, outcomes);
   }
-  return identical ? 0 : 1;
+  return report.identical_to_solo ? 0 : 1;
 }
 
 // The object and gripper the candidate file names, checked against what the command line says
