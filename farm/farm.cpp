@@ -350,6 +350,7 @@ void run_trials(const FarmPlan& plan, const Job& job, io::DatasetWriter& writer,
 }  // namespace
 
 FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
+  stop_at_once(true);
   install_stop_handlers();
   end_with_launcher();
   const Job job = read_job(options.job, comm);
@@ -359,6 +360,7 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
       reopen_to_resume(options, report.dataset, provenance, comm);
   LiveProgress progress(comm, options.progress_interval);
   const FarmPlan plan = plan_job(options, job, report, progress, comm);
+  stop_at_once(false);  // from here a stop signal lets the work units in flight commit
   io::DatasetWriter writer = writer_for(std::move(resumed), plan, report.dataset, provenance, comm);
   run_trials(plan, job, writer, progress, report, comm);
   writer.close();

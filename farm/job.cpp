@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -180,6 +181,12 @@ void read_trial(const Table& t, trial::TrialParameters& p) {
   p.phase_duration = positive(t, "phase_duration", p.phase_duration);
   p.displacement_factor = positive(t, "displacement_factor", p.displacement_factor);
   p.metric_samples = positive_integer(t, "metric_samples", p.metric_samples);
+  if (p.metric_samples > trial::kMaxMetricSamples) {
+    t.fail("metric_samples", "is " + std::to_string(p.metric_samples) +
+                                 " surface points per gripper, more than the " +
+                                 std::to_string(trial::kMaxMetricSamples) +
+                                 " a trial may hold (24 bytes each, per hand); sample fewer");
+  }
   p.rigid_finger_friction = t.number_or("finger_friction", p.rigid_finger_friction);
   if (!(p.rigid_finger_friction >= 0)) t.fail("finger_friction", "must be non-negative");
 }
@@ -261,7 +268,85 @@ void read_outputs(const Table& t, Job& job) {
   }
 }
 
+void read_farm(const Table& t, Job& job) {
+  t.allow({"batch", "max_candidates"});
+  const std::int64_t size = t.integer_or("batch", 0);
+  if (size < 0 || size > 100000) t.fail("batch", "must be 0 (automatic) or a positive count");
+  job.work_unit_size = static_cast<int>(size);
+  const std::int64_t most = t.integer_or("max_candidates", Job::kDefaultMaxCandidates);
+  // The dataset counts candidates in 32 bits (io::DatasetLayout).
+  if (most < 1 || most > std::numeric_limits<std::uint32_t>::max()) {
+    t.fail("max_candidates", "must be a count from 1 to 4294967295");
+  }
+  job.max_candidates = static_cast<std::uint64_t>(most);
+}
+
+// The least CPU time one trial of a rigid object takes with the gripper, from `grip bench trial`
+// on the 2-core development machine (docs/results.md, "Trial cost", 2026-11): what a job
+// refused for its size is told it would need at least.
+double rigid_trial_cpu_seconds(grippers::GripperKind kind) {
+  switch (kind) {
+    case grippers::GripperKind::kParallelJaw: return 0.06;
+    case grippers::GripperKind::kFinRay: return 17.0;
+    default: return 0.28;  // the LEAP hand
+  }
+}
+
+// A job of more candidates than [farm] max_candidates is refused before planning, which holds
+// every candidate in memory on every rank and would otherwise run for days before a trial. It is
+// refused on the key that made it large (max_candidates if set, else the largest [[grippers]]
+// candidates, else the largest [[objects]] count), saying what it would need.
+void check_candidate_count(const Job& job, const Table& root,
+                           const std::vector<Table>& gripper_tables,
+                           const std::optional<Table>& farm_table) {
+  const std::uint64_t count = job.candidate_count();
+  if (count <= job.max_candidates) return;
+  double objects = 0, per_object = 0, cpu_seconds = 0;
+  std::size_t largest_group = 0, largest_gripper = 0;
+  for (std::size_t i = 0; i < job.objects.size(); ++i) {
+    objects += static_cast<double>(job.objects[i].object_count());
+    if (job.objects[i].object_count() > job.objects[largest_group].object_count()) {
+      largest_group = i;
+    }
+  }
+  for (std::size_t g = 0; g < job.grippers.size(); ++g) {
+    const GripperSetting& setting = job.grippers[g];
+    per_object += setting.candidates;
+    cpu_seconds += objects * setting.candidates * rigid_trial_cpu_seconds(setting.kind) *
+                   (setting.bimanual ? 2 : 1);
+    if (setting.candidates > job.grippers[largest_gripper].candidates) largest_gripper = g;
+  }
+  char message[512];
+  std::snprintf(message, sizeof message,
+                "makes %.4g candidates (%.4g object%s x %.4g candidates per object), more than "
+                "the job's limit of %llu ([farm] max_candidates): planning would hold them all "
+                "in memory on every rank, and their trials would take at least %.3g CPU hours; "
+                "plan fewer, or raise [farm] max_candidates if that is meant",
+                static_cast<double>(count), objects, objects == 1 ? "" : "s", per_object,
+                static_cast<unsigned long long>(job.max_candidates), cpu_seconds / 3600);
+  if (farm_table && farm_table->has("max_candidates")) farm_table->fail("max_candidates", message);
+  if (job.grippers[largest_gripper].candidates > 1) {
+    gripper_tables[largest_gripper].fail("candidates", message);
+  }
+  const std::vector<Table> object_tables = root.tables("objects");
+  object_tables[largest_group].fail(job.objects[largest_group].category.empty() ? "mesh" : "count",
+                                    message);
+}
+
 }  // namespace
+
+std::uint64_t Job::candidate_count() const {
+  std::uint64_t objects_in_job = 0, per_object = 0, count = 0;
+  for (const ObjectGroup& group : objects) objects_in_job += group.object_count();
+  for (const GripperSetting& setting : grippers) {
+    per_object += static_cast<std::uint64_t>(setting.candidates);
+  }
+  // Each sum stays far below 2^64 (counts of at most 1e9 per entry); the product may not.
+  if (__builtin_mul_overflow(objects_in_job, per_object, &count)) {
+    return std::numeric_limits<std::uint64_t>::max();
+  }
+  return count;
+}
 
 Job parse_job(std::string text, const std::filesystem::path& file) {
   const config::Document document = config::Document::parse(std::move(text), file);
@@ -309,12 +394,9 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
     if (!(job.synthesis_margin >= 0)) t->fail("margin", "must be non-negative (m)");
   }
   if (auto t = root.optional_table("outputs")) read_outputs(*t, job);
-  if (auto t = root.optional_table("farm")) {
-    t->allow({"batch"});
-    const std::int64_t size = t->integer_or("batch", 0);
-    if (size < 0 || size > 100000) t->fail("batch", "must be 0 (automatic) or a positive count");
-    job.work_unit_size = static_cast<int>(size);
-  }
+  const auto farm_table = root.optional_table("farm");
+  if (farm_table) read_farm(*farm_table, job);
+  check_candidate_count(job, root, gripper_tables, farm_table);
   // Whatever the trial would still refuse, refused now rather than mid-plan on one rank.
   try {
     trial::validate(job.trial);

@@ -28,6 +28,11 @@ struct ObjectGroup {
   // Draw scale and material from the job's ranges; otherwise use `material` as given.
   bool randomize = true;
   objects::ObjectMaterial material;
+
+  // The objects the entry makes: `count`, or one per mesh file.
+  std::uint64_t object_count() const {
+    return category.empty() ? meshes.size() : static_cast<std::uint64_t>(count);
+  }
 };
 
 // One [[grippers]] entry.
@@ -53,6 +58,15 @@ struct Job {
   bool record_stress = true;       // soft objects' von Mises stress at the settled grasp
   // [farm] batch: candidates per work unit; 0: 4 per worker thread.
   int work_unit_size = 0;
+  // [farm] max_candidates: the most candidates (objects x candidates per gripper, summed over
+  // the grippers) the job may plan; a larger job is refused when it is read, saying what it
+  // would need. Raised in the job file by whoever means it.
+  std::uint64_t max_candidates = kDefaultMaxCandidates;
+
+  static constexpr std::uint64_t kDefaultMaxCandidates = 1'000'000;
+
+  // Objects x candidates per gripper, summed over the grippers: what planning synthesizes.
+  std::uint64_t candidate_count() const;
 };
 
 // The job file's text. Throws config::ConfigError naming the file when it cannot be read.

@@ -10,8 +10,15 @@ namespace grip::farm {
 namespace {
 
 volatile std::sig_atomic_t requested = 0;
+volatile std::sig_atomic_t at_once = 0;
 
 extern "C" void on_stop_signal(int signal) {
+  if (at_once) {
+    constexpr char kMessage[] =
+        "\ngrip farm: stopped before any trial ran; nothing was written\n";
+    [[maybe_unused]] const auto written = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    _exit(128 + signal);
+  }
   if (requested) _exit(128 + signal);
   requested = 1;
   constexpr char kMessage[] =
@@ -30,6 +37,8 @@ void install_stop_handlers() {
 }
 
 bool stop_requested() { return requested != 0; }
+
+void stop_at_once(bool yes) { at_once = yes ? 1 : 0; }
 
 void end_with_launcher() {
   const bool under_mpirun = std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr ||

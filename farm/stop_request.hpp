@@ -12,5 +12,9 @@ void install_stop_handlers();
 // journal's lock, a resume refused meanwhile). Elsewhere (no mpirun) nothing changes.
 void end_with_launcher();
 bool stop_requested();
+// While set, a stop signal ends the process at once (exit 128 + signal): before the dataset is
+// created or reopened for writing (reading the job, planning) there is nothing to commit, and
+// planning a large job may take hours before its first trial.
+void stop_at_once(bool yes);
 
 }  // namespace grip::farm

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -42,8 +43,11 @@ CLI::Validator whole_number(std::int64_t minimum,
           : "a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum);
   return CLI::Validator(
       [minimum, maximum, rule](std::string& input) {
+        // from_chars, not CLI11's cast: a number past 64 bits is refused, not saturated.
         std::int64_t value = 0;
-        if (CLI::detail::lexical_cast(input, value) && value >= minimum && value <= maximum) {
+        const char* end = input.data() + input.size();
+        const auto [stop, error] = std::from_chars(input.data(), end, value);
+        if (error == std::errc() && stop == end && value >= minimum && value <= maximum) {
           return std::string();
         }
         return "must be " + rule + ", not '" + input + "'";
@@ -69,6 +73,8 @@ const CLI::Validator kPositiveCount = whole_number(1);
 const CLI::Validator kPositive = finite_number("> 0", "POSITIVE", [](double x) { return x > 0; });
 const CLI::Validator kNonNegative =
     finite_number(">= 0", "NONNEGATIVE", [](double x) { return x >= 0; });
+const CLI::Validator kFraction =
+    finite_number("from 0 to 1", "[0, 1]", [](double x) { return x >= 0 && x <= 1; });
 // Stable Neo-Hookean elasticity needs -1 < nu < 0.5.
 const CLI::Validator kPoisson =
     finite_number("in (-1, 0.5)", "(-1, 0.5)", [](double x) { return x > -1 && x < 0.5; });
@@ -327,10 +333,11 @@ int main(int argc, char** argv) {
       ->add_option("--soft-fraction", bench_scale_args.soft_fraction,
                    "Fraction of the simulated job's objects that are soft")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(kFraction);
   bench_scale
       ->add_option("--seed", bench_scale_args.seed, "Seed drawing each candidate's trial cost")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kCount);
   bench_scale->add_option("--ranks", bench_scale_args.ranks, "Rank counts to predict")
       ->delimiter(',')
       ->capture_default_str()
@@ -366,7 +373,7 @@ int main(int argc, char** argv) {
   const auto seconds = [&](const char* name, double& value, const char* what) {
     bench_scale->add_option(name, value, what)
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
   };
   seconds("--unit-commit-latency", bench_scale_args.unit_commit_latency,
           "s per work unit's commit (without --measure)");
@@ -526,11 +533,11 @@ int main(int argc, char** argv) {
   bench_labels
       ->add_option("--newton-tol", bench_labels_args.newton_tol,
                    "The defaults' Newton tolerance (default: the trial's, 1e-3)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   bench_labels
       ->add_option("--friction-lag", bench_labels_args.friction_lag_iterations,
                    "The defaults' friction lag iterations (default: the trial's, 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
   bench_labels->add_option("--out", bench_labels_args.out, "Folder for labels.md and labels.csv")
       ->capture_default_str()
       ->check(kOutputFolder);
@@ -579,12 +586,14 @@ int main(int argc, char** argv) {
       ->add_option("--categories", bench_trial_args.categories,
                    "Object categories (default: box,cylinder,capsule,bottle)")
       ->delimiter(',');
-  bench_trial->add_option("--candidates", bench_trial_args.candidates,
-                          "Candidates per arm (default: 8 parallel-jaw:rigid, 4 leap:rigid, 2 "
-                          "others)");
+  bench_trial
+      ->add_option("--candidates", bench_trial_args.candidates,
+                   "Candidates per arm (default: 8 parallel-jaw:rigid, 4 leap:rigid, 2 others)")
+      ->check(kPositiveCount);
   bench_trial
       ->add_option("--repeats", bench_trial_args.repeats, "Runs per candidate at the defaults")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositiveCount);
   bench_trial->add_flag("--no-reference", bench_trial_args.no_reference,
                         "Skip the runs at the reference (dt/2, newton_tol/10, two lag iterations)");
   bench_trial
@@ -605,7 +614,8 @@ int main(int argc, char** argv) {
   bench_linear
       ->add_option("--cells", bench_linear_args.cells, "Tet cell sizes (m), e.g. 0.01,0.004")
       ->delimiter(',')
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   bench_linear->add_option("--repeats", bench_linear_args.repeats, "Timed solves per size (median)")
       ->check(kPositiveCount)
       ->capture_default_str();
@@ -627,17 +637,22 @@ int main(int argc, char** argv) {
   prepare->add_option("--out", prepare_args.out_dir, "Output folder")
       ->required()
       ->check(kOutputFolder);
-  prepare->add_option("--edge", prepare_args.edge_length, "Target tet edge length (m)")->required();
+  prepare->add_option("--edge", prepare_args.edge_length, "Target tet edge length (m)")
+      ->required()
+      ->check(kPositive);
   prepare
       ->add_option("--alpha", prepare_args.alpha_ratio,
                    "Alpha-wrap fallback: alpha as a fraction of the bounding-box diagonal")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   prepare
       ->add_option("--offset", prepare_args.offset_ratio,
                    "Alpha-wrap fallback: offset as a fraction of the bounding-box diagonal")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kPositive);
   prepare->add_option("--seed", prepare_args.seed, "Tetrahedralization seed")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kCount);
   prepare->callback([&] { run = [&] { return grip::commands::asset_prepare(prepare_args); }; });
   grip::commands::AssetGalleryArgs gallery_args;
   CLI::App* gallery = asset->add_subcommand(

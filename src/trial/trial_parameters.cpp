@@ -49,7 +49,8 @@ void validate(const TrialParameters& p) {
   require(max_trial_steps(p) <= static_cast<double>(kMaxTrialSteps),
           "settle_max_steps + 6 phase_duration / sim.dt",
           "at most " + std::to_string(kMaxTrialSteps) + " steps");
-  require(p.metric_samples >= 1, "metric_samples", "at least 1");
+  require(p.metric_samples >= 1 && p.metric_samples <= kMaxMetricSamples, "metric_samples",
+          "from 1 to " + std::to_string(kMaxMetricSamples));
   require(p.rigid_finger_friction >= 0.0, "rigid_finger_friction", ">= 0");
 }
 

@@ -78,6 +78,9 @@ struct TrialParameters {
 // every frame holds every vertex of the scene): job files and validate() refuse more.
 inline constexpr std::int64_t kMaxTrialSteps = 10'000'000;
 inline constexpr int kMaxTrialFrames = 10'000;
+// The most surface points D1/D2 may sample per gripper surface (the paper's 50,000 x 200): each
+// trial holds them, 24 bytes a point, per hand and for the gripper as a whole.
+inline constexpr int kMaxMetricSamples = 10'000'000;
 
 // The most steps a trial takes: settle_max_steps of closing and settling, then six gravity
 // phases of round(phase_duration / dt) steps each; in double, so that no setting overflows it.

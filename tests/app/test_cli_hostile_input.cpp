@@ -265,6 +265,16 @@ TEST(HostileInput, JobFilesPastTheTrialLimitsAreRefusedBeforeAnyFile) {
   // A soft object's tet edge past the tet limit: refused before meshing.
   expect_job_refused(dir, "[[objects]]\ncategory = \"capsule\"\nsoft = true\ntet_edge = 1e-5\n",
                      "[[objects]] tet_edge: an edge of 1e-05 m would make about");
+  // A billion objects once planned for hours, holding every candidate in memory, and a stop
+  // signal waited for planning to end.
+  expect_job_refused(dir, "[[objects]]\ncategory = \"cylinder\"\ncount = 1000000000\n",
+                     "job.toml:10: key 'objects[0].count' makes 1e+09 candidates (1e+09 objects x "
+                     "1 candidates per object), more than the job's limit of 1000000 ([farm] "
+                     "max_candidates)");
+  // A billion D1/D2 points per surface: 24 GB a trial, a bare std::bad_alloc.
+  expect_job_refused(dir, rigid + "[trial]\nmetric_samples = 1000000000\n",
+                     "key 'trial.metric_samples' is 1000000000 surface points per gripper, more "
+                     "than the 10000000 a trial may hold");
   fs::remove_all(dir);
 }
 
@@ -320,7 +330,25 @@ TEST(HostileInput, RangeErrorsSayTheRangeInWords) {
         {"bench model --repeats 0", "--repeats: must be a whole number >= 1, not '0'"},
         {"farm job.toml --batch 1.5", "--batch: must be a whole number >= 0, not '1.5'"},
         {"synth --object box --gripper fin-ray --count 1 --seed -1 --out c.txt",
-         "--seed: must be a whole number >= 0, not '-1'"}}) {
+         "--seed: must be a whole number >= 0, not '-1'"},
+        // Past 64 bits a count was saturated, not refused.
+        {"bench scale --objects 99999999999999999999",
+         "--objects: must be a whole number >= 1, not '99999999999999999999'"},
+        {"bench scale --seed -1", "--seed: must be a whole number >= 0, not '-1'"},
+        // Options CLI11 checked, or none did: NaN passed CLI11's ranges.
+        {"bench scale --soft-fraction nan", "--soft-fraction: must be a finite number from 0 to 1"},
+        {"bench scale --startup nan", "--startup: must be a finite number >= 0, not 'nan'"},
+        {"bench labels --newton-tol nan", "--newton-tol: must be a finite number > 0, not 'nan'"},
+        {"bench labels --friction-lag 0", "--friction-lag: must be a whole number >= 1, not '0'"},
+        {"bench trial --repeats -1", "--repeats: must be a whole number >= 1, not '-1'"},
+        {"bench trial --candidates 0", "--candidates: must be a whole number >= 1, not '0'"},
+        {"bench linear --cells 0.01,nan", "--cells: must be a finite number > 0, not 'nan'"},
+        // --edge inf once reached the tetrahedralization: SIGFPE.
+        {"asset prepare m.obj --out a --edge inf", "--edge: must be a finite number > 0, not 'inf'"},
+        {"asset prepare m.obj --out a --edge 0.01 --alpha -1",
+         "--alpha: must be a finite number > 0, not '-1'"},
+        {"asset prepare m.obj --out a --edge 0.01 --seed -2",
+         "--seed: must be a whole number >= 0, not '-2'"}}) {
     const GripRun run = run_grip(options);
     EXPECT_EQ(run.exit_code, 2) << options << run.err;
     EXPECT_EQ(count_lines(run.err), 1) << run.err;

@@ -214,5 +214,43 @@ TEST_F(FarmResume, StoppedBySigintThenResumedEqualsUninterrupted) {
   expect_each_once(dataset);
 }
 
+// Whether `pid` has a handler of its own for `signal` (its /proc status's caught-signal mask).
+bool catches(pid_t pid, int signal) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("SigCgt:", 0) == 0) {
+      return (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1)) & 1;
+    }
+  }
+  return false;
+}
+
+// Planning holds nothing to commit and may take hours for a large job: a stop signal then ends
+// the run at once, and no dataset is created.
+TEST(FarmStop, ASignalWhilePlanningEndsTheRunAtOnceAndCreatesNothing) {
+  const fs::path dir = fs::temp_directory_path() / ("grip_farm_stop_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path job = dir / "large.toml";
+  testing::write_file(job, testing::small_job(1, 200'000, false));  // hours of synthesis
+  const fs::path dataset = dir / "large.h5", log = dir / "large.log";
+  const pid_t pid = start({GRIP_EXECUTABLE, "farm", job.string(), "--output", dataset.string(),
+                           "--threads", "1"},
+                          log);
+  const auto deadline = std::chrono::steady_clock::now() + 60s;
+  while (!catches(pid, SIGINT) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(2ms);
+  }
+  std::this_thread::sleep_for(500ms);  // into planning
+  ::kill(pid, SIGINT);
+  EXPECT_EQ(wait_for(pid), 130) << log_text(log);
+  EXPECT_NE(log_text(log).find("stopped before any trial ran; nothing was written"),
+            std::string::npos)
+      << log_text(log);
+  EXPECT_FALSE(fs::exists(dataset));
+  EXPECT_FALSE(fs::exists(io::Journal::path_for(dataset)));
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace grip::farm

@@ -171,6 +171,54 @@ TEST(Job, MistakesNameTheFileLineAndKey) {
             std::string::npos);
 }
 
+// `text` with its first `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+// A job's size is refused before planning on the key that made it large, with what it would
+// need; [farm] max_candidates raises the limit for whoever means it.
+TEST(Job, TooManyCandidatesAreRefusedWithWhatTheyWouldNeed) {
+  // 4 objects (3 cylinders, 1 capsule) x 4 candidates.
+  EXPECT_EQ(parse_job(kValid, "job.toml").candidate_count(), 16u);
+
+  const std::string huge = error_of(replaced(kValid, "candidates = 4", "candidates = 1000000000"));
+  EXPECT_EQ(huge.rfind("job.toml:18: ", 0), 0u) << huge;  // the candidates line
+  for (const char* part : {"grippers[0].candidates", "makes 4e+09 candidates",
+                           "4 objects x 1e+09 candidates per object", "limit of 1000000",
+                           "CPU hours", "raise [farm] max_candidates"}) {
+    EXPECT_NE(huge.find(part), std::string::npos) << part << " in: " << huge;
+  }
+  // 1e9 objects of one candidate each: the objects' count made it.
+  const std::string objects = error_of(replaced(
+      replaced(kValid, "count = 3", "count = 1000000000"), "candidates = 4", "candidates = 1"));
+  EXPECT_NE(objects.find("objects[0].count"), std::string::npos) << objects;
+
+  // Raised, the same job reads; a limit set too low is named itself.
+  const std::string big = replaced(kValid, "candidates = 4", "candidates = 500000") +
+                          "[farm]\nmax_candidates = 2000000\n";
+  EXPECT_EQ(error_of(big), "");
+  EXPECT_EQ(parse_job(big, "job.toml").candidate_count(), 2'000'000u);
+  const std::string low = kValid + std::string("[farm]\nmax_candidates = 10\n");
+  EXPECT_NE(error_of(low).find("farm.max_candidates"), std::string::npos) << error_of(low);
+  EXPECT_NE(error_of(kValid + std::string("[farm]\nmax_candidates = 0\n")).find("from 1 to"),
+            std::string::npos);
+  EXPECT_NE(error_of(kValid + std::string("[farm]\nmax_candidates = 5000000000\n"))
+                .find("from 1 to 4294967295"),
+            std::string::npos);
+}
+
+TEST(Job, MetricSamplesAreBoundedByWhatATrialMayHold) {
+  const std::string message =
+      error_of(replaced(kValid, "grip_force = 40", "grip_force = 40\nmetric_samples = 1000000000"));
+  EXPECT_NE(message.find("trial.metric_samples"), std::string::npos) << message;
+  EXPECT_NE(message.find("more than the 10000000"), std::string::npos) << message;
+  EXPECT_EQ(
+      error_of(replaced(kValid, "grip_force = 40", "grip_force = 40\nmetric_samples = 10000000")),
+      "");
+}
+
 TEST(Job, EveryShippedJobReads) {
   int jobs = 0, bimanual = 0;
   for (const auto& entry : std::filesystem::directory_iterator(GRIP_JOBS_DIR)) {

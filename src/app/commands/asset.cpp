@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -32,7 +33,7 @@ int asset_prepare(const AssetPrepareArgs& args) {
   std::string source = "'";  // appended: GCC 12 warns falsely (-Wrestrict) on a + chain
   source += input.string();
   source += "'";
-  if (!(args.edge_length > 0.0)) {
+  if (!(std::isfinite(args.edge_length) && args.edge_length > 0.0)) {
     throw std::invalid_argument("--edge must be a positive length in metres");
   }
   if (!(args.alpha_ratio > 0.0) || !(args.offset_ratio > 0.0)) {
