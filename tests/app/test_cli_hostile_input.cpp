@@ -211,7 +211,8 @@ TEST(HostileInput, SynthOptionsOutOfTheirRangeAreUsageErrors) {
 }
 
 // A 4 cm cube written in centimetres is a 4 m cube: no gripper takes it, and the warning names its
-// size and the --scale that fixes it; with --scale 0.01 it takes candidates.
+// size and the --scale that fixes it; with --scale 0.01 it takes candidates. A category that does
+// not fit names its seed instead.
 TEST(HostileInput, AMeshInCentimetresNamesItsSizeAndTheScaleThatFixesIt) {
   const fs::path dir = scratch("units");
   const fs::path mesh = dir / "cube_cm.obj";
@@ -226,6 +227,16 @@ TEST(HostileInput, AMeshInCentimetresNamesItsSizeAndTheScaleThatFixesIt) {
   EXPECT_NE(metres.err.find("--scale 0.01"), std::string::npos) << metres.err;
   const GripRun centimetres = run_grip(synth + " --scale 0.01");
   EXPECT_EQ(centimetres.exit_code, 0) << centimetres.err;
+  // A category's shape comes from the seed, not from a file's units: the 16 cm box of seed 1
+  // does not fit the 85 mm jaws, and the hint is another seed, not --scale.
+  const GripRun box = run_grip("synth --object box --gripper parallel-jaw --count 1 --seed 1 --out " +
+                               quoted(dir / "box.txt"));
+  EXPECT_EQ(box.exit_code, 1) << box.err;
+  EXPECT_NE(box.err.find("m, the box of --seed 1) may not fit the gripper; another --seed draws "
+                         "another size"),
+            std::string::npos)
+      << box.err;
+  EXPECT_EQ(box.err.find("--scale"), std::string::npos) << box.err;
   fs::remove_all(dir);
 }
 

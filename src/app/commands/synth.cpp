@@ -37,8 +37,8 @@ int synth(const SynthArgs& args) {
   params.hand.steps = args.steps;
   const synth::SynthesisResult result =
       synth::synthesize(object, gripper, args.bimanual, params, args.seed, args.count);
-  const synth::CandidateObject source{args.object, args.seed, args.scale,
-                                      synth::object_file_hash(args.object)};
+  const std::string file_hash = synth::object_file_hash(args.object);  // empty: a category
+  const synth::CandidateObject source{args.object, args.seed, args.scale, file_hash};
   synth::write_candidates(args.out, source, result.candidates);
 
   for (const auto& [reason, n] : result.rejections) {
@@ -53,14 +53,21 @@ int synth(const SynthArgs& args) {
       static_cast<long long>(result.attempts), result.accepted_fraction(), args.out.c_str());
   if (static_cast<int>(result.candidates.size()) < args.count) {
     // The usual cause with a mesh file is its unit: grippers hold objects of a few centimetres.
+    // A category's shape is drawn from the seed: another seed draws another size.
     const auto& v = object.surface().vertices;
     const Eigen::Vector3d size = (v.colwise().maxCoeff() - v.colwise().minCoeff()).transpose();
+    const bool category = file_hash.empty();
+    const std::string drawn = category
+                                  ? fmt::format("m, the {} of --seed {}", args.object, args.seed)
+                                  : fmt::format("m at --scale {:g}", args.scale);
+    const std::string fix = category ? "another --seed draws another size"
+                                     : "a mesh in centimetres or millimetres needs --scale 0.01 "
+                                       "or 0.001";
     spdlog::warn(
-        "only {} of {} candidates after {} attempts: the object ({:.3g} x {:.3g} x {:.3g} m at "
-        "--scale {:g}) may not fit the gripper; a mesh in centimetres or millimetres needs "
-        "--scale 0.01 or 0.001",
+        "only {} of {} candidates after {} attempts: the object ({:.3g} x {:.3g} x {:.3g} {}) "
+        "may not fit the gripper; {}",
         result.candidates.size(), args.count, result.attempts, size.x(), size.y(), size.z(),
-        args.scale);
+        drawn, fix);
     return 1;
   }
   return 0;
