@@ -438,6 +438,8 @@ std::vector<io::Parameter> resolved_parameters(const Job& job) {
   add("physics.newton_tol", s.newton_tol);
   add("physics.newton_velocity_tol", s.newton_velocity_tol);
   add("physics.max_newton_iters", s.max_newton_iters);
+  add("physics.projected_iterations", s.projected_iterations);
+  add("physics.max_step_halvings", s.max_step_halvings);
   add("physics.friction_lag_iterations", s.friction_lag_iterations);
   add("physics.ccd_rescaling", s.ccd_rescaling);
   const trial::TrialParameters& t = job.trial;

@@ -200,6 +200,15 @@ std::int64_t Table::integer_or(std::string_view key, std::int64_t fallback) cons
   return has(key) ? integer(key) : fallback;
 }
 
+int Table::count_or(std::string_view key, int fallback, int least, int most) const {
+  const std::int64_t value = integer_or(key, fallback);
+  if (value < least || value > most) {
+    fail(key, "must be a whole number from " + std::to_string(least) + " to " +
+                  std::to_string(most) + ", not " + std::to_string(value));
+  }
+  return static_cast<int>(value);
+}
+
 bool Table::boolean(std::string_view key) const {
   const auto& node = as_node(require(key));
   if (const auto* b = node.as_boolean()) return b->get();

@@ -37,6 +37,9 @@ class Table {
   double number_or(std::string_view key, double fallback) const;
   std::int64_t integer(std::string_view key) const;
   std::int64_t integer_or(std::string_view key, std::int64_t fallback) const;
+  // A count that must lie in [least, most], checked as the 64-bit integer the file holds (not
+  // after a cast that wraps): "key 'sim.max_newton_iters' must be a whole number from 1 to ...".
+  int count_or(std::string_view key, int fallback, int least, int most) const;
   bool boolean(std::string_view key) const;
   bool boolean_or(std::string_view key, bool fallback) const;
   std::string string(std::string_view key) const;

@@ -43,8 +43,8 @@ double positive(const Table& table, std::string_view key, double fallback) {
 
 void read_sim(const Table& sim, SceneFile& out) {
   sim.allow({"dt", "duration", "gravity", "d_hat", "kappa", "eps_v", "newton_tol",
-             "newton_velocity_tol", "max_newton_iters", "friction_lag_iterations",
-             "ccd_rescaling"});
+             "newton_velocity_tol", "max_newton_iters", "projected_iterations",
+             "max_step_halvings", "friction_lag_iterations", "ccd_rescaling"});
   solver::SimParameters& p = out.scene.sim;
   read_sim_parameters(sim, p);
   out.duration = positive(sim, "duration", out.duration);
@@ -79,8 +79,8 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir,
                 solver::BodyDescription& out) {
   const std::string shape = body.choice("shape", {"box", "sphere", "cylinder", "mesh"});
   const bool soft = out.type == solver::BodyType::kFem;
-  const int segments = static_cast<int>(body.integer_or("segments", 24));
-  if (segments < 6) body.fail("segments", "must be at least 6");
+  // A sphere of n segments has about n^2 / 2 vertices: 1,024 makes half a million.
+  const int segments = body.count_or("segments", 24, 6, 1024);
   double resolution = 0.0;
   if (soft) {
     resolution = body.number("resolution");

@@ -23,19 +23,14 @@ void read_sim_parameters(const config::Table& table, solver::SimParameters& p) {
   p.eps_v = positive(table, "eps_v", p.eps_v);
   p.newton_tol = positive(table, "newton_tol", p.newton_tol);
   p.newton_velocity_tol = positive(table, "newton_velocity_tol", p.newton_velocity_tol);
-  p.max_newton_iters = static_cast<int>(table.integer_or("max_newton_iters", p.max_newton_iters));
-  if (p.max_newton_iters < 1) table.fail("max_newton_iters", "must be at least 1");
+  // Bounds that keep a value meaningful and its int from wrapping: each Newton iteration is a
+  // factorization, each lag iteration a whole Newton solve.
+  p.max_newton_iters = table.count_or("max_newton_iters", p.max_newton_iters, 1, 100'000);
   p.projected_iterations =
-      static_cast<int>(table.integer_or("projected_iterations", p.projected_iterations));
-  if (p.projected_iterations < 0) table.fail("projected_iterations", "must be at least 0");
-  p.max_step_halvings =
-      static_cast<int>(table.integer_or("max_step_halvings", p.max_step_halvings));
-  if (p.max_step_halvings < 0 || p.max_step_halvings > 20) {
-    table.fail("max_step_halvings", "must be between 0 and 20");
-  }
+      table.count_or("projected_iterations", p.projected_iterations, 0, 100'000);
+  p.max_step_halvings = table.count_or("max_step_halvings", p.max_step_halvings, 0, 20);
   p.friction_lag_iterations =
-      static_cast<int>(table.integer_or("friction_lag_iterations", p.friction_lag_iterations));
-  if (p.friction_lag_iterations < 1) table.fail("friction_lag_iterations", "must be at least 1");
+      table.count_or("friction_lag_iterations", p.friction_lag_iterations, 1, 100);
   p.ccd_rescaling = table.number_or("ccd_rescaling", p.ccd_rescaling);
   if (!(p.ccd_rescaling > 0 && p.ccd_rescaling < 1)) {
     table.fail("ccd_rescaling", "must lie strictly between 0 and 1");

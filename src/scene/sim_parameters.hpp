@@ -14,6 +14,8 @@ inline const std::initializer_list<std::string_view> kSimParameterKeys = {"dt",
                                                                           "newton_tol",
                                                                           "newton_velocity_tol",
                                                                           "max_newton_iters",
+                                                                          "projected_iterations",
+                                                                          "max_step_halvings",
                                                                           "friction_lag_iterations",
                                                                           "ccd_rescaling"};
 

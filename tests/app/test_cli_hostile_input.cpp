@@ -72,6 +72,33 @@ TEST(HostileInput, SceneDurationsOfNoStepOrTooManyStepsAreRefused) {
   fs::remove_all(dir);
 }
 
+TEST(HostileInput, CountsPast32BitsAreRefusedNotWrapped) {
+  const fs::path dir = scratch("counts");
+  // 2^32 + 1 Newton iterations once wrapped to 1, and ran.
+  expect_scene_refused(dir, "[sim]\nmax_newton_iters = 4294967297\n" + kBox,
+                       "scene.toml:2: key 'sim.max_newton_iters' must be a whole number from 1 "
+                       "to 100000, not 4294967297");
+  expect_scene_refused(dir, "[sim]\nfriction_lag_iterations = 4294967297\n" + kBox,
+                       "key 'sim.friction_lag_iterations' must be a whole number from 1 to 100");
+  expect_scene_refused(dir, "[sim]\nprojected_iterations = -1\n" + kBox,
+                       "key 'sim.projected_iterations' must be a whole number from 0 to 100000");
+  const std::string sphere =
+      "[[body]]\nname = \"s\"\ntype = \"affine\"\nshape = \"sphere\"\nradius = 0.05\n";
+  // 2^32 + 3 segments wrapped to 3 (refused as "at least 6"); 1e8 built for ever.
+  expect_scene_refused(dir, sphere + "segments = 4294967299\n",
+                       "scene.toml:6: key 'body[0].segments' must be a whole number from 6 to "
+                       "1024, not 4294967299");
+  expect_scene_refused(dir, sphere + "segments = 100000000\n", "not 100000000");
+  // Both solver settings the format lists are read (they were refused as unknown keys).
+  const fs::path scene = dir / "scene.toml";
+  std::ofstream(scene) << "[sim]\nduration = 0.02\nprojected_iterations = 5\n"
+                          "max_step_halvings = 2\n"
+                       << kBox;
+  const GripRun run = run_grip("simulate " + quoted(scene));
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  fs::remove_all(dir);
+}
+
 TEST(HostileInput, FemResolutionsPastTheTetLimitAreRefused) {
   const fs::path dir = scratch("resolution");
   const std::string cube =
