@@ -286,9 +286,12 @@ void read_farm(const Table& t, Job& job) {
 // refused for its size is told it would need at least.
 double rigid_trial_cpu_seconds(grippers::GripperKind kind) {
   switch (kind) {
-    case grippers::GripperKind::kParallelJaw: return 0.06;
-    case grippers::GripperKind::kFinRay: return 17.0;
-    default: return 0.28;  // the LEAP hand
+    case grippers::GripperKind::kParallelJaw:
+      return 0.06;
+    case grippers::GripperKind::kFinRay:
+      return 17.0;
+    default:
+      return 0.28;  // the LEAP hand
   }
 }
 

@@ -14,8 +14,7 @@ volatile std::sig_atomic_t at_once = 0;
 
 extern "C" void on_stop_signal(int signal) {
   if (at_once) {
-    constexpr char kMessage[] =
-        "\ngrip farm: stopped before any trial ran; nothing was written\n";
+    constexpr char kMessage[] = "\ngrip farm: stopped before any trial ran; nothing was written\n";
     [[maybe_unused]] const auto written = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
     _exit(128 + signal);
   }

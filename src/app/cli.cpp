@@ -371,9 +371,7 @@ int main(int argc, char** argv) {
                    "round-batches=N (rounds of N), batch=N")
       ->delimiter(',');
   const auto seconds = [&](const char* name, double& value, const char* what) {
-    bench_scale->add_option(name, value, what)
-        ->capture_default_str()
-        ->check(kNonNegative);
+    bench_scale->add_option(name, value, what)->capture_default_str()->check(kNonNegative);
   };
   seconds("--unit-commit-latency", bench_scale_args.unit_commit_latency,
           "s per work unit's commit (without --measure)");

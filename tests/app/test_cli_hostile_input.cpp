@@ -256,8 +256,9 @@ TEST(HostileInput, AMeshInCentimetresNamesItsSizeAndTheScaleThatFixesIt) {
   EXPECT_EQ(centimetres.exit_code, 0) << centimetres.err;
   // A category's shape comes from the seed, not from a file's units: the 16 cm box of seed 1
   // does not fit the 85 mm jaws, and the hint is another seed, not --scale.
-  const GripRun box = run_grip("synth --object box --gripper parallel-jaw --count 1 --seed 1 --out " +
-                               quoted(dir / "box.txt"));
+  const GripRun box =
+      run_grip("synth --object box --gripper parallel-jaw --count 1 --seed 1 --out " +
+               quoted(dir / "box.txt"));
   EXPECT_EQ(box.exit_code, 1) << box.err;
   EXPECT_NE(box.err.find("m, the box of --seed 1) may not fit the gripper; another --seed draws "
                          "another size"),
@@ -382,7 +383,8 @@ TEST(HostileInput, RangeErrorsSayTheRangeInWords) {
         {"bench trial --candidates 0", "--candidates: must be a whole number >= 1, not '0'"},
         {"bench linear --cells 0.01,nan", "--cells: must be a finite number > 0, not 'nan'"},
         // --edge inf once reached the tetrahedralization: SIGFPE.
-        {"asset prepare m.obj --out a --edge inf", "--edge: must be a finite number > 0, not 'inf'"},
+        {"asset prepare m.obj --out a --edge inf",
+         "--edge: must be a finite number > 0, not 'inf'"},
         {"asset prepare m.obj --out a --edge 0.01 --alpha -1",
          "--alpha: must be a finite number > 0, not '-1'"},
         {"asset prepare m.obj --out a --edge 0.01 --seed -2",

@@ -76,7 +76,8 @@ TEST(BenchCli, TrialRefusesAnUnknownGripperAndNoRepeatsInOneLine) {
   EXPECT_EQ(gripper.err.find('\n'), gripper.err.size() - 1) << gripper.err;
   const auto repeats = run_grip("bench trial --repeats 0 --out " + out.string());
   EXPECT_EQ(repeats.exit_code, 2);
-  EXPECT_NE(repeats.err.find("grip bench trial: --repeats must be at least 1"), std::string::npos)
+  EXPECT_NE(repeats.err.find("grip: --repeats: must be a whole number >= 1, not '0'"),
+            std::string::npos)
       << repeats.err;
   EXPECT_EQ(repeats.err.find('\n'), repeats.err.size() - 1) << repeats.err;
   EXPECT_FALSE(fs::exists(out));

@@ -234,9 +234,8 @@ TEST(FarmStop, ASignalWhilePlanningEndsTheRunAtOnceAndCreatesNothing) {
   const fs::path job = dir / "large.toml";
   testing::write_file(job, testing::small_job(1, 200'000, false));  // hours of synthesis
   const fs::path dataset = dir / "large.h5", log = dir / "large.log";
-  const pid_t pid = start({GRIP_EXECUTABLE, "farm", job.string(), "--output", dataset.string(),
-                           "--threads", "1"},
-                          log);
+  const pid_t pid = start(
+      {GRIP_EXECUTABLE, "farm", job.string(), "--output", dataset.string(), "--threads", "1"}, log);
   const auto deadline = std::chrono::steady_clock::now() + 60s;
   while (!catches(pid, SIGINT) && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(2ms);

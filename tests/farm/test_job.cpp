@@ -191,8 +191,8 @@ TEST(Job, TooManyCandidatesAreRefusedWithWhatTheyWouldNeed) {
     EXPECT_NE(huge.find(part), std::string::npos) << part << " in: " << huge;
   }
   // 1e9 objects of one candidate each: the objects' count made it.
-  const std::string objects = error_of(replaced(
-      replaced(kValid, "count = 3", "count = 1000000000"), "candidates = 4", "candidates = 1"));
+  const std::string objects = error_of(replaced(replaced(kValid, "count = 3", "count = 1000000000"),
+                                                "candidates = 4", "candidates = 1"));
   EXPECT_NE(objects.find("objects[0].count"), std::string::npos) << objects;
 
   // Raised, the same job reads; a limit set too low is named itself.

@@ -66,8 +66,8 @@ int synth(const SynthArgs& args) {
     spdlog::warn(
         "only {} of {} candidates after {} attempts: the object ({:.3g} x {:.3g} x {:.3g} {}) "
         "may not fit the gripper; {}",
-        result.candidates.size(), args.count, result.attempts, size.x(), size.y(), size.z(),
-        drawn, fix);
+        result.candidates.size(), args.count, result.attempts, size.x(), size.y(), size.z(), drawn,
+        fix);
     return 1;
   }
   return 0;
