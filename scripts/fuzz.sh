@@ -1,28 +1,22 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (fuzz/) with clang, AddressSanitizer and UndefinedBehaviorSanitizer
 # in build-fuzz/ and runs each for SECONDS (default 30) from its seed corpus fuzz/corpus/<target>/.
-# A crash, a sanitizer report or an input slower than 10 s (60 s for a scene, which may build a
-# large FEM mesh within its limits) fails the run; libFuzzer writes the input to
-# build-fuzz/findings/. New inputs go to build-fuzz/corpus/<target>/, not the repository.
+# A crash, a sanitizer report or an input slower than 10 s fails the run; libFuzzer writes the
+# input to build-fuzz/findings/. New inputs go to build-fuzz/corpus/<target>/, not the repository.
 # With GRIP_FUZZ_RUNS=N (CI's short run) each target starts from seed 1 and the committed corpus
 # alone (new inputs go to a folder emptied first) and runs at most N inputs (0: the seed corpus
 # alone) within SECONDS.
 # Usage: [GRIP_FUZZ_RUNS=N] scripts/fuzz.sh [SECONDS] [TARGET...]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build="$root/build-fuzz"
+source "$root/scripts/instrumented-tree.sh"
 seconds="${1:-30}"
 shift || true
 targets=("$@")
 [[ ${#targets[@]} -gt 0 ]] || targets=(fuzz_scene fuzz_job fuzz_candidates fuzz_mesh fuzz_dataset
                                         fuzz_dataset_values)
 "$root/scripts/install-deps.sh"
-source "$root/scripts/ccache-launcher.sh"
-if [[ ! -f "$build/build.ninja" ]]; then
-  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-        -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DGRIP_FUZZ=ON \
-        -DGRIP_BUILD_TESTS=OFF -DGRIP_BUILD_BENCH=OFF "${launcher[@]}" >/dev/null
-fi
+configure_instrumented_tree OFF
 cmake --build "$build" --parallel "$(nproc)" --target "${targets[@]}"
 
 # Leaks are findings too, except inside the system libraries listed in lsan.supp (HDF5 leaks
@@ -44,12 +38,8 @@ if [[ -n "${GRIP_FUZZ_RUNS:-}" ]]; then
 fi
 for target in "${targets[@]}"; do
   mkdir -p "$corpus/$target"
-  # A scene within the limits may take seconds to build under the sanitizers (a 1 m FEM finger
-  # at 5 mm resolution: 14 s): that is not a hang.
-  timeout=10
-  [[ $target == fuzz_scene ]] && timeout=60
   echo "fuzz: $target for $seconds s ${runs[*]}" >&2
-  if ! "$build/fuzz/$target" -max_total_time="$seconds" "${runs[@]}" -timeout="$timeout" \
+  if ! "$build/fuzz/$target" -max_total_time="$seconds" "${runs[@]}" -timeout=10 \
        -rss_limit_mb=4096 -artifact_prefix="$build/findings/$target-" -print_final_stats=1 \
        "$corpus/$target" "$root/fuzz/corpus/$target" 2>"$build/$target.log"; then
     failed+=("$target")

@@ -239,6 +239,11 @@ int main(int argc, char** argv) {
   simulate->add_option("--threads", simulate_args.threads, "Threads (default: all cores)")
       ->check(kCount);
   simulate
+      ->add_option("--max-tets", simulate_args.max_tets,
+                   "Refuse an FEM body that would make more tets (estimated before meshing)")
+      ->capture_default_str()
+      ->check(kPositive);
+  simulate
       ->add_option("--report", simulate_args.report, "Write the JSON report here (default: stdout)")
       ->check(kOutputFile);
   simulate->add_flag("--trace", simulate_args.trace, "Add per-step centres of mass to the report");

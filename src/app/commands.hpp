@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "src/geometry/tetrahedralize.hpp"
+
 namespace grip::commands {
 
 // grip inspect DATASET.h5 [--job]: provenance and summary of a dataset
@@ -49,6 +51,7 @@ struct SimulateArgs {
   int threads = 0;     // 0: all cores
   std::string report;  // JSON report file; stdout when empty
   bool trace = false;  // add each step's time and centres of mass to the report
+  double max_tets = geometry::kMaxEstimatedTets;  // an FEM body of more tets is refused
 };
 int simulate(const SimulateArgs& args);
 

@@ -64,18 +64,18 @@ void read_sim(const Table& sim, SceneFile& out) {
   }
 }
 
-// Refuses an FEM resolution that would make more than geometry::kMaxEstimatedTets tets (the
-// limit of `grip asset prepare`), before the mesh is built.
-void check_tet_count(const Table& body, double resolution, double tets) {
-  if (tets <= geometry::kMaxEstimatedTets) return;
+// Refuses an FEM resolution that would make more than `max_tets` tets (by default the limit of
+// `grip asset prepare`), before the mesh is built.
+void check_tet_count(const Table& body, double resolution, double tets, double max_tets) {
+  if (tets <= max_tets) return;
   body.fail("resolution", "= " + number_text("%g", resolution) + " m would make about " +
                               number_text("%.3g", tets) + " tets, more than the " +
-                              number_text("%.0f", geometry::kMaxEstimatedTets) +
+                              number_text("%.0f", max_tets) +
                               " allowed; use a larger resolution (a coarser mesh)");
 }
 
 // The body's surface (and tets, for FEM) from its shape keys.
-void read_shape(const Table& body, const std::filesystem::path& scene_dir,
+void read_shape(const Table& body, const std::filesystem::path& scene_dir, double max_tets,
                 solver::BodyDescription& out) {
   const std::string shape = body.choice("shape", {"box", "sphere", "cylinder", "mesh"});
   const bool soft = out.type == solver::BodyType::kFem;
@@ -95,7 +95,7 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir,
     if ((size.array() <= 0).any()) body.fail("size", "must hold three positive extents (m)");
     if (soft) {
       // A structured grid: exact volume, no CGAL meshing needed for boxes.
-      check_tet_count(body, resolution, box_tet_count(size, resolution));
+      check_tet_count(body, resolution, box_tet_count(size, resolution), max_tets);
       set_fem_mesh(out, box_tets(size, resolution));
       return;
     }
@@ -125,7 +125,8 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir,
   if (soft) {
     check_tet_count(
         body, resolution,
-        geometry::estimated_tet_count(std::abs(geometry::surface_volume(surface)), resolution));
+        geometry::estimated_tet_count(std::abs(geometry::surface_volume(surface)), resolution),
+        max_tets);
     geometry::TetOptions options;
     options.edge_length = resolution;
     geometry::TetMesh tets;
@@ -141,7 +142,8 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir,
   }
 }
 
-solver::BodyDescription read_body(const Table& body, const std::filesystem::path& scene_dir) {
+solver::BodyDescription read_body(const Table& body, const std::filesystem::path& scene_dir,
+                                  double max_tets) {
   body.allow({"name",
               "type",
               "shape",
@@ -169,7 +171,7 @@ solver::BodyDescription read_body(const Table& body, const std::filesystem::path
   out.type = type == "kinematic" ? solver::BodyType::kKinematic
              : type == "affine"  ? solver::BodyType::kAffine
                                  : solver::BodyType::kFem;
-  read_shape(body, scene_dir, out);
+  read_shape(body, scene_dir, max_tets, out);
   out.pose.position = vec(body.vec3_or("position", {0, 0, 0}));
   out.pose.rotation = rotation_from_degrees(vec(body.vec3_or("rotation", {0, 0, 0})));
   const Eigen::Vector3d velocity = vec(body.vec3_or("velocity", {0, 0, 0}));
@@ -218,7 +220,7 @@ solver::BodyDescription read_body(const Table& body, const std::filesystem::path
 
 }  // namespace
 
-SceneFile load_scene_file(const std::filesystem::path& file) {
+SceneFile load_scene_file(const std::filesystem::path& file, double max_tets) {
   const config::Document document = config::Document::load(file);
   const Table root = document.root();
   root.allow({"sim", "body", "contact"});
@@ -229,7 +231,7 @@ SceneFile load_scene_file(const std::filesystem::path& file) {
   if (bodies.empty()) root.fail("body", "is missing: a scene needs at least one [[body]]");
   std::map<std::string, int> index_of;
   for (const Table& body : bodies) {
-    out.scene.bodies.push_back(read_body(body, file.parent_path()));
+    out.scene.bodies.push_back(read_body(body, file.parent_path(), max_tets));
     if (!index_of.emplace(out.scene.bodies.back().name, index_of.size()).second) {
       body.fail("name", "\"" + out.scene.bodies.back().name + "\" is used by another body");
     }

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "solver/scene.hpp"
+#include "src/geometry/tetrahedralize.hpp"
 
 namespace grip::scene {
 
@@ -22,9 +23,10 @@ struct SceneFile {
 };
 
 // Throws config::ConfigError ("FILE:LINE: ...") for anything wrong in the file, including a
-// mesh that cannot be read or tetrahedralized, an FEM resolution that would make more than
-// geometry::kMaxEstimatedTets tets, a duration of no step or of more than kMaxSceneSteps, and an
-// invalid body.
-SceneFile load_scene_file(const std::filesystem::path& file);
+// mesh that cannot be read or tetrahedralized, an FEM resolution that would make a body of more
+// than `max_tets` tets (estimated before meshing; `grip simulate --max-tets`), a duration of no
+// step or of more than kMaxSceneSteps, and an invalid body.
+SceneFile load_scene_file(const std::filesystem::path& file,
+                          double max_tets = geometry::kMaxEstimatedTets);
 
 }  // namespace grip::scene

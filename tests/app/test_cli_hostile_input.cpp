@@ -109,6 +109,16 @@ TEST(HostileInput, FemResolutionsPastTheTetLimitAreRefused) {
                        "3.84e+11 tets, more than the 5000000 allowed; use a larger resolution");
   expect_scene_refused(dir, cube + "resolution = 2e-4\n",
                        "key 'body[0].resolution' = 0.0002 m would make about 4.8e+07 tets");
+  // --max-tets moves the limit: 4 mm makes a 10 x 10 x 10 grid of 6,000 tets.
+  const fs::path scene = dir / "scene.toml";
+  std::ofstream(scene) << "[sim]\nduration = 0.01\n" << cube << "resolution = 0.004\n";
+  const GripRun lowered = run_grip("simulate " + quoted(scene) + " --max-tets 5000");
+  EXPECT_EQ(lowered.exit_code, 1) << lowered.err;
+  EXPECT_NE(lowered.err.find("would make about 6e+03 tets, more than the 5000 allowed"),
+            std::string::npos)
+      << lowered.err;
+  EXPECT_EQ(run_grip("simulate " + quoted(scene) + " --max-tets 6000").exit_code, 0);
+  EXPECT_EQ(run_grip("simulate " + quoted(scene) + " --max-tets nan").exit_code, 2);
   fs::remove_all(dir);
 }
 

@@ -14,7 +14,9 @@ namespace grip::commands {
 int simulate(const SimulateArgs& args) {
   std::vector<scene::SceneFile> files;
   try {
-    for (const std::string& path : args.scenes) files.push_back(scene::load_scene_file(path));
+    for (const std::string& path : args.scenes) {
+      files.push_back(scene::load_scene_file(path, args.max_tets));
+    }
   } catch (const config::ConfigError& e) {
     spdlog::error("{}", e.what());
     return 1;
