@@ -19,7 +19,7 @@ class Writer {
   template <typename T>
   void values(const T* data, std::size_t count) {
     value<std::uint64_t>(count);
-    bytes_.append(reinterpret_cast<const char*>(data), count * sizeof(T));
+    if (count > 0) bytes_.append(reinterpret_cast<const char*>(data), count * sizeof(T));
   }
   template <typename T>
   void vector(const std::vector<T>& v) {
@@ -56,7 +56,7 @@ class Reader {
   void matrix(Matrix& m, Eigen::Index columns) {
     const std::vector<typename Matrix::Scalar> v = vector<typename Matrix::Scalar>();
     m.resize(static_cast<Eigen::Index>(v.size()) / columns, columns);
-    std::memcpy(m.data(), v.data(), v.size() * sizeof(typename Matrix::Scalar));
+    if (!v.empty()) std::memcpy(m.data(), v.data(), v.size() * sizeof(typename Matrix::Scalar));
   }
   bool done() const { return offset_ == bytes_.size(); }
 
@@ -67,8 +67,11 @@ class Reader {
       throw std::runtime_error("farm: truncated message");
     return static_cast<std::size_t>(n);
   }
+  // An empty vector's data() may be null, and memcpy from or to null is undefined even for
+  // no bytes (UBSan reports it): nothing is copied then.
   void take(void* out, std::size_t n) {
     if (n > bytes_.size() - offset_) throw std::runtime_error("farm: truncated message");
+    if (n == 0) return;
     std::memcpy(out, bytes_.data() + offset_, n);
     offset_ += n;
   }

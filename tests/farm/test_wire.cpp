@@ -26,6 +26,13 @@ TEST(Wire, ObjectRecordRoundTrips) {
   EXPECT_EQ(back.vertices, r.vertices);
   EXPECT_EQ(back.triangles, r.triangles);
   EXPECT_EQ(back.tets, r.tets);
+  // A rigid object has no tets: an empty vector, whose data() is null (memcpy from and to null
+  // is undefined behaviour even for no bytes, which the sanitized suite reports).
+  r.soft = false;
+  r.tets.clear();
+  const io::ObjectRecord rigid = unpack_object(pack(r));
+  EXPECT_TRUE(rigid.tets.empty());
+  EXPECT_EQ(rigid.vertices, r.vertices);
 }
 
 TEST(Wire, CandidatesRoundTrip) {
