@@ -3,6 +3,8 @@
 // shape; CCD still watches them, and contact with other bodies is unchanged.
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "tests/solver/scene_builders.hpp"
 
 namespace grip::solver::testing {
@@ -16,7 +18,9 @@ BodyDescription thin_sheet(const Eigen::Vector3d& position) {
 TEST(RestProximity, OnlyPairsWithinDhatAtRestAreListed) {
   SceneDescription sheet;
   sheet.bodies.push_back(thin_sheet({0, 0, 0}));
-  const CollisionMesh& near = Model::build(sheet)->collision();
+  // The model is kept: a reference into a temporary's collision mesh would dangle (ASan).
+  const std::shared_ptr<const Model> sheet_model = Model::build(sheet);
+  const CollisionMesh& near = sheet_model->collision();
   EXPECT_GT(near.point_triangle_near_at_rest.size(), 0u);
   EXPECT_GT(near.edge_edge_near_at_rest.size(), 0u);
   EXPECT_TRUE(std::is_sorted(near.point_triangle_near_at_rest.begin(),
@@ -25,7 +29,8 @@ TEST(RestProximity, OnlyPairsWithinDhatAtRestAreListed) {
   // A 4 cm cube meshed at 1 cm has no surface pair closer than 1 cm apart from neighbours.
   SceneDescription cube;
   cube.bodies.push_back(soft_box("cube", {0.04, 0.04, 0.04}, 0.01, {0, 0, 0}, 1e5));
-  const CollisionMesh& apart = Model::build(cube)->collision();
+  const std::shared_ptr<const Model> cube_model = Model::build(cube);
+  const CollisionMesh& apart = cube_model->collision();
   EXPECT_TRUE(apart.point_triangle_near_at_rest.empty());
   EXPECT_TRUE(apart.edge_edge_near_at_rest.empty());
 }

@@ -263,7 +263,8 @@ TEST(GraspTrial, RecordsTheDatasetTrajectory) {
   // rest at the origin, the gripper's vertices where gripper.surface(opening) puts them.
   const TrialParameters& p = scene.parameters();
   const double gap = p.placement_gap * p.sim.d_hat;
-  const auto across = geometry::make_cylinder(0.02, 0.03, 24).vertices.col(1);  // closing axis
+  // The closing axis coordinates, copied: a view of the temporary mesh would dangle (ASan).
+  const Eigen::VectorXd across = geometry::make_cylinder(0.02, 0.03, 24).vertices.col(1);
   const double width = across.maxCoeff() - across.minCoeff();
   EXPECT_GE(t.joints.front(), width + 2.0 * gap - 1e-9);
   EXPECT_LE(t.joints.front(), width + 2.2 * gap + 1e-9);
