@@ -1,19 +1,16 @@
 #!/usr/bin/env bash
 # Builds grip and its test suite with AddressSanitizer and UndefinedBehaviorSanitizer in
-# build-sanitize/ and runs the suite through ctest. Any sanitizer report fails its test.
+# build-fuzz/, the instrumented tree the fuzz targets use (scripts/instrumented-tree.sh: clang
+# 14, every module instrumented once for both), and runs the suite through ctest. Any sanitizer
+# report fails its test.
 # Usage: scripts/sanitize.sh [ctest options, e.g. -R '^io_' or -L unit]
 # GRIP_SANITIZE_TARGETS="a b" builds only those targets (pair it with a ctest -R that selects
 # their tests); the default builds everything.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build="$root/build-sanitize"
+source "$root/scripts/instrumented-tree.sh"
 "$root/scripts/install-deps.sh"
-source "$root/scripts/ccache-launcher.sh"
-if [[ ! -f "$build/build.ninja" ]]; then
-  # RelWithDebInfo: optimised enough for the solver tests to finish, with line numbers.
-  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGRIP_SANITIZE=ON \
-        -DGRIP_BUILD_BENCH=OFF "${launcher[@]}" >/dev/null
-fi
+configure_instrumented_tree ON
 targets=()
 for t in ${GRIP_SANITIZE_TARGETS:-}; do targets+=(--target "$t"); done
 cmake --build "$build" --parallel "$(nproc)" "${targets[@]}"
