@@ -52,6 +52,7 @@ std::vector<FarmObject> list_objects(const Job& job) {
       object.soft = group.soft;
       object.tet_edge = group.tet_edge;
       object.tet_edge_at = group.tet_edge_at;
+      object.max_tets = job.max_tets;
       object.mesh_scale = group.mesh_scale;
       object.material = group.randomize ? objects::randomize_material(job.randomization,
                                                                       derive(job.seed, index, 2))
@@ -101,13 +102,13 @@ io::ObjectRecord prepare_object(const FarmObject& object) {
                                                  object.material.scale, object.tet_edge);
     const double estimate = geometry::estimated_tet_count(
         std::abs(geometry::surface_volume(surface)), options.edge_length);
-    if (estimate > geometry::kMaxEstimatedTets) {
+    if (estimate > object.max_tets) {
       char message[512];
       std::snprintf(message, sizeof message,
                     "%s: [[objects]] tet_edge: an edge of %g m would make about %.3g tets for "
-                    "'%s', more than the %.0f allowed; use a larger tet_edge",
+                    "'%s', more than the %.0f allowed ([farm] max_tets); use a larger tet_edge",
                     object.tet_edge_at.c_str(), options.edge_length, estimate, object.name.c_str(),
-                    geometry::kMaxEstimatedTets);
+                    object.max_tets);
       throw std::invalid_argument(message);
     }
     const geometry::TetMesh tets = geometry::tetrahedralize(surface, options, object.name);

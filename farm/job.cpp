@@ -269,7 +269,7 @@ void read_outputs(const Table& t, Job& job) {
 }
 
 void read_farm(const Table& t, Job& job) {
-  t.allow({"batch", "max_candidates"});
+  t.allow({"batch", "max_candidates", "max_tets"});
   const std::int64_t size = t.integer_or("batch", 0);
   if (size < 0 || size > 100000) t.fail("batch", "must be 0 (automatic) or a positive count");
   job.work_unit_size = static_cast<int>(size);
@@ -279,6 +279,8 @@ void read_farm(const Table& t, Job& job) {
     t.fail("max_candidates", "must be a count from 1 to 4294967295");
   }
   job.max_candidates = static_cast<std::uint64_t>(most);
+  job.max_tets = t.number_or("max_tets", job.max_tets);
+  if (!(job.max_tets >= 1)) t.fail("max_tets", "must be a count of at least 1");
 }
 
 // The least CPU time one trial of a rigid object takes with the gripper, from `grip bench trial`

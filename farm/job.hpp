@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/provenance.hpp"
+#include "src/geometry/tetrahedralize.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/objects/domain_randomization.hpp"
 #include "src/trial/trial_parameters.hpp"
@@ -64,6 +65,9 @@ struct Job {
   std::uint64_t max_candidates = kDefaultMaxCandidates;
 
   static constexpr std::uint64_t kDefaultMaxCandidates = 1'000'000;
+  // [farm] max_tets: a soft object whose tet_edge would make more tets (estimated before
+  // meshing) is refused while planning.
+  double max_tets = geometry::kMaxEstimatedTets;
 
   // Objects x candidates per gripper, summed over the grippers: what planning synthesizes.
   std::uint64_t candidate_count() const;

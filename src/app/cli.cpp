@@ -146,6 +146,11 @@ int main(int argc, char** argv) {
                    "A mesh file's scale (default: the candidate file's; must agree)")
       ->check(kPositive);
   trial->add_flag("--soft", trial_args.soft, "Simulate the object as FEM (tetrahedralized)");
+  trial
+      ->add_option("--max-tets", trial_args.max_tets,
+                   "Soft object: refuse a --tet-edge that would make more tets")
+      ->capture_default_str()
+      ->check(kPositive);
   trial->add_option("--tet-edge", trial_args.tet_edge, "Soft object: target tet edge length (m)")
       ->capture_default_str()
       ->check(kPositive);
@@ -651,6 +656,11 @@ int main(int argc, char** argv) {
   prepare
       ->add_option("--offset", prepare_args.offset_ratio,
                    "Alpha-wrap fallback: offset as a fraction of the bounding-box diagonal")
+      ->capture_default_str()
+      ->check(kPositive);
+  prepare
+      ->add_option("--max-tets", prepare_args.max_tets,
+                   "Refuse an --edge that would make more tets (estimated before meshing)")
       ->capture_default_str()
       ->check(kPositive);
   prepare->add_option("--seed", prepare_args.seed, "Tetrahedralization seed")

@@ -23,6 +23,7 @@ struct AssetPrepareArgs {
   double alpha_ratio = 0.01;           // alpha-wrap fallback: alpha / bounding-box diagonal
   double offset_ratio = 1.0 / 3000.0;  // alpha-wrap fallback: offset / bounding-box diagonal
   unsigned seed = 0;                   // tetrahedralization seed
+  double max_tets = geometry::kMaxEstimatedTets;  // a finer mesh is refused before meshing
 };
 int asset_prepare(const AssetPrepareArgs& args);
 
@@ -86,14 +87,15 @@ int synth(const SynthArgs& args);
 // one batch (src/app/commands/trial.cpp, docs/trial.md). The object and gripper come from the
 // candidate file; given on the command line they must agree with it.
 struct TrialArgs {
-  std::optional<std::string> object;   // a category name (shape from the seed) or a mesh file
-  std::optional<double> scale;         // multiplies a mesh file's coordinates
-  std::optional<std::uint64_t> seed;   // the category's shape, as given to grip synth
-  bool soft = false;                   // FEM object (tetrahedralized) instead of one affine body
-  double tet_edge = 0.008;             // m, target tet edge length of a soft object
-  double density = 1000.0;             // kg/m^3
-  double youngs = 1e6;                 // Pa, soft objects
-  double poisson = 0.4;                // soft objects
+  std::optional<std::string> object;  // a category name (shape from the seed) or a mesh file
+  std::optional<double> scale;        // multiplies a mesh file's coordinates
+  std::optional<std::uint64_t> seed;  // the category's shape, as given to grip synth
+  bool soft = false;                  // FEM object (tetrahedralized) instead of one affine body
+  double tet_edge = 0.008;            // m, target tet edge length of a soft object
+  double max_tets = geometry::kMaxEstimatedTets;  // a finer soft object is refused
+  double density = 1000.0;                        // kg/m^3
+  double youngs = 1e6;                            // Pa, soft objects
+  double poisson = 0.4;                           // soft objects
   double friction = 3.5;               // the object's mu (a fin-ray pad's pairs use the pad's 3.5)
   std::optional<std::string> gripper;  // fin-ray, parallel-jaw or leap
   std::string candidates;              // candidate file (docs/synthesis.md)

@@ -119,6 +119,15 @@ TEST(HostileInput, FemResolutionsPastTheTetLimitAreRefused) {
       << lowered.err;
   EXPECT_EQ(run_grip("simulate " + quoted(scene) + " --max-tets 6000").exit_code, 0);
   EXPECT_EQ(run_grip("simulate " + quoted(scene) + " --max-tets nan").exit_code, 2);
+  // The same limit moves for a mesh prepared as an asset and a soft object in a trial.
+  const fs::path cube_mesh = dir / "cube.obj";
+  write_cube(cube_mesh, 0.02);
+  const GripRun asset = run_grip("asset prepare " + quoted(cube_mesh) + " --out " +
+                                 quoted(dir / "asset") + " --edge 0.002 --max-tets 1000");
+  EXPECT_EQ(asset.exit_code, 1) << asset.err;
+  EXPECT_NE(asset.err.find("more than the 1000 allowed; use a larger --edge (or raise --max-tets)"),
+            std::string::npos)
+      << asset.err;
   fs::remove_all(dir);
 }
 
@@ -320,6 +329,10 @@ TEST(HostileInput, JobFilesPastTheTrialLimitsAreRefusedBeforeAnyFile) {
                      "job.toml:10: key 'objects[0].count' makes 1e+09 candidates (1e+09 objects x "
                      "1 candidates per object), more than the job's limit of 1000000 ([farm] "
                      "max_candidates)");
+  // A job's own tet limit, below what its soft capsule needs.
+  expect_job_refused(dir,
+                     "[[objects]]\ncategory = \"capsule\"\nsoft = true\n[farm]\nmax_tets = 100\n",
+                     "more than the 100 allowed ([farm] max_tets); use a larger tet_edge");
   // A billion D1/D2 points per surface: 24 GB a trial, a bare std::bad_alloc.
   expect_job_refused(dir, rigid + "[trial]\nmetric_samples = 1000000000\n",
                      "key 'trial.metric_samples' is 1000000000 surface points per gripper, more "
@@ -366,6 +379,14 @@ TEST(HostileInput, TrialOptionsOutOfTheirRangeAreUsageErrors) {
   EXPECT_NE(fine.err.find("more than the 5000000 allowed; use a larger --tet-edge"),
             std::string::npos)
       << fine.err;
+  // --max-tets moves that limit: the plate at the default edge needs more than 10.
+  const GripRun few =
+      run_grip("trial --candidates " + quoted(c.file) +
+               " --soft --max-tets 10 --threads 1 --report " + quoted(dir / "r.json"));
+  EXPECT_EQ(few.exit_code, 1) << few.err;
+  EXPECT_NE(few.err.find("more than the 10 allowed; use a larger --tet-edge (or raise --max-tets)"),
+            std::string::npos)
+      << few.err;
   fs::remove_all(dir);
 }
 

@@ -68,11 +68,11 @@ int asset_prepare(const AssetPrepareArgs& args) {
               static_cast<long>(repaired.mesh.triangles.rows()), surface_volume);
 
   const double estimated_tets = geo::estimated_tet_count(surface_volume, args.edge_length);
-  if (estimated_tets > geo::kMaxEstimatedTets) {
+  if (estimated_tets > args.max_tets) {
     throw std::invalid_argument(
         fmt::format("--edge {:g} m would make about {:.3g} tets for {}, more than the {:.0f} "
-                    "allowed; use a larger --edge",
-                    args.edge_length, estimated_tets, source, geo::kMaxEstimatedTets));
+                    "allowed; use a larger --edge (or raise --max-tets)",
+                    args.edge_length, estimated_tets, source, args.max_tets));
   }
 
   const auto tet_start = Clock::now();

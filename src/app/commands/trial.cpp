@@ -212,11 +212,12 @@ int trial(const TrialArgs& given) {
     }
     const double tets = geometry::estimated_tet_count(
         std::abs(geometry::surface_volume(object.surface)), options.edge_length);
-    if (tets > geometry::kMaxEstimatedTets) {
+    if (tets > args.max_tets) {
       throw std::invalid_argument(
           fmt::format("--tet-edge: a tet edge of {:g} m would make about {:.3g} tets for '{}', "
-                      "more than the {:.0f} allowed; use a larger --tet-edge",
-                      options.edge_length, tets, *args.object, geometry::kMaxEstimatedTets));
+                      "more than the {:.0f} allowed; use a larger --tet-edge (or raise "
+                      "--max-tets)",
+                      options.edge_length, tets, *args.object, args.max_tets));
     }
     object.tets = geometry::tetrahedralize(object.surface, options, *args.object);
     object.surface = geometry::boundary_surface(*object.tets);
