@@ -306,10 +306,10 @@ void check_candidate_count(const Job& job, const Table& root,
                            const std::optional<Table>& farm_table) {
   const std::uint64_t count = job.candidate_count();
   if (count <= job.max_candidates) return;
-  double objects = 0, per_object = 0, cpu_seconds = 0;
+  const auto objects = static_cast<double>(job.object_count());
+  double per_object = 0, cpu_seconds = 0;
   std::size_t largest_group = 0, largest_gripper = 0;
   for (std::size_t i = 0; i < job.objects.size(); ++i) {
-    objects += static_cast<double>(job.objects[i].object_count());
     if (job.objects[i].object_count() > job.objects[largest_group].object_count()) {
       largest_group = i;
     }
@@ -340,9 +340,15 @@ void check_candidate_count(const Job& job, const Table& root,
 
 }  // namespace
 
+std::uint64_t Job::object_count() const {
+  std::uint64_t count = 0;
+  for (const ObjectGroup& group : objects) count += group.object_count();
+  return count;
+}
+
 std::uint64_t Job::candidate_count() const {
-  std::uint64_t objects_in_job = 0, per_object = 0, count = 0;
-  for (const ObjectGroup& group : objects) objects_in_job += group.object_count();
+  const std::uint64_t objects_in_job = object_count();
+  std::uint64_t per_object = 0, count = 0;
   for (const GripperSetting& setting : grippers) {
     per_object += static_cast<std::uint64_t>(setting.candidates);
   }

@@ -69,6 +69,8 @@ struct Job {
   // meshing) is refused while planning.
   double max_tets = geometry::kMaxEstimatedTets;
 
+  // The objects of every [[objects]] entry.
+  std::uint64_t object_count() const;
   // Objects x candidates per gripper, summed over the grippers: what planning synthesizes.
   std::uint64_t candidate_count() const;
 };
