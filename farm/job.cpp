@@ -3,6 +3,7 @@
 #include <glob.h>
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -161,8 +162,8 @@ void read_randomization(const Table& t, objects::RandomizationRanges& r) {
 void read_trial(const Table& t, trial::TrialParameters& p) {
   t.allow({"placement_gap", "squeeze_speed", "grip_force", "final_opening", "finger_stiffness",
            "hand_drive_stiffness", "settle_speed", "settle_angular_speed", "force_tolerance",
-           "settle_steps", "settle_max_steps", "gravity", "phase_duration", "displacement_factor",
-           "metric_samples", "finger_friction"});
+           "settle_steps", "settle_max_steps", "gravity", "phase_duration", "rest_duration",
+           "displacement_factor", "metric_samples", "finger_friction"});
   p.placement_gap = t.number_or("placement_gap", p.placement_gap);
   if (!(p.placement_gap >= 1.0)) t.fail("placement_gap", "must be at least 1 (times d_hat)");
   p.squeeze_speed = positive(t, "squeeze_speed", p.squeeze_speed);
@@ -179,6 +180,10 @@ void read_trial(const Table& t, trial::TrialParameters& p) {
   p.settle_max_steps = positive_integer(t, "settle_max_steps", p.settle_max_steps);
   p.gravity_magnitude = positive(t, "gravity", p.gravity_magnitude);
   p.phase_duration = positive(t, "phase_duration", p.phase_duration);
+  p.rest_duration = t.number_or("rest_duration", p.rest_duration);
+  if (!(p.rest_duration >= 0 && std::isfinite(p.rest_duration))) {
+    t.fail("rest_duration", "must be a non-negative time (s)");
+  }
   p.displacement_factor = positive(t, "displacement_factor", p.displacement_factor);
   p.metric_samples = positive_integer(t, "metric_samples", p.metric_samples);
   if (p.metric_samples > trial::kMaxMetricSamples) {
@@ -199,13 +204,13 @@ void check_trial_steps(const trial::TrialParameters& p, const std::optional<Tabl
   if (steps <= static_cast<double>(trial::kMaxTrialSteps)) return;
   char message[256];
   std::snprintf(message, sizeof message,
-                "makes a trial of up to %.3g steps (settle_max_steps + 6 x phase_duration / dt), "
-                "more than the %lld allowed; use a larger [physics] dt or a shorter [trial] "
-                "phase_duration",
+                "makes a trial of up to %.3g steps (settle_max_steps + 6 x (phase_duration + "
+                "rest_duration) / dt), more than the %lld allowed; use a larger [physics] dt or "
+                "a shorter [trial] phase_duration or rest_duration",
                 steps, static_cast<long long>(trial::kMaxTrialSteps));
   if (physics && physics->has("dt")) physics->fail("dt", message);
-  if (trial_table && trial_table->has("phase_duration")) {
-    trial_table->fail("phase_duration", message);
+  for (const char* key : {"phase_duration", "rest_duration"}) {
+    if (trial_table && trial_table->has(key)) trial_table->fail(key, message);
   }
   if (trial_table) trial_table->fail("settle_max_steps", message);
 }

@@ -41,6 +41,9 @@ struct Material {
   double youngs = 1e6;      // Pa (FEM)
   double poisson = 0.4;     // (FEM)
   double friction = 0.5;    // mu, combined per pair (see ContactOverride)
+  // FEM: Rayleigh stiffness-proportional damping beta (s), the viscous force -beta K v of a
+  // material that dissipates as it deforms; 0, none (docs/simulation.md, "Damping").
+  double damping = 0.0;
 };
 
 // FEM vertices rigidly attached to a kinematic body: they follow it exactly (a soft finger's

@@ -1,6 +1,7 @@
 #include "solver/body/fem_body.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "solver/body/body.hpp"
@@ -16,6 +17,25 @@ Vector12 tet_positions(const Eigen::VectorXd& q, int dof_offset, const FemTet& t
   Vector12 x;
   for (int i = 0; i < 4; ++i) x.segment<3>(3 * i) = q.segment<3>(dof_offset + 3 * tet.vertices[i]);
   return x;
+}
+
+// Scatters one tet's 12-vector gradient and 12x12 Hessian into the DOF-space gradient and the
+// lower-triangle triplets.
+void add_tet_derivatives(const BodyModel& body, const FemTet& tet, const Vector12& g,
+                         const Matrix12& h, Eigen::VectorXd& gradient,
+                         std::vector<Eigen::Triplet<double>>& hessian) {
+  for (int a = 0; a < 4; ++a) {
+    const int row = body.dof_offset + 3 * tet.vertices[a];
+    gradient.segment<3>(row) += g.segment<3>(3 * a);
+    for (int b = 0; b < 4; ++b) {
+      const int col = body.dof_offset + 3 * tet.vertices[b];
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          if (row + i >= col + j) hessian.emplace_back(row + i, col + j, h(3 * a + i, 3 * b + j));
+        }
+      }
+    }
+  }
 }
 
 FemTet rest_tet(const BodyDescription& description, const BodyModel& body, Eigen::Index t) {
@@ -42,6 +62,9 @@ void check(const BodyDescription& description) {
   const Material& m = description.material;
   if (m.density <= 0 || m.youngs <= 0 || m.poisson <= -1 || m.poisson >= 0.5) {
     invalid_body(description, "needs density > 0, youngs > 0 and -1 < poisson < 0.5");
+  }
+  if (!(m.damping >= 0 && std::isfinite(m.damping))) {
+    invalid_body(description, "needs a finite damping >= 0 (s)");
   }
 }
 
@@ -183,18 +206,44 @@ void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, do
     const Matrix12 h =
         scale * kernels::tet_stable_neo_hookean_hessian(x, tet.rest_shape_inverse, tet.rest_volume,
                                                         body.elasticity, true);
-    for (int a = 0; a < 4; ++a) {
-      const int row = body.dof_offset + 3 * tet.vertices[a];
-      gradient.segment<3>(row) += g.segment<3>(3 * a);
-      for (int b = 0; b < 4; ++b) {
-        const int col = body.dof_offset + 3 * tet.vertices[b];
-        for (int i = 0; i < 3; ++i) {
-          for (int j = 0; j < 3; ++j) {
-            if (row + i >= col + j) hessian.emplace_back(row + i, col + j, h(3 * a + i, 3 * b + j));
-          }
-        }
-      }
-    }
+    add_tet_derivatives(body, tet, g, h, gradient, hessian);
+  }
+}
+
+void tet_stiffness(const BodyModel& body, const Eigen::VectorXd& q,
+                   std::vector<Matrix12d>& stiffness) {
+  stiffness.resize(body.tets.size());
+  for (std::size_t t = 0; t < body.tets.size(); ++t) {
+    const FemTet& tet = body.tets[t];
+    stiffness[t] = kernels::tet_stable_neo_hookean_hessian(tet_positions(q, body.dof_offset, tet),
+                                                           tet.rest_shape_inverse, tet.rest_volume,
+                                                           body.elasticity, true);
+  }
+}
+
+void add_damping_energy(const BodyModel& body, const Eigen::VectorXd& q,
+                        const Eigen::VectorXd& q_start, const std::vector<Matrix12d>& stiffness,
+                        double h, double& sum) {
+  const double c = body.material.damping / h;
+  for (std::size_t t = 0; t < body.tets.size(); ++t) {
+    const FemTet& tet = body.tets[t];
+    const Vector12 dx =
+        tet_positions(q, body.dof_offset, tet) - tet_positions(q_start, body.dof_offset, tet);
+    sum += 0.5 * c * dx.dot(stiffness[t] * dx);
+  }
+}
+
+void add_damping_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
+                             const Eigen::VectorXd& q_start,
+                             const std::vector<Matrix12d>& stiffness, double h, double scale,
+                             Eigen::VectorXd& gradient,
+                             std::vector<Eigen::Triplet<double>>& hessian) {
+  const double c = scale * body.material.damping / h;
+  for (std::size_t t = 0; t < body.tets.size(); ++t) {
+    const FemTet& tet = body.tets[t];
+    const Vector12 dx =
+        tet_positions(q, body.dof_offset, tet) - tet_positions(q_start, body.dof_offset, tet);
+    add_tet_derivatives(body, tet, c * (stiffness[t] * dx), c * stiffness[t], gradient, hessian);
   }
 }
 

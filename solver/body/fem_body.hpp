@@ -55,4 +55,19 @@ void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, do
                              Eigen::VectorXd& gradient,
                              std::vector<Eigen::Triplet<double>>& hessian);
 
+// Rayleigh damping (Material::damping, beta): the viscous force -beta K v, with K the elastic
+// Hessian (PSD-projected) at the step's start and v = (x - x_start) / h, as the potential
+// beta / (2 h) |x - x_start|_K^2. tet_stiffness() evaluates K per tet at q; the energy and its
+// derivatives (`scale` times, lower-triangle triplets) are added for the step of length h.
+void tet_stiffness(const BodyModel& body, const Eigen::VectorXd& q,
+                   std::vector<Matrix12d>& stiffness);
+void add_damping_energy(const BodyModel& body, const Eigen::VectorXd& q,
+                        const Eigen::VectorXd& q_start, const std::vector<Matrix12d>& stiffness,
+                        double h, double& sum);
+void add_damping_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
+                             const Eigen::VectorXd& q_start,
+                             const std::vector<Matrix12d>& stiffness, double h, double scale,
+                             Eigen::VectorXd& gradient,
+                             std::vector<Eigen::Triplet<double>>& hessian);
+
 }  // namespace grip::solver::fem

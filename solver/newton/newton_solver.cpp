@@ -48,7 +48,7 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
       set_drive_target(model_.bodies()[b], step.targets.pose_target[b], q_drive);
     }
   }
-  potential_.begin_step(q_tilde, std::move(q_drive), start, state.kappa, h);
+  potential_.begin_step(state.q, q_tilde, std::move(q_drive), start, state.kappa, h);
   const std::vector<ContactCandidate>& candidates = near(step, start);
   const StageTimer timer(stages_.friction_lag);
   potential_.set_friction(

@@ -51,4 +51,25 @@ class ElasticityTerm : public PotentialTerm {
   const Model& model_;
 };
 
+// Rayleigh damping of the FEM bodies whose material damps (Material::damping > 0): beta / (2 h)
+// |x - x_start|_K^2 per body, K its elastic Hessian at the step's start. K is lagged like
+// friction's normal forces, so the term is a convex quadratic within the step; a rigid motion of
+// an unstressed body lies in K's null space and is not damped. Undamped bodies add nothing.
+class DampingTerm : public PotentialTerm {
+ public:
+  explicit DampingTerm(const Model& model) : model_(model) {}
+  // Evaluates each damped body's K at the step's start q_start.
+  void begin_step(const Eigen::VectorXd& q_start, double h);
+
+  void add_energy(const PotentialPoint& at, double& sum) const override;
+  void add_derivatives(const PotentialPoint& at, double scale,
+                       PotentialDerivatives& out) const override;
+
+ private:
+  const Model& model_;
+  Eigen::VectorXd q_start_;
+  double h_ = 0.0;
+  std::vector<std::vector<Matrix12d>> stiffness_;  // per body, per tet; empty if undamped
+};
+
 }  // namespace grip::solver

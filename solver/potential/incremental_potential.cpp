@@ -6,13 +6,16 @@ IncrementalPotential::IncrementalPotential(const Model& model)
     : model_(model),
       inertia_(model),
       elasticity_(model),
+      damping_(model),
       drive_(model),
       barrier_(model),
       friction_(model) {}
 
-void IncrementalPotential::begin_step(Eigen::VectorXd q_tilde, Eigen::VectorXd q_drive,
-                                      Vertices start_positions, double kappa, double h) {
+void IncrementalPotential::begin_step(const Eigen::VectorXd& q_start, Eigen::VectorXd q_tilde,
+                                      Eigen::VectorXd q_drive, Vertices start_positions,
+                                      double kappa, double h) {
   h_ = h;
+  damping_.begin_step(q_start, h);
   inertia_.set_target(std::move(q_tilde));
   drive_.set_target(std::move(q_drive));
   barrier_.set_kappa(kappa);

@@ -1,8 +1,8 @@
 #pragma once
 // The incremental potential of one implicit Euler step (IPC):
-//   E(x) = 1/2 |x - x_tilde|_M^2 + h^2 [ elasticity + drives + kappa sum_k b(d_k)
+//   E(x) = 1/2 |x - x_tilde|_M^2 + h^2 [ elasticity + damping + drives + kappa sum_k b(d_k)
 //                                        + sum_k mu lambda_k f0(|u_k|) ]
-// the sum of an inertia term and four potential-energy terms (potential/*_term.hpp). kappa is a
+// the sum of an inertia term and five potential-energy terms (potential/*_term.hpp). kappa is a
 // stiffness (N/m) and lambda_k a force (N): at equilibrium M (x - x_tilde) / h^2 balances the
 // physical forces. Derivatives are per element, projected to positive semi-definite before they
 // are summed (projected Newton).
@@ -23,11 +23,11 @@ class IncrementalPotential {
  public:
   explicit IncrementalPotential(const Model& model);
 
-  // The step's constants: inertia target, the driven bodies' targets, start positions of the
-  // collision vertices, the barrier stiffness and the step's length h. Clears the friction
-  // contacts.
-  void begin_step(Eigen::VectorXd q_tilde, Eigen::VectorXd q_drive, Vertices start_positions,
-                  double kappa, double h);
+  // The step's constants: the DOFs at its start, inertia target, the driven bodies' targets,
+  // start positions of the collision vertices, the barrier stiffness and the step's length h.
+  // Clears the friction contacts.
+  void begin_step(const Eigen::VectorXd& q_start, Eigen::VectorXd q_tilde, Eigen::VectorXd q_drive,
+                  Vertices start_positions, double kappa, double h);
   // The contacts frozen at this friction lag iteration.
   void set_friction(std::vector<FrictionContact> friction) {
     friction_.set_contacts(std::move(friction));
@@ -50,14 +50,15 @@ class IncrementalPotential {
 
  private:
   // The terms multiplied by h^2, in the order they are summed.
-  std::array<const PotentialTerm*, 4> potential_energies() const {
-    return {&elasticity_, &drive_, &barrier_, &friction_};
+  std::array<const PotentialTerm*, 5> potential_energies() const {
+    return {&elasticity_, &damping_, &drive_, &barrier_, &friction_};
   }
 
   const Model& model_;
   double h_ = 0.0;
   InertiaTerm inertia_;
   ElasticityTerm elasticity_;
+  DampingTerm damping_;
   DriveTerm drive_;
   BarrierTerm barrier_;
   FrictionTerm friction_;

@@ -33,6 +33,11 @@ struct ParallelGripper {
   std::optional<FinRayFinger> soft_finger;  // the tet model of a soft finger; empty if rigid
   double min_opening = 0.0;                 // m
   double max_opening = 0.085;               // m
+  // How deep the object must reach between the fingers, from their tips (synthesis' approach
+  // depth), for the fingers to build the grip force before the jaws reach the end of their
+  // stroke: 0 for rigid fingers; a fin-ray finger pressed nearer its tip wraps the object and
+  // stops short of it (docs/synthesis.md, "Grasp depth").
+  double min_grasp_depth = 0.0;  // m
 
   // Pose of a finger's frame in the gripper frame; throws std::out_of_range if `opening` lies
   // outside [min_opening, max_opening].
@@ -42,7 +47,8 @@ struct ParallelGripper {
   geometry::SurfaceMesh surface(double opening) const;
 };
 
-// UMI-style: two fin-ray fingers (the surface is the tet mesh's boundary), jaw opening 0-85 mm.
+// UMI-style: two fin-ray fingers (the surface is the tet mesh's boundary), jaw opening 0-85 mm,
+// grasps at least 3/4 of the finger's length deep.
 ParallelGripper make_umi_soft_gripper(const FinRayOptions& options = {});
 
 // Two rigid box fingers on the same jaws, opening 0-85 mm.

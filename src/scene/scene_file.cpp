@@ -144,27 +144,17 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir, doubl
 
 solver::BodyDescription read_body(const Table& body, const std::filesystem::path& scene_dir,
                                   double max_tets) {
-  body.allow({"name",
-              "type",
-              "shape",
-              "size",
-              "radius",
-              "height",
-              "file",
-              "scale",
-              "segments",
-              "resolution",
-              "position",
-              "rotation",
-              "velocity",
-              "angular_velocity",
-              "density",
-              "youngs",
-              "poisson",
-              "friction",
-              "orthogonality_stiffness",
-              "pin",
-              "keyframe"});
+  body.allow({"name",     "type",
+              "shape",    "size",
+              "radius",   "height",
+              "file",     "scale",
+              "segments", "resolution",
+              "position", "rotation",
+              "velocity", "angular_velocity",
+              "density",  "youngs",
+              "poisson",  "damping",
+              "friction", "orthogonality_stiffness",
+              "pin",      "keyframe"});
   solver::BodyDescription out;
   out.name = body.string("name");
   const std::string type = body.choice("type", {"kinematic", "affine", "fem"});
@@ -204,8 +194,10 @@ solver::BodyDescription read_body(const Table& body, const std::filesystem::path
     if (!(out.material.poisson > -1 && out.material.poisson < 0.5)) {
       body.fail("poisson", "must lie in (-1, 0.5)");
     }
+    out.material.damping = body.number_or("damping", out.material.damping);
+    if (!(out.material.damping >= 0)) body.fail("damping", "must be >= 0 (s)");
   } else {
-    for (const char* key : {"youngs", "poisson"}) {
+    for (const char* key : {"youngs", "poisson", "damping"}) {
       if (body.has(key)) body.fail(key, "applies to FEM bodies only (type = \"fem\")");
     }
   }

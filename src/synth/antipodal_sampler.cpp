@@ -110,6 +110,9 @@ SynthesisResult sample_antipodal_grasps(const PreparedObject& object,
       depth = d;
     }
     if (depth < 0.0) return {std::nullopt, "collision at the first approach step"};
+    if (depth < gripper.min_grasp_depth) {
+      return {std::nullopt, "too shallow for the fingers to reach the grip force"};
+    }
 
     // The object between the open fingers decides the centring and the opening.
     double y_min = 1e300, y_max = -1e300;

@@ -47,8 +47,11 @@ struct TrialOutcome {
   // The object's largest centre-of-mass speed over the last kEndSpeedSteps steps of each gravity
   // phase (m/s); NaN for phases not run. An object held by static friction creeps at most at
   // about eps_v; one that swings on compliant fingers or slides moves orders of magnitude faster
-  // (docs/trial.md, "Verdict"). Recorded, not yet part of the verdict; not in the dataset.
+  // (docs/trial.md, "Verdict"). Not in the dataset.
   std::array<double, 6> end_speed = {nan, nan, nan, nan, nan, nan};
+  // How long each gravity phase ran (s): phase_duration, plus the wait for the object to come
+  // to rest (at most rest_duration); NaN for phases not run. Not in the dataset.
+  std::array<double, 6> phase_seconds = {nan, nan, nan, nan, nan, nan};
   static constexpr int kEndSpeedSteps = 3;
 };
 

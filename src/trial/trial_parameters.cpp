@@ -15,8 +15,14 @@ void require(bool ok, const std::string& name, const std::string& what) {
 
 }  // namespace
 
+double phase_steps(const TrialParameters& p) {
+  return std::max(1.0, std::round(p.phase_duration / p.sim.dt));
+}
+
+double rest_steps(const TrialParameters& p) { return std::round(p.rest_duration / p.sim.dt); }
+
 double max_trial_steps(const TrialParameters& p) {
-  return p.settle_max_steps + 6.0 * std::max(1.0, std::round(p.phase_duration / p.sim.dt));
+  return p.settle_max_steps + 6.0 * (phase_steps(p) + rest_steps(p));
 }
 
 void validate(const TrialParameters& p) {
@@ -40,6 +46,7 @@ void validate(const TrialParameters& p) {
   require(p.settle_max_steps >= p.settle_steps, "settle_max_steps", "at least settle_steps");
   require(p.gravity_magnitude >= 0.0, "gravity_magnitude", ">= 0 (m/s^2)");
   require(p.phase_duration >= p.sim.dt, "phase_duration", "at least one time step (s)");
+  require(p.rest_duration >= 0.0 && std::isfinite(p.rest_duration), "rest_duration", ">= 0 (s)");
   require(p.displacement_factor > 0.0, "displacement_factor", "positive");
   require(p.closing_frames >= 2, "closing_frames", "at least 2");
   require(p.validation_frames >= 6 && p.validation_frames % 6 == 0, "validation_frames",

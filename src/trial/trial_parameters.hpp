@@ -50,9 +50,14 @@ struct TrialParameters {
   int settle_steps = 3;
   int settle_max_steps = 200;
 
-  // Gravity test: gravity_magnitude along +x, -x, +y, -y, +z, -z (world), phase_duration each.
+  // Gravity test: gravity_magnitude along +x, -x, +y, -y, +z, -z (world), phase_duration each
+  // (the paper's 0.1 s). A phase whose object is not still by then (slower than settle_speed
+  // and settle_angular_speed, settle_steps steps in a row) keeps its gravity until it is, for at
+  // most rest_duration more: the slip is measured on an object at rest in the fingers, not at a
+  // random point of a swing (docs/trial.md, "Verdict").
   double gravity_magnitude = 9.8;  // m/s^2
   double phase_duration = 0.1;     // s
+  double rest_duration = 0.5;      // s
 
   // Verdict: held if the object still touches a finger at the last step and its centre of
   // mass moved less than displacement_factor * eps_v * dt from the settled grasp at the end of
@@ -83,8 +88,12 @@ inline constexpr int kMaxTrialFrames = 10'000;
 inline constexpr int kMaxMetricSamples = 10'000'000;
 
 // The most steps a trial takes: settle_max_steps of closing and settling, then six gravity
-// phases of round(phase_duration / dt) steps each; in double, so that no setting overflows it.
+// phases of at most round((phase_duration + rest_duration) / dt) steps each; in double, so that
+// no setting overflows it.
 double max_trial_steps(const TrialParameters& parameters);
+// A gravity phase's steps at full length (at least 1), and the most it may add waiting for rest.
+double phase_steps(const TrialParameters& parameters);
+double rest_steps(const TrialParameters& parameters);
 
 // Throws std::invalid_argument naming the first setting that is out of range.
 void validate(const TrialParameters& parameters);

@@ -1,8 +1,10 @@
 #include "src/trial/trial_protocol.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -28,6 +30,10 @@ constexpr double kPlacementSearch = 0.02;
 constexpr int kPlacementMoves = 32;
 constexpr double kPlacementTolerance = 0.1;
 
+// A gravity phase stops waiting for the object to come to rest once it has slipped this many
+// verdict thresholds (TrialParameters::rest_duration).
+constexpr double kSlidThreshold = 10.0;
+
 // One candidate's progress through the protocol.
 struct TrialState {
   std::size_t candidate = 0;
@@ -37,7 +43,11 @@ struct TrialState {
   int squeeze_steps = 0;                                          // closing and settling
   Eigen::Matrix3d object_rotation = Eigen::Matrix3d::Identity();  // at the last step
   int gravity_phase = 0;
+  int restless_phase = -1;  // the first gravity phase that ended with the object still moving
   int phase_step = 0;
+  // The object's speed over the phase's last steps, as a ring (TrialOutcome::end_speed); zero
+  // where a phase has not yet taken that many steps.
+  std::array<double, TrialOutcome::kEndSpeedSteps> recent_speed{};
   Eigen::Vector3d start_center = Eigen::Vector3d::Zero();  // the object's, at the candidate's start
   Eigen::Vector3d settled_center = Eigen::Vector3d::Zero();
   // The settled grasp's contact patches, the gripper's and (a soft object's) the object's,
@@ -123,7 +133,8 @@ class ProtocolRunner {
         fingers_(gripper.finger_count()),
         batch_(options.threads),
         arena_(batch_.threads()) {
-    steps_per_phase_ = std::max(1, static_cast<int>(std::lround(p_.phase_duration / p_.sim.dt)));
+    steps_per_phase_ = static_cast<int>(phase_steps(p_));
+    max_steps_per_phase_ = steps_per_phase_ + static_cast<int>(rest_steps(p_));
   }
 
   std::vector<TrialOutcome> run() {
@@ -407,20 +418,26 @@ class ProtocolRunner {
     finish(i, io::FailureKind::kUnsettled);
   }
 
-  // Steady: the object's linear and angular speeds below settle_speed and
-  // settle_angular_speed, and no finger's force changing by more than force_tolerance *
-  // grip_force over the step.
-  bool steady(int i) {
+  // Still: the object's linear and angular speeds below settle_speed and settle_angular_speed
+  // (its rotation is tracked from one step to the next).
+  bool still(int i) {
     const solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
     const int object = gripper_.object_body();
     const Eigen::Matrix3d rotation = env.rotation(object);
     const double turned = Eigen::AngleAxisd(state.object_rotation.transpose() * rotation).angle();
     state.object_rotation = rotation;
-    if (env.center_of_mass_velocity(object).norm() >= p_.settle_speed) return false;
-    if (turned / p_.sim.dt >= p_.settle_angular_speed) return false;
+    return env.center_of_mass_velocity(object).norm() < p_.settle_speed &&
+           turned / p_.sim.dt < p_.settle_angular_speed;
+  }
+
+  // Steady: the object still, and no finger's force changing by more than force_tolerance *
+  // grip_force over the step.
+  bool steady(int i) {
+    if (!still(i)) return false;
     const double tolerance = p_.force_tolerance * p_.grip_force;
-    return std::all_of(state.fingers.begin(), state.fingers.end(), [&](const FingerServo& f) {
+    const std::vector<FingerServo>& fingers = states_[i].fingers;
+    return std::all_of(fingers.begin(), fingers.end(), [&](const FingerServo& f) {
       return std::abs(f.force() - f.previous_force()) <= tolerance;
     });
   }
@@ -451,6 +468,7 @@ class ProtocolRunner {
     state.outcome.settle_displacement = (state.settled_center - state.start_center).norm();
     record_patch(i);
     state.phase = Phase::kGravity;
+    state.steady_steps = 0;
     env.set_gravity(p_.gravity_magnitude * kGravityAxes[0]);
   }
 
@@ -496,35 +514,61 @@ class ProtocolRunner {
     return forces;
   }
 
+  // A gravity phase: phase_duration under its gravity, then on until the object is still
+  // (still(); the fingers' forces may shift as gravity turns) for settle_steps steps in a row,
+  // for at most rest_duration more. The slip is measured where the phase ends; the
+  // phase's last frame is that state.
   void shake(int i) {
     solver::Environment& env = batch_.environment(i);
     TrialState& state = states_[i];
+    const int object = gripper_.object_body();
     ++state.phase_step;
     for (int j = 0; j < fingers_; ++j) state.fingers[j].observe(finger_force(env, j));
     command(i);
-    if (state.recorder.validation_due(state.phase_step)) state.recorder.add_validation(frame(i));
-    if (state.phase_step > steps_per_phase_ - TrialOutcome::kEndSpeedSteps) {
-      double& end_speed = state.outcome.end_speed[state.gravity_phase];
-      // fmax: the phase's first sample replaces the NaN.
-      end_speed = std::fmax(end_speed, env.center_of_mass_velocity(gripper_.object_body()).norm());
+    state.steady_steps = still(i) ? state.steady_steps + 1 : 0;
+    state.recent_speed[state.phase_step % TrialOutcome::kEndSpeedSteps] =
+        env.center_of_mass_velocity(object).norm();
+    const bool full_length = state.phase_step >= steps_per_phase_;
+    if (!full_length && state.recorder.validation_due(state.phase_step)) {
+      state.recorder.add_validation(frame(i));
     }
-    if (state.phase_step < steps_per_phase_) return;
+    if (!full_length) return;
+    const bool at_rest = state.steady_steps >= p_.settle_steps;
+    const double slipped = slip(i);
+    // An object that has slid kSlidThreshold thresholds is not waited for: it is not swinging
+    // back into a hold.
+    const bool slid = slipped >= kSlidThreshold * p_.displacement_threshold();
+    if (!at_rest && !slid && state.phase_step < max_steps_per_phase_) return;
+    state.recorder.add_validation(frame(i));
     io::CandidateRecord& record = state.outcome.result.record;
-    record.displacement[state.gravity_phase] = slip(i);
-    state.outcome.center_displacement[state.gravity_phase] =
-        (env.center_of_mass(gripper_.object_body()) - state.settled_center).norm();
+    const int phase = state.gravity_phase;
+    record.displacement[phase] = slipped;
+    state.outcome.center_displacement[phase] =
+        (env.center_of_mass(object) - state.settled_center).norm();
+    state.outcome.end_speed[phase] =
+        *std::max_element(state.recent_speed.begin(), state.recent_speed.end());
+    state.outcome.phase_seconds[phase] = state.phase_step * p_.sim.dt;
+    if (!at_rest && !slid && state.restless_phase < 0) state.restless_phase = phase;
     state.phase_step = 0;
+    state.steady_steps = 0;
+    state.recent_speed.fill(0.0);
     if (++state.gravity_phase < 6) {
       env.set_gravity(p_.gravity_magnitude * kGravityAxes[state.gravity_phase]);
       return;
     }
-    if (!object_touches_gripper(gripper_.object_body(), env)) {
-      return finish(i, io::FailureKind::kLostContact);
-    }
+    if (!object_touches_gripper(object, env)) return finish(i, io::FailureKind::kLostContact);
     double largest = 0.0;
     for (double d : record.displacement) largest = std::max(largest, d);
-    finish(i, largest < p_.displacement_threshold() ? io::FailureKind::kNone
-                                                    : io::FailureKind::kDisplaced);
+    if (largest >= p_.displacement_threshold()) return finish(i, io::FailureKind::kDisplaced);
+    if (state.restless_phase >= 0) {
+      char reason[128];
+      std::snprintf(reason, sizeof reason,
+                    "still moving at the end of gravity phase %d (%g s under its gravity)",
+                    state.restless_phase + 1, p_.phase_duration + p_.rest_duration);
+      state.outcome.failure_reason = reason;
+      return finish(i, io::FailureKind::kUnsettled);
+    }
+    finish(i, io::FailureKind::kNone);
   }
 
   // A failed environment's state is not a grasp (a step may have stopped half-way): its
@@ -578,6 +622,7 @@ class ProtocolRunner {
   solver::Batch batch_;
   tbb::task_arena arena_;
   int steps_per_phase_ = 1;
+  int max_steps_per_phase_ = 1;  // with the wait for rest
   std::vector<TrialState> states_;
   std::size_t next_ = 0;  // the next candidate to start
 };

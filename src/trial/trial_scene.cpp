@@ -78,6 +78,7 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
       finger.material.youngs = soft.material.youngs_modulus;
       finger.material.poisson = soft.material.poisson_ratio;
       finger.material.friction = soft.material.friction;
+      finger.material.damping = soft.material.damping;
       finger.pins.push_back({jaws_[i].jaw, soft.mount_vertices});
       jaws_[i].finger = static_cast<int>(scene.bodies.size());
     } else {

@@ -308,11 +308,16 @@ TEST(HostileInput, JobFilesPastTheTrialLimitsAreRefusedBeforeAnyFile) {
   const std::string rigid = "[[objects]]\ncategory = \"cylinder\"\n";
   // A tiny dt overflowed the trial's step count.
   expect_job_refused(dir, rigid + "[physics]\ndt = 1e-12\n",
-                     "job.toml:11: key 'physics.dt' makes a trial of up to 6e+11 steps "
-                     "(settle_max_steps + 6 x phase_duration / dt), more than the 10000000 "
-                     "allowed; use a larger [physics] dt or a shorter [trial] phase_duration");
+                     "job.toml:11: key 'physics.dt' makes a trial of up to 3.6e+12 steps "
+                     "(settle_max_steps + 6 x (phase_duration + rest_duration) / dt), more than "
+                     "the 10000000 allowed; use a larger [physics] dt or a shorter [trial] "
+                     "phase_duration or rest_duration");
   expect_job_refused(dir, rigid + "[trial]\nphase_duration = 1e300\n",
                      "key 'trial.phase_duration' makes a trial of up to");
+  expect_job_refused(dir, rigid + "[trial]\nrest_duration = 1e300\n",
+                     "key 'trial.rest_duration' makes a trial of up to");
+  expect_job_refused(dir, rigid + "[trial]\nrest_duration = -1\n",
+                     "key 'trial.rest_duration' must be a non-negative time (s)");
   expect_job_refused(dir, rigid + "[physics]\ndt = 0\n", "key 'physics.dt' must be positive");
   // 1e8 frames once created a 1.18 TB dataset, then ran out of memory.
   expect_job_refused(dir, rigid + "[outputs]\nclosing_frames = 100000000\n",

@@ -50,6 +50,7 @@ size = [0.02, 0.02, 0.02]
 resolution = 0.01
 position = [0.1, 0, 0.0115]
 youngs = 2e5
+damping = 0.002
 
 [[contact]]
 bodies = ["ball", "ground"]
@@ -65,6 +66,8 @@ TEST(SceneFile, BuildsBodiesParametersAndContacts) {
   EXPECT_EQ(file.scene.bodies[1].type, solver::BodyType::kAffine);
   EXPECT_EQ(file.scene.bodies[2].type, solver::BodyType::kFem);
   EXPECT_EQ(file.scene.bodies[2].tets.rows(), 6 * 2 * 2 * 2);
+  EXPECT_DOUBLE_EQ(file.scene.bodies[2].material.damping, 0.002);
+  EXPECT_EQ(file.scene.bodies[1].material.damping, 0.0);
   // Extrinsic XYZ degrees: 90 about x takes y to z.
   const Eigen::Vector3d y = file.scene.bodies[1].pose.rotation * Eigen::Vector3d::UnitY();
   EXPECT_NEAR(y.z(), 1.0, 1e-12);
@@ -133,6 +136,13 @@ TEST(SceneFile, MistakesAreOneLineErrorsNamingFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(error_of(body + "size = [0.1, 0.1, 0.1]\nyoungs = 1e6\n")
                 .find("key 'body[0].youngs' applies to FEM bodies only"),
+            std::string::npos);
+  EXPECT_NE(error_of(body + "size = [0.1, 0.1, 0.1]\ndamping = 0.01\n")
+                .find("key 'body[0].damping' applies to FEM bodies only"),
+            std::string::npos);
+  const std::string fem = "[[body]]\nname = \"f\"\ntype = \"fem\"\nshape = \"box\"\n";
+  EXPECT_NE(error_of(fem + "size = [0.1, 0.1, 0.1]\nresolution = 0.05\ndamping = -1\n")
+                .find("grip_scene_bad.toml:7: key 'body[0].damping' must be >= 0 (s)"),
             std::string::npos);
   EXPECT_NE(error_of("[sim]\ndt = 0\n" + body + "size = [0.1, 0.1, 0.1]\n")
                 .find("grip_scene_bad.toml:2: key 'sim.dt' must be positive"),

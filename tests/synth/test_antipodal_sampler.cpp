@@ -3,7 +3,9 @@
 // fits the gripper, and the candidates do not depend on the thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <tbb/global_control.h>
 
@@ -70,6 +72,33 @@ TEST(SynthAntipodalSamplerTest, FinRayCandidatesOnAMugAreClearAndAntipodal) {
       sample_antipodal_grasps(object, gripper, grippers::GripperKind::kFinRay, params, 7, 5);
   ASSERT_EQ(result.candidates.size(), 5u);
   expect_valid(object, gripper, params, result.candidates);
+}
+
+TEST(SynthAntipodalSamplerTest, FinRayGraspsReachThreeQuartersOfTheFingerDeep) {
+  // The fin-ray builds the grip force within its stroke only on objects that reach near its
+  // mount; rigid jaws take any depth. Cylinder seed 1 has rim grasps 2 cm deep.
+  const grippers::ParallelGripper fin_ray = grippers::make_umi_soft_gripper();
+  EXPECT_DOUBLE_EQ(fin_ray.min_grasp_depth, 0.75 * grippers::FinRayOptions{}.length);
+  EXPECT_EQ(grippers::make_rigid_jaw_gripper().min_grasp_depth, 0.0);
+  const PreparedObject object(
+      objects::generate_surface(objects::sample_shape(objects::ObjectCategory::kCylinder, 1)));
+  const AntipodalParams params;
+  const auto depths = [&](const grippers::ParallelGripper& gripper, SynthesisResult* out) {
+    *out = sample_antipodal_grasps(object, gripper, grippers::GripperKind::kFinRay, params, 1, 8);
+    std::vector<double> d;
+    for (const Candidate& c : out->candidates) d.push_back(c.energies[1].value);
+    return d;
+  };
+  SynthesisResult gated, ungated;
+  const std::vector<double> deep = depths(fin_ray, &gated);
+  ASSERT_EQ(deep.size(), 8u);
+  for (double d : deep) EXPECT_GE(d, fin_ray.min_grasp_depth);
+  EXPECT_GT(gated.rejections["too shallow for the fingers to reach the grip force"], 0);
+  grippers::ParallelGripper any_depth = fin_ray;
+  any_depth.min_grasp_depth = 0.0;
+  const std::vector<double> all = depths(any_depth, &ungated);
+  EXPECT_LT(*std::min_element(all.begin(), all.end()), fin_ray.min_grasp_depth);
+  expect_valid(object, fin_ray, params, gated.candidates);
 }
 
 TEST(SynthAntipodalSamplerTest, SameSeedSameCandidatesWhateverTheThreads) {
