@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "farm/live_progress.hpp"
+#include "farm/petsc_groups.hpp"
 #include "farm/plan.hpp"
 #include "farm/stop_request.hpp"
 #include "farm/trial_runner.hpp"
@@ -248,6 +249,9 @@ struct UnitRun {
   LiveProgress& progress;
   io::DatasetWriter& writer;
   MPI_Comm comm;
+  // A PETSc group's leader: its group's solver for systems of at least big_system_min_dofs rows.
+  std::shared_ptr<solver::LinearSystemSolver> big_system_solver;
+  int big_system_min_dofs = 0;
 };
 
 // One work unit's trials, its results as the dataset keeps them; each solver step adds the
@@ -266,7 +270,8 @@ std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, const UnitRun& r
   std::vector<io::CandidateResult> results;
   for (trial::TrialOutcome& outcome :
        run.runners.get(unit.object, unit.gripper)
-           .run(candidates, unit.ids, run.threads, trajectory, after_step)) {
+           .run(candidates, unit.ids, run.threads, trajectory, after_step, run.big_system_solver,
+                run.big_system_min_dofs)) {
     io::CandidateResult& result = outcome.result;
     if (!run.plan.dataset.candidates[result.record.id].stress) result.stress.reset();
     results.push_back(std::move(result));
@@ -315,8 +320,9 @@ RankTrials run_claimed_units(const std::vector<WorkUnit>& units, const UnitRun& 
 
 // The trial phase: every pending candidate's trial, each work unit committed by the rank that
 // ran it as soon as it ends; no rank waits for another until the last unit is handed out.
-void run_trials(const FarmPlan& plan, const Job& job, io::DatasetWriter& writer,
-                LiveProgress& progress, FarmReport& report, MPI_Comm comm) {
+void run_trials(const FarmOptions& options, const FarmPlan& plan, const Job& job,
+                io::DatasetWriter& writer, LiveProgress& progress, FarmReport& report,
+                MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const std::vector<std::uint64_t> pending = writer.pending();
@@ -333,8 +339,29 @@ void run_trials(const FarmPlan& plan, const Job& job, io::DatasetWriter& writer,
   progress.start_trials(pending.size());
   RunnerCache runners(plan, job);
   WorkUnitClaims claims(comm);
-  const UnitRun run{plan, job, report.threads, runners, progress, writer, comm};
-  const RankTrials mine = run_claimed_units(units, run, claims, rank);
+  PetscGroups groups(job.petsc, options.petsc_options, comm);
+  UnitRun run{plan, job, report.threads, runners, progress, writer, comm, nullptr, 0};
+  if (const auto solver = groups.leader_solver()) {
+    // One caller at a time, on this thread (MPI_THREAD_FUNNELED): the leader runs one thread.
+    run.threads = 1;
+    run.big_system_solver = solver;
+    run.big_system_min_dofs = groups.min_dofs();
+  }
+  if (rank == 0 && job.petsc.group_ranks > 0) {
+    spdlog::info(
+        "PETSc: {} group(s) of {} rank(s) (the last {} ranks; each group's first rank "
+        "claims work units on one thread) solve Newton systems of at least {} rows",
+        job.petsc.groups, job.petsc.group_ranks, job.petsc.ranks(), groups.min_dofs());
+  }
+  RankTrials mine;
+  if (groups.member()) {
+    groups.serve();
+  } else {
+    mine = run_claimed_units(units, run, claims, rank);
+    groups.release();
+  }
+  report.petsc_groups = job.petsc.group_ranks > 0 ? job.petsc.groups : 0;
+  report.petsc_solves = groups.total_solves(comm);
   writer.end_units([&] { progress.poll(); });
   // A rank whose trial failed took no further work unit; now, with every commit journaled,
   // every rank learns the lowest failing rank's error, so none waits in a collective for it.
@@ -354,6 +381,12 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
   install_stop_handlers();
   end_with_launcher();
   const Job job = read_job(options.job, comm);
+  check_petsc_groups(job.petsc, comm);
+  if (!options.petsc_options.empty() && job.petsc.group_ranks == 0) {
+    throw config::ConfigError(options.job.string() +
+                              ": PETSc options were given after '--', but the job has no PETSc "
+                              "group to take them: set [farm] petsc_group_ranks, or drop them");
+  }
   FarmReport report = start_report(options, job, comm);
   const io::Provenance provenance = provenance_of(options, job);
   std::optional<io::DatasetWriter> resumed =
@@ -362,7 +395,7 @@ FarmReport run_farm(const FarmOptions& options, MPI_Comm comm) {
   const FarmPlan plan = plan_job(options, job, report, progress, comm);
   stop_at_once(false);  // from here a stop signal lets the work units in flight commit
   io::DatasetWriter writer = writer_for(std::move(resumed), plan, report.dataset, provenance, comm);
-  run_trials(plan, job, writer, progress, report, comm);
+  run_trials(options, plan, job, writer, progress, report, comm);
   writer.close();
   return report;
 }

@@ -26,19 +26,23 @@ struct FarmOptions {
   // Rank 0 calls it on the dataset to resume before anything opens it; it throws
   // io::DatasetError for a file HDF5 cannot read (grip's: src/app/dataset_probe.hpp).
   std::function<void(const std::filesystem::path&)> check_dataset;
+  // PETSc's options for the job's PETSc groups (grip farm JOB -- OPTIONS), e.g. -ksp_rtol 1e-12.
+  std::vector<std::string> petsc_options;
 };
 
 struct FarmReport {
   std::filesystem::path dataset;
   int ranks = 1;
-  int threads = 1;                // per rank
-  int work_unit_size = 1;         // candidates per work unit
-  std::uint64_t candidates = 0;   // in the dataset
-  std::uint64_t done_before = 0;  // already committed when the run started (resume)
-  std::uint64_t done = 0;         // committed by this run
-  double plan_seconds = 0;        // preparing objects and synthesizing candidates
-  double trial_seconds = 0;       // running and committing trials
-  bool interrupted = false;       // stopped by SIGINT or SIGTERM before the end
+  int threads = 1;                 // per rank
+  int work_unit_size = 1;          // candidates per work unit
+  std::uint64_t candidates = 0;    // in the dataset
+  std::uint64_t done_before = 0;   // already committed when the run started (resume)
+  std::uint64_t done = 0;          // committed by this run
+  double plan_seconds = 0;         // preparing objects and synthesizing candidates
+  double trial_seconds = 0;        // running and committing trials
+  bool interrupted = false;        // stopped by SIGINT or SIGTERM before the end
+  int petsc_groups = 0;            // [farm] PETSc groups of the run
+  std::uint64_t petsc_solves = 0;  // Newton systems the groups solved
 };
 
 // A trial that failed on some rank (an exception of the solver, e.g. CHOLMOD out of memory),

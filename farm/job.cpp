@@ -274,7 +274,8 @@ void read_outputs(const Table& t, Job& job) {
 }
 
 void read_farm(const Table& t, Job& job) {
-  t.allow({"batch", "max_candidates", "max_tets"});
+  t.allow({"batch", "max_candidates", "max_tets", "petsc_group_ranks", "petsc_groups",
+           "petsc_min_dofs"});
   const std::int64_t size = t.integer_or("batch", 0);
   if (size < 0 || size > 100000) t.fail("batch", "must be 0 (automatic) or a positive count");
   job.work_unit_size = static_cast<int>(size);
@@ -286,6 +287,21 @@ void read_farm(const Table& t, Job& job) {
   job.max_candidates = static_cast<std::uint64_t>(most);
   job.max_tets = t.number_or("max_tets", job.max_tets);
   if (!(job.max_tets >= 1)) t.fail("max_tets", "must be a count of at least 1");
+  PetscGroupSetting& petsc = job.petsc;
+  petsc.group_ranks = t.count_or("petsc_group_ranks", 0, 0, 1 << 20);
+  petsc.groups = t.count_or("petsc_groups", 1, 1, 1 << 20);
+  petsc.min_dofs =
+      t.count_or("petsc_min_dofs", PetscGroupSetting::kDefaultMinDofs, 1, 2'000'000'000);
+  if (petsc.group_ranks == 0) {
+    for (const char* key : {"petsc_groups", "petsc_min_dofs"}) {
+      if (t.has(key))
+        t.fail(key, "needs petsc_group_ranks (the ranks of a PETSc group, 1 or more)");
+    }
+  }
+  if (static_cast<std::int64_t>(petsc.group_ranks) * petsc.groups > (1 << 20)) {
+    t.fail("petsc_groups", "times petsc_group_ranks must be at most 1048576 ranks");
+  }
+  petsc.location = t.location(t.has("petsc_groups") ? "petsc_groups" : "petsc_group_ranks");
 }
 
 // The least CPU time one trial of a rigid object takes with the gripper, from `grip bench trial`

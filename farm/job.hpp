@@ -43,6 +43,18 @@ struct GripperSetting {
   int candidates = 16;    // synthesized per object
 };
 
+struct PetscGroupSetting {
+  int group_ranks = 0;
+  int groups = 1;
+  int min_dofs = kDefaultMinDofs;
+  std::string location;
+
+  // Above the largest system measured (71,151 DOFs), where one core's CHOLMOD and PETSc on one
+  // rank took the same time on the development machine (docs/linear-solvers.md).
+  static constexpr int kDefaultMinDofs = 100'000;
+  int ranks() const { return group_ranks * groups; }
+};
+
 struct Job {
   std::filesystem::path file;  // as given
   std::string text;            // verbatim (the dataset's provenance)
@@ -68,6 +80,12 @@ struct Job {
   // [farm] max_tets: a soft object whose tet_edge would make more tets (estimated before
   // meshing) is refused while planning.
   double max_tets = geometry::kMaxEstimatedTets;
+  // [farm] petsc_group_ranks, petsc_groups, petsc_min_dofs: petsc_groups groups of
+  // petsc_group_ranks ranks each solve their leader's Newton systems of at least
+  // petsc_min_dofs rows through PETSc (docs/farm.md, "PETSc groups"); 0 ranks: none, every
+  // system is CHOLMOD's. A run with fewer ranks than the groups need is refused before any
+  // work, at petsc_location ("FILE:LINE" of the key).
+  PetscGroupSetting petsc;
 
   // The objects of every [[objects]] entry.
   std::uint64_t object_count() const;

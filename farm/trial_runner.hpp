@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/gripper_record.hpp"
+#include "solver/linear/linear_system_solver.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/synth/candidate.hpp"
 #include "src/trial/trial_object.hpp"
@@ -31,11 +32,13 @@ class TrialRunner {
 
   // The candidates' trials as one solver::Batch on `threads` threads; outcome k carries ids[k].
   // Throws std::invalid_argument for a candidate with other than the runner's number of hands.
-  // after_step: trial::TrialRunOptions' (may be empty).
-  std::vector<trial::TrialOutcome> run(const std::vector<const synth::Candidate*>& candidates,
-                                       const std::vector<std::uint64_t>& ids, int threads,
-                                       bool trajectory,
-                                       std::function<void(std::size_t)> after_step = {}) const;
+  // after_step, big_system_solver and big_system_min_dofs: trial::TrialRunOptions' (may be
+  // empty).
+  std::vector<trial::TrialOutcome> run(
+      const std::vector<const synth::Candidate*>& candidates, const std::vector<std::uint64_t>& ids,
+      int threads, bool trajectory, std::function<void(std::size_t)> after_step = {},
+      std::shared_ptr<solver::LinearSystemSolver> big_system_solver = nullptr,
+      int big_system_min_dofs = 0) const;
 
  private:
   struct Scene;

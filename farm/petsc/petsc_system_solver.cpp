@@ -50,6 +50,7 @@ struct PetscSystemSolver::Impl {
   bool stopped = false;
   std::string failure;
   int iterations = 0;
+  std::uint64_t solves = 0;
 
   // Every rank: the global size, the new rows each rank owns, and this rank's rows (CSR,
   // global new column numbers).
@@ -379,6 +380,7 @@ bool PetscSystemSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
   }
   int command = kSolve;
   MPI_Bcast(&command, 1, MPI_INT, 0, impl.comm);
+  ++impl.solves;
   return impl.solve(&rhs, &x);
 }
 
@@ -415,6 +417,7 @@ void PetscSystemSolver::stop() {
 int PetscSystemSolver::rank() const { return impl_->rank; }
 int PetscSystemSolver::ranks() const { return impl_->ranks; }
 int PetscSystemSolver::iterations() const { return impl_->iterations; }
+std::uint64_t PetscSystemSolver::solves() const { return impl_->solves; }
 std::string PetscSystemSolver::method() const { return impl_->method(); }
 
 }  // namespace grip::farm

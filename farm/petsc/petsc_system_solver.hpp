@@ -4,6 +4,7 @@
 // each assembling and solving its METIS-chosen share of the rows in every factorize and solve.
 #include <mpi.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -47,6 +48,8 @@ class PetscSystemSolver final : public solver::LinearSystemSolver {
   int ranks() const;
   // Krylov iterations of the last solve.
   int iterations() const;
+  // Rank 0: systems solved so far.
+  std::uint64_t solves() const;
   // The KSP and preconditioner in use, e.g. "cg + gamg/sor" or "cg + bjacobi/icc".
   std::string method() const;
 

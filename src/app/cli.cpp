@@ -129,7 +129,11 @@ int main(int argc, char** argv) {
       ->check(kCount);
   farm->add_option("--report", farm_args.report, "Write a JSON summary of the run here")
       ->check(kOutputFile);
-  farm->callback([&] { run = [&] { return grip::commands::farm(farm_args); }; });
+  farm->callback([&] {
+    uses_petsc = true;  // the job's PETSc groups ([farm] petsc_group_ranks)
+    farm_args.petsc_options = split.petsc;
+    run = [&] { return grip::commands::farm(farm_args); };
+  });
 
   grip::commands::TrialArgs trial_args;
   CLI::App* trial = app.add_subcommand(

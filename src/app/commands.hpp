@@ -119,6 +119,7 @@ struct FarmArgs {
   int threads = 0;     // per rank; 0: the node's cores shared by its ranks
   int batch = 0;       // candidates per work unit; 0: the job's [farm] batch, else 4 per thread
   std::string report;  // JSON summary of the run (rank 0); none when empty
+  std::vector<std::string> petsc_options;  // after a lone `--`: the job's PETSc groups'
 };
 int farm(const FarmArgs& args);
 

@@ -170,6 +170,9 @@ class ProtocolRunner {
   void add(std::size_t k) {
     const int i = batch_.add(gripper_.model());
     solver::Environment& env = batch_.environment(i);
+    if (options_.big_system_solver) {
+      env.use_linear_solver(options_.big_system_solver, options_.big_system_min_dofs);
+    }
     std::vector<double> max_travel;
     try {
       max_travel = gripper_.place(env, k);
@@ -634,6 +637,10 @@ std::vector<TrialOutcome> run_protocol(const TrialGripper& gripper,
   if (!options.ids.empty() && options.ids.size() != gripper.candidate_count()) {
     throw std::invalid_argument("run_trials: " + std::to_string(options.ids.size()) + " ids for " +
                                 std::to_string(gripper.candidate_count()) + " candidates");
+  }
+  if (options.big_system_solver && options.threads != 1) {
+    throw std::invalid_argument("run_trials: a big-system solver needs threads = 1, not " +
+                                std::to_string(options.threads));
   }
   ProtocolRunner runner(gripper, options);
   return runner.run();

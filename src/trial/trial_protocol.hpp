@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "solver/environment.hpp"
+#include "solver/linear/linear_system_solver.hpp"
 #include "solver/model.hpp"
 #include "src/geometry/mesh.hpp"
 #include "src/metrics/distance_metrics.hpp"
@@ -32,6 +33,11 @@ struct TrialRunOptions {
   // Called on the calling thread after every step of the batch with how many of its trials
   // have ended so far (the farm's live progress). Results do not depend on it.
   std::function<void(std::size_t ended)> after_step;
+  // Newton systems of at least big_system_min_dofs rows go to big_system_solver instead of the
+  // environment's own CHOLMOD (the farm's PETSc group). It serves one system at a time and may
+  // talk MPI: it needs threads = 1. Null: CHOLMOD solves every system.
+  std::shared_ptr<solver::LinearSystemSolver> big_system_solver;
+  int big_system_min_dofs = 0;
 };
 
 // One gripper's side of a batch of trials: its scene (object, fingers, measurements) and its

@@ -99,9 +99,11 @@ TEST(GripCli, CheckArgsStopsAfterParsingAndValidation) {
   EXPECT_EQ(run_grip("farm " + missing_job).exit_code, 1);
 
   EXPECT_EQ(run_grip_checking_args("farm " + missing_job + " --threads -1").exit_code, 2);
-  const GripRun petsc = run_grip_checking_args("farm " + missing_job + " -- -ksp_type cg");
+  // The farm takes PETSc options for its job's PETSc groups; grip inspect takes none.
+  EXPECT_EQ(run_grip_checking_args("farm " + missing_job + " -- -ksp_type cg").exit_code, 0);
+  const GripRun petsc = run_grip_checking_args("inspect " + missing_job + " -- -ksp_type cg");
   EXPECT_EQ(petsc.exit_code, 2);
-  EXPECT_NE(petsc.err.find("'farm' uses no PETSc"), std::string::npos) << petsc.err;
+  EXPECT_NE(petsc.err.find("'inspect' uses no PETSc"), std::string::npos) << petsc.err;
   EXPECT_EQ(run_grip_checking_args("bench linear --repeats 1 -- -ksp_type cg").exit_code, 0);
 }
 

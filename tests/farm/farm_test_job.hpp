@@ -37,6 +37,19 @@ inline std::string bimanual_job(int candidates) {
          "validation_frames = 6\n";
 }
 
+// A soft cylinder (1,686 tets, about 1,300 DOFs with both grippers) held by two parallel-jaw
+// grippers at once; `farm` is a [farm] table to append (empty: none).
+inline std::string bimanual_soft_job(int candidates, const std::string& farm) {
+  return "[job]\nname = \"bimanual-soft\"\nseed = 4\n\n[[objects]]\ncategory = \"cylinder\"\n"
+         "soft = true\ntet_edge = 0.01\n\n[[grippers]]\nname = \"parallel-jaw\"\n"
+         "bimanual = true\ncandidates = " +
+         std::to_string(candidates) +
+         "\n\n[randomization]\nscale = [0.5, 0.6]\n"
+         "\n[trial]\nmetric_samples = 2000\n\n[outputs]\nclosing_frames = 4\n"
+         "validation_frames = 6\n" +
+         (farm.empty() ? "" : "\n[farm]\n" + farm);
+}
+
 inline void write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream(path) << text;
 }

@@ -219,6 +219,32 @@ TEST(Job, MetricSamplesAreBoundedByWhatATrialMayHold) {
       "");
 }
 
+// [farm]'s PETSc groups: none by default; the keys read and bounded; groups and a size rule
+// without a group's ranks are refused on their key.
+TEST(Job, PetscGroupsAreReadAndCheckedOnTheirKeys) {
+  const Job plain = parse_job(kValid, "job.toml");
+  EXPECT_EQ(plain.petsc.group_ranks, 0);
+  EXPECT_EQ(plain.petsc.ranks(), 0);
+  EXPECT_EQ(plain.petsc.min_dofs, PetscGroupSetting::kDefaultMinDofs);
+
+  const std::string farm = std::string(kValid) + "\n[farm]\npetsc_group_ranks = 2\n";
+  const Job grouped = parse_job(farm + "petsc_groups = 3\npetsc_min_dofs = 5000\n", "job.toml");
+  EXPECT_EQ(grouped.petsc.group_ranks, 2);
+  EXPECT_EQ(grouped.petsc.groups, 3);
+  EXPECT_EQ(grouped.petsc.ranks(), 6);
+  EXPECT_EQ(grouped.petsc.min_dofs, 5000);
+  EXPECT_EQ(grouped.petsc.location.rfind("job.toml:", 0), 0u) << grouped.petsc.location;
+
+  EXPECT_NE(error_of(farm + "petsc_min_dofs = 0\n").find("farm.petsc_min_dofs"), std::string::npos);
+  EXPECT_NE(error_of(replaced(farm, "= 2", "= -1")).find("farm.petsc_group_ranks"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kValid) + "\n[farm]\npetsc_groups = 2\n")
+                .find("key 'farm.petsc_groups' needs petsc_group_ranks"),
+            std::string::npos);
+  EXPECT_NE(error_of(farm + "petsc_groups = 1000000\n").find("at most 1048576 ranks"),
+            std::string::npos);
+}
+
 TEST(Job, EveryShippedJobReads) {
   int jobs = 0, bimanual = 0;
   for (const auto& entry : std::filesystem::directory_iterator(GRIP_JOBS_DIR)) {

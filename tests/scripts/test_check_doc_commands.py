@@ -26,7 +26,7 @@ grip trial --candidates c.txt \\
 
 # Line number (in docs/bad.md) -> a command that must be reported there.
 BAD = {
-    3: "grip farm jobs/demo.toml -- -ksp_type cg",
+    3: "grip synth --object box --gripper fin-ray --count 1 --seed 1 --out c.txt -- -ksp_type cg",
     4: "grip farm --no-such-option",
     5: "grip frm jobs/demo.toml",
     6: "grip inspect WHATEVER.h5",

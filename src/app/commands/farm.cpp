@@ -46,7 +46,9 @@ void write_report(const std::string& file, const farm::FarmReport& r) {
                                          {"done", r.done},
                                          {"plan_seconds", r.plan_seconds},
                                          {"trial_seconds", r.trial_seconds},
-                                         {"interrupted", r.interrupted}};
+                                         {"interrupted", r.interrupted},
+                                         {"petsc_groups", r.petsc_groups},
+                                         {"petsc_solves", r.petsc_solves}};
   out << json::text(report, "%.6f") << '\n';
 }
 
@@ -87,6 +89,7 @@ int farm(const FarmArgs& args) {
   options.grip_version = version();
   options.git_revision = git_revision();
   options.check_dataset = check_dataset_readable;
+  options.petsc_options = args.petsc_options;
   farm::FarmReport report;
   try {
     report = farm::run_farm(options, MPI_COMM_WORLD);
