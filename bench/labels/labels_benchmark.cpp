@@ -25,10 +25,11 @@ trial::TrialParameters reference_parameters(const trial::TrialParameters& defaul
                                             const LabelsRefinement& refinement) {
   trial::TrialParameters p = defaults;
   if (refinement.dt) {
-    p.sim.dt = defaults.sim.dt / 2;
-    p.settle_steps = 2 * defaults.settle_steps;
-    p.settle_max_steps = 2 * defaults.settle_max_steps;
-    p.displacement_factor = 2 * defaults.displacement_factor;
+    const int k = refinement.dt_divisor;
+    p.sim.dt = defaults.sim.dt / k;
+    p.settle_steps = k * defaults.settle_steps;
+    p.settle_max_steps = k * defaults.settle_max_steps;
+    p.displacement_factor = k * defaults.displacement_factor;
   }
   if (refinement.newton_tol) p.sim.newton_tol = defaults.sim.newton_tol / 10;
   if (refinement.friction_lag)

@@ -16,7 +16,8 @@ namespace grip::bench {
 
 // What the reference refines; by default all three.
 struct LabelsRefinement {
-  bool dt = true;            // halved
+  bool dt = true;            // divided by dt_divisor
+  int dt_divisor = 2;        // a convergence study's finer references: 4, 8, ...
   bool newton_tol = true;    // divided by 10
   bool friction_lag = true;  // one more iteration
 };
@@ -50,11 +51,11 @@ struct LabelsOptions {
 // The default categories: four that every gripper finds candidates on.
 inline const std::vector<std::string> kLabelsCategories = {"box", "cylinder", "capsule", "bottle"};
 
-// The reference settings for `defaults`: dt / 2, newton_tol / 10, one more friction lag
-// iteration (those `refinement` asks for). What the protocol measures in seconds and metres
-// stays the same: at dt / 2 its steps are counted at the reference's dt (settle_steps and
-// settle_max_steps doubled), and the verdict's displacement threshold stays the same length
-// (displacement_factor doubled): a verdict is "moved less than 1 mm", not a multiple of the step.
+// The reference settings for `defaults`: dt / dt_divisor (2), newton_tol / 10, one more friction
+// lag iteration (those `refinement` asks for). What the protocol measures in seconds and metres
+// stays the same: at dt / k its steps are counted at the reference's dt (settle_steps and
+// settle_max_steps times k), and the verdict's displacement threshold stays the same length
+// (displacement_factor times k): a verdict is "moved less than 1 mm", not a multiple of the step.
 trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults,
                                             const LabelsRefinement& refinement = {});
 

@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "bench/linear/bimanual_squeeze.hpp"
@@ -65,6 +68,7 @@ LinearBenchmarkRow measure(farm::PetscSystemSolver& petsc, double cell, int repe
       },
       direct_s, petsc_s);
   row.direct_s = median(direct_s);
+  row.direct_mib = static_cast<double>(cholesky.peak_bytes()) / (1 << 20);
   row.petsc_s = median(petsc_s);
   row.iterations = petsc.iterations();
   row.relative_difference = (iterative - direct).norm() / direct.norm();
@@ -73,33 +77,63 @@ LinearBenchmarkRow measure(farm::PetscSystemSolver& petsc, double cell, int repe
 
 }  // namespace
 
+// This process's peak resident memory (VmHWM of /proc/self/status), MiB; 0 if unreadable.
+double peak_rss_mib() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
+  }
+  return 0.0;
+}
+
+// Every rank's peak_rss_mib(), on rank 0.
+std::vector<double> gather_peak_rss(MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const double mine = peak_rss_mib();
+  std::vector<double> all(rank == 0 ? ranks : 0);
+  MPI_Gather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, comm);
+  return all;
+}
+
 LinearBenchmarkResult run_linear_benchmark(farm::PetscSystemSolver& petsc,
-                                           const LinearBenchmarkOptions& options,
-                                           std::ostream& out) {
+                                           const LinearBenchmarkOptions& options, std::ostream& out,
+                                           MPI_Comm comm) {
   LinearBenchmarkResult result;
   result.ranks = petsc.ranks();
   if (petsc.rank() != 0) {
     petsc.serve();
+    gather_peak_rss(comm);
     return result;
   }
   result.method = petsc.method();
   out << "PETSc " << result.method << " on " << result.ranks
       << " rank(s) against CHOLMOD on one core; median of " << options.repeats << " repeats\n"
-      << "    cell m      DOFs    nonzeros   direct s    PETSc s  iterations  rel. difference\n";
+      << "    cell m      DOFs    nonzeros   direct s  direct MiB    PETSc s  iterations  rel. "
+         "difference\n";
   try {
     for (const double cell : options.cells) {
       const LinearBenchmarkRow row = measure(petsc, cell, options.repeats);
       result.rows.push_back(row);
       out << std::setw(10) << cell << std::setw(10) << row.dofs << std::setw(12) << row.nonzeros
-          << std::fixed << std::setprecision(4) << std::setw(11) << row.direct_s << std::setw(11)
-          << row.petsc_s << std::defaultfloat << std::setw(12) << row.iterations << std::setw(17)
-          << std::setprecision(3) << row.relative_difference << std::setprecision(6) << std::endl;
+          << std::fixed << std::setprecision(4) << std::setw(11) << row.direct_s
+          << std::setprecision(1) << std::setw(12) << row.direct_mib << std::setprecision(4)
+          << std::setw(11) << row.petsc_s << std::defaultfloat << std::setw(12) << row.iterations
+          << std::setw(17) << std::setprecision(3) << row.relative_difference
+          << std::setprecision(6) << std::endl;
     }
   } catch (...) {
     petsc.stop();  // let the serving ranks go before the error leaves
+    gather_peak_rss(comm);
     throw;
   }
   petsc.stop();
+  result.peak_rss_mib = gather_peak_rss(comm);
+  out << "peak resident memory per rank (MiB):";
+  for (const double mib : result.peak_rss_mib) out << ' ' << std::lround(mib);
+  out << '\n';
   for (auto row = result.rows.rbegin(); row != result.rows.rend(); ++row) {
     if (row->petsc_s >= row->direct_s) break;
     result.crossover_dofs = row->dofs;
@@ -120,6 +154,7 @@ void write_json_line(std::ostream& out, const LinearBenchmarkResult& result) {
                                           {"dofs", row.dofs},
                                           {"nonzeros", row.nonzeros},
                                           {"direct_s", row.direct_s},
+                                          {"direct_mib", row.direct_mib},
                                           {"petsc_s", row.petsc_s},
                                           {"iterations", row.iterations},
                                           {"relative_difference", row.relative_difference}});
@@ -128,6 +163,7 @@ void write_json_line(std::ostream& out, const LinearBenchmarkResult& result) {
                                        {"ranks", result.ranks},
                                        {"method", result.method},
                                        {"crossover_dofs", result.crossover_dofs},
+                                       {"peak_rss_mib", result.peak_rss_mib},
                                        {"rows", std::move(rows)}};
   out << json::compact_text(line, "%.6g") << '\n';
 }

@@ -129,4 +129,6 @@ bool SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
 
 int SparseCholesky::analyses() const { return impl_->analyses; }
 
+std::size_t SparseCholesky::peak_bytes() const { return impl_->common.memory_usage; }
+
 }  // namespace grip::solver

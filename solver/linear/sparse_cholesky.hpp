@@ -42,6 +42,8 @@ class SparseCholesky : public LinearSystemSolver {
 
   // Symbolic analyses done so far: one per distinct pattern seen in a row.
   int analyses() const;
+  // The most memory CHOLMOD held at once for this solver so far (factor and workspace), bytes.
+  std::size_t peak_bytes() const;
 
  private:
   struct Impl;

@@ -543,6 +543,11 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember({"dt", "newton_tol", "friction_lag"}));
   bench_labels
+      ->add_option("--dt-divisor", bench_labels_args.dt_divisor,
+                   "What the reference divides dt by (a convergence study's 4, 8, ...)")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 64));
+  bench_labels
       ->add_option("--newton-tol", bench_labels_args.newton_tol,
                    "The defaults' Newton tolerance (default: the trial's, 1e-3)")
       ->check(kPositive);

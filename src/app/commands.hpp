@@ -247,6 +247,7 @@ struct BenchLabelsArgs {
   std::string models = "coarse";        // coarse | production (LabelsOptions)
   // What the reference refines: any of dt, newton_tol, friction_lag; empty: all three.
   std::vector<std::string> refine;
+  int dt_divisor = 2;               // what refining dt divides it by
   double newton_tol = 0.0;          // the defaults' Newton tolerance; 0: the trial's
   int friction_lag_iterations = 0;  // the defaults' friction lag iterations; 0: the trial's
   std::string out = "out/labels";

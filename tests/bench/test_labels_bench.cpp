@@ -49,6 +49,13 @@ TEST(LabelsBench, AReferenceCanRefineOneSettingAlone) {
   EXPECT_EQ(tol.sim.newton_tol, d.sim.newton_tol / 10);
   EXPECT_EQ(tol.sim.friction_lag_iterations, 2);
   EXPECT_EQ(tol.sim.dt, d.sim.dt);
+  // A convergence study's finer step: the same seconds and metres at dt / 4.
+  LabelsRefinement quarter;
+  quarter.dt_divisor = 4;
+  const trial::TrialParameters fine = reference_parameters(d, quarter);
+  EXPECT_EQ(fine.sim.dt, d.sim.dt / 4);
+  EXPECT_EQ(fine.settle_steps, 4 * d.settle_steps);
+  EXPECT_DOUBLE_EQ(fine.displacement_threshold(), d.displacement_threshold());
 }
 
 TEST(LabelsBench, RefusesBadOptions) {

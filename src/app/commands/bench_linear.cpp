@@ -20,7 +20,7 @@ int bench_linear(const BenchLinearArgs& args) {
     options.cells = args.cells;
     options.repeats = args.repeats;
     const bench::LinearBenchmarkResult result =
-        bench::run_linear_benchmark(petsc, options, std::cout);
+        bench::run_linear_benchmark(petsc, options, std::cout, MPI_COMM_WORLD);
     if (petsc.rank() == 0) bench::write_json_line(std::cout, result);
   }
   MPI_Finalize();
