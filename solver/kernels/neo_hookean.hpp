@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-#include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 
 #include "solver/kernels/hd.hpp"
@@ -155,6 +155,50 @@ GRIP_HD inline Matrix9d stable_neo_hookean_stress_derivative(const Eigen::Matrix
          (m.lambda * (j - 1.0) - m.mu) * determinant_hessian(f);
 }
 
+// F's rotation-variant SVD, F = U diag(s) V^T with U and V rotations and s[2] < 0 when the tet
+// is inverted (det F < 0), in closed form rather than by Jacobi sweeps: V the eigenvectors of
+// F^T F (Eigen's computeDirect; largest first, made orthonormal), U's first two columns F v / s
+// made orthonormal, the third their cross product, and s[2] = u2 . F v2, which carries det F's
+// sign. Where singular values (nearly) repeat, as at rest, computeDirect's eigenvectors are
+// orthogonal to about 1e-9 only, and U diag(s) V^T is F to about 1e-9 of |F|: a projection
+// built on it moves by that fraction of the eigenvalue it removes, far below anything Newton's
+// tolerance sees. Host only.
+struct RotationVariantSvd {
+  Eigen::Matrix3d u;
+  Eigen::Matrix3d v;
+  Eigen::Vector3d s;
+};
+
+inline RotationVariantSvd rotation_variant_svd(const Eigen::Matrix3d& f) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> gram;
+  gram.computeDirect(f.transpose() * f);
+  RotationVariantSvd svd;
+  // Eigenvalues come in increasing order: the largest's vector first.
+  svd.v.col(0) = gram.eigenvectors().col(2).normalized();
+  const Eigen::Vector3d second = gram.eigenvectors().col(1);
+  svd.v.col(1) = (second - svd.v.col(0).dot(second) * svd.v.col(0)).normalized();
+  svd.v.col(2) = svd.v.col(0).cross(svd.v.col(1));
+  // A column of U whose F v vanishes (a flat or collapsed tet) may be any unit vector
+  // orthogonal to the ones before it.
+  const auto any_orthogonal = [](const Eigen::Vector3d& a) -> Eigen::Vector3d {
+    const Eigen::Vector3d axis =
+        std::abs(a.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    return a.cross(axis).normalized();
+  };
+  const Eigen::Vector3d u0 = f * svd.v.col(0);
+  svd.s[0] = u0.norm();
+  svd.u.col(0) = svd.s[0] > 0.0 ? Eigen::Vector3d(u0 / svd.s[0]) : Eigen::Vector3d::UnitX();
+  Eigen::Vector3d u1 = f * svd.v.col(1);
+  u1 -= svd.u.col(0).dot(u1) * svd.u.col(0);
+  const double length = u1.norm();
+  svd.u.col(1) = length > 1e-12 * svd.s[0] && length > 0.0 ? Eigen::Vector3d(u1 / length)
+                                                           : any_orthogonal(svd.u.col(0));
+  svd.s[1] = svd.u.col(1).dot(f * svd.v.col(1));
+  svd.u.col(2) = svd.u.col(0).cross(svd.u.col(1));
+  svd.s[2] = svd.u.col(2).dot(f * svd.v.col(2));
+  return svd;
+}
+
 // dP/dF projected to the nearest PSD matrix from its analytic eigensystem (Smith et al. 2019,
 // "Analytic Eigensystems for Isotropic Distortion Energies"), not a numeric 9x9 decomposition.
 // With F = U diag(s) V^T (U, V rotations; s2 < 0 when the tet is inverted) and
@@ -165,29 +209,19 @@ GRIP_HD inline Matrix9d stable_neo_hookean_stress_derivative(const Eigen::Matrix
 //     mu I + lambda g_s g_s^T + c [[0, s2, s1], [s2, 0, s0], [s1, s0, 0]],  g_s = (s1 s2, s0 s2, s0
 //     s1).
 // The negative modes are removed from the exact dP/dF, so a PSD one is returned unchanged.
-// Host only, like project_to_psd (Eigen's SVD).
+// Host only, like rotation_variant_svd.
 inline Matrix9d stable_neo_hookean_stress_derivative_psd(const Eigen::Matrix3d& f,
                                                          const StableNeoHookeanParameters& m) {
   Matrix9d dpdf = stable_neo_hookean_stress_derivative(f, m);
   // Most elements are not compressed enough to be indefinite: a Cholesky test says so cheaply.
   if (Eigen::LLT<Matrix9d>(dpdf).info() == Eigen::Success) return dpdf;
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d u = svd.matrixU(), v = svd.matrixV();
-  Eigen::Vector3d s = svd.singularValues();
-  // Rotations only: a reflection moves into the smallest singular value's sign.
-  if (u.determinant() < 0.0) {
-    u.col(2) *= -1.0;
-    s[2] *= -1.0;
-  }
-  if (v.determinant() < 0.0) {
-    v.col(2) *= -1.0;
-    s[2] *= -1.0;
-  }
+  const RotationVariantSvd svd = rotation_variant_svd(f);
+  const Eigen::Vector3d& s = svd.s;
   const double c = m.lambda * (s.prod() - 1.0) - m.mu;
   // Removes the mode U a V^T (a unit in the Frobenius norm) with eigenvalue `value` if negative.
   const auto remove_if_negative = [&](double value, const Eigen::Matrix3d& a) {
     if (value >= 0.0) return;
-    const Eigen::Matrix3d mode = u * a * v.transpose();
+    const Eigen::Matrix3d mode = svd.u * a * svd.v.transpose();
     const Eigen::Map<const Vector9d> e(mode.data());
     dpdf -= value * e * e.transpose();
   };

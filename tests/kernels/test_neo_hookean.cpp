@@ -302,6 +302,66 @@ TEST(NeoHookean, AnalyticProjectionMatchesTheNumericOne) {
   EXPECT_GT(inverted, 500);
 }
 
+// The closed-form rotation-variant SVD: U and V rotations to rounding, U diag(s) V^T = F to
+// 1e-12 of |F| where the singular values are apart and 1e-8 where they (nearly) repeat (at
+// rest, measured up to 1.5e-9), and s[2] negative exactly for inverted F; also for nearly zero
+// and zero singular values (flat and collapsed tets).
+TEST(NeoHookean, RotationVariantSvdReconstructsFWithRotations) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto rotation = [&] {
+    return Eigen::Quaterniond(unit(rng), unit(rng), unit(rng), unit(rng))
+        .normalized()
+        .toRotationMatrix();
+  };
+  struct Case {
+    Eigen::Matrix3d f;
+    bool repeated;
+  };
+  std::vector<Case> cases = {{Eigen::Matrix3d::Identity(), true},
+                             {Eigen::Matrix3d::Zero(), true},
+                             {rotation(), true},
+                             {2.0 * rotation(), true}};
+  for (int trial = 0; trial < 2000; ++trial) {
+    Eigen::Vector3d s(1.0 + 0.95 * unit(rng), 1.0 + 0.95 * unit(rng), 1.0 + 0.95 * unit(rng));
+    bool repeated = false;
+    if (trial % 5 == 0) {
+      s[1] = s[0];
+      repeated = true;
+    }
+    if (trial % 7 == 0) s[trial % 3] = 1e-4;  // nearly flat
+    if (trial % 11 == 0) s[trial % 3] = 0.0;  // flat
+    if (trial % 13 == 0) {                    // near rest
+      s = Eigen::Vector3d::Constant(1.0 + 1e-9 * unit(rng));
+      repeated = true;
+    }
+    if (trial % 4 == 0) s[2] = -s[2];  // inverted
+    const Eigen::Vector3d sorted = s.cwiseAbs();
+    repeated = repeated || std::abs(sorted[0] - sorted[1]) < 1e-3 ||
+               std::abs(sorted[1] - sorted[2]) < 1e-3 || std::abs(sorted[0] - sorted[2]) < 1e-3;
+    cases.push_back({rotation() * s.asDiagonal() * rotation(), repeated});
+  }
+  for (const Case& c : cases) {
+    const Eigen::Matrix3d& f = c.f;
+    const RotationVariantSvd svd = rotation_variant_svd(f);
+    const double scale = std::max(1.0, f.norm());
+    EXPECT_LT((svd.u * svd.s.asDiagonal() * svd.v.transpose() - f).norm(),
+              (c.repeated ? 1e-8 : 1e-12) * scale)
+        << "F =\n"
+        << f;
+    EXPECT_LT((svd.u.transpose() * svd.u - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_LT((svd.v.transpose() * svd.v - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_NEAR(svd.u.determinant(), 1.0, 1e-12);
+    EXPECT_NEAR(svd.v.determinant(), 1.0, 1e-12);
+    if (f.determinant() < -1e-12) {
+      EXPECT_LT(svd.s[2], 0.0) << "F =\n" << f;
+    }
+    if (f.determinant() > 1e-12) {
+      EXPECT_GT(svd.s.minCoeff(), 0.0) << "F =\n" << f;
+    }
+  }
+}
+
 // The block-wise B^T A B of the tet Hessian equals the dense product to rounding, for any
 // (not only symmetric) 9x9 A.
 TEST(NeoHookean, BlockwiseCongruenceMatchesTheDenseProduct) {
