@@ -1,8 +1,9 @@
 // The job's PETSc groups ([farm] petsc_group_ranks) as a user runs them: a soft bimanual job
 // whose Newton systems all go to PETSc (the group forced on with petsc_min_dofs = 1) gives the
-// verdicts CHOLMOD gives, with trajectories within 1e-6 m, on 2 ranks (one group: rank 0 leads,
-// rank 1 serves) and on 3 (rank 0 alone beside a group of ranks 1 and 2); a group larger than
-// the run, and PETSc options without a group, are refused before any work.
+// verdicts CHOLMOD gives, with trajectories within 1e-6 m, on 1 rank without mpirun (a group of
+// one), on 2 ranks (one group: rank 0 leads, rank 1 serves) and on 3 (rank 0 alone beside a
+// group of ranks 1 and 2); a group larger than the run, and PETSc options without a group, are
+// refused before any work.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -92,8 +93,10 @@ TEST_F(FarmPetscGroups, ForcedOnGivesCholmodsVerdictsAndTrajectoriesWithinOneMic
   std::string err;
   ASSERT_EQ(farm(testing::bimanual_soft_job(2, ""), 0, "cholmod", err), 0) << err;
   EXPECT_EQ(report("cholmod")["petsc_solves"], 0);
-  const std::string forced = "petsc_group_ranks = 2\npetsc_min_dofs = 1\n";
-  for (const int ranks : {2, 3}) {
+  // 0: without mpirun, one rank leading a group of one (PETSc on its own rank).
+  for (const int ranks : {0, 2, 3}) {
+    const std::string forced = "petsc_group_ranks = " + std::to_string(ranks == 0 ? 1 : 2) +
+                               "\npetsc_min_dofs = 1\n";
     const std::string name = "petsc" + std::to_string(ranks);
     ASSERT_EQ(farm(testing::bimanual_soft_job(2, forced), ranks, name, err), 0) << err;
     const nlohmann::json r = report(name);
