@@ -49,8 +49,9 @@ struct PetscGroupSetting {
   int min_dofs = kDefaultMinDofs;
   std::string location;
 
-  // Above the largest system measured (71,151 DOFs), where one core's CHOLMOD and PETSc on one
-  // rank took the same time on the development machine (docs/linear-solvers.md).
+  // Past the size where PETSc on one rank overtakes one core's CHOLMOD on the development
+  // machine (between 71,151 and 137,001 DOFs; docs/linear-solvers.md), so that a group of any
+  // size pays from there.
   static constexpr int kDefaultMinDofs = 100'000;
   int ranks() const { return group_ranks * groups; }
 };

@@ -95,8 +95,8 @@ TEST_F(FarmPetscGroups, ForcedOnGivesCholmodsVerdictsAndTrajectoriesWithinOneMic
   EXPECT_EQ(report("cholmod")["petsc_solves"], 0);
   // 0: without mpirun, one rank leading a group of one (PETSc on its own rank).
   for (const int ranks : {0, 2, 3}) {
-    const std::string forced = "petsc_group_ranks = " + std::to_string(ranks == 0 ? 1 : 2) +
-                               "\npetsc_min_dofs = 1\n";
+    const std::string forced =
+        "petsc_group_ranks = " + std::to_string(ranks == 0 ? 1 : 2) + "\npetsc_min_dofs = 1\n";
     const std::string name = "petsc" + std::to_string(ranks);
     ASSERT_EQ(farm(testing::bimanual_soft_job(2, forced), ranks, name, err), 0) << err;
     const nlohmann::json r = report(name);
