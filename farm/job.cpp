@@ -301,7 +301,7 @@ void read_farm(const Table& t, Job& job) {
   if (static_cast<std::int64_t>(petsc.group_ranks) * petsc.groups > (1 << 20)) {
     t.fail("petsc_groups", "times petsc_group_ranks must be at most 1048576 ranks");
   }
-  petsc.location = t.location(t.has("petsc_groups") ? "petsc_groups" : "petsc_group_ranks");
+  petsc.location = t.location("petsc_group_ranks");
 }
 
 // The least CPU time one trial of a rigid object takes with the gripper, from `grip bench trial`

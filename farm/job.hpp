@@ -85,7 +85,7 @@ struct Job {
   // petsc_group_ranks ranks each solve their leader's Newton systems of at least
   // petsc_min_dofs rows through PETSc (docs/farm.md, "PETSc groups"); 0 ranks: none, every
   // system is CHOLMOD's. A run with fewer ranks than the groups need is refused before any
-  // work, at petsc_location ("FILE:LINE" of the key).
+  // work, at location ("FILE:LINE" of petsc_group_ranks).
   PetscGroupSetting petsc;
 
   // The objects of every [[objects]] entry.

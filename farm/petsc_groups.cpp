@@ -23,7 +23,6 @@ PetscGroups::PetscGroups(const PetscGroupSetting& setting,
                          const std::vector<std::string>& petsc_options, MPI_Comm comm)
     : min_dofs_(setting.min_dofs) {
   if (setting.group_ranks == 0) return;
-  check_petsc_groups(setting, comm);
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);

@@ -26,7 +26,8 @@ void check_petsc_groups(const PetscGroupSetting& setting, MPI_Comm comm);
 
 class PetscGroups {
  public:
-  // Collective over `comm`. Without groups in the setting it does nothing (no PETSc at all).
+  // Collective over `comm`, after check_petsc_groups passed. Without groups in the setting it
+  // does nothing (no PETSc at all).
   // `petsc_options`: PETSc's command-line options (grip farm ... -- OPTIONS).
   PetscGroups(const PetscGroupSetting& setting, const std::vector<std::string>& petsc_options,
               MPI_Comm comm);

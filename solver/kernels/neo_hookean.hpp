@@ -14,7 +14,6 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-#include <algorithm>
 #include <cmath>
 
 #include "solver/kernels/hd.hpp"
