@@ -4,7 +4,9 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <map>
 #include <memory>
 #include <optional>
 #include <thread>
@@ -249,9 +251,8 @@ struct UnitRun {
   LiveProgress& progress;
   io::DatasetWriter& writer;
   MPI_Comm comm;
-  // A PETSc group's leader: its group's solver for systems of at least big_system_min_dofs rows.
-  std::shared_ptr<solver::LinearSystemSolver> big_system_solver;
-  int big_system_min_dofs = 0;
+  // A PETSc group's leader: its group's solver and the models it takes.
+  trial::BigSystemRoute big_systems;
 };
 
 // One work unit's trials, its results as the dataset keeps them; each solver step adds the
@@ -270,8 +271,7 @@ std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, const UnitRun& r
   std::vector<io::CandidateResult> results;
   for (trial::TrialOutcome& outcome :
        run.runners.get(unit.object, unit.gripper)
-           .run(candidates, unit.ids, run.threads, trajectory, after_step, run.big_system_solver,
-                run.big_system_min_dofs)) {
+           .run(candidates, unit.ids, run.threads, trajectory, after_step, run.big_systems)) {
     io::CandidateResult& result = outcome.result;
     if (!run.plan.dataset.candidates[result.record.id].stress) result.stress.reset();
     results.push_back(std::move(result));
@@ -280,20 +280,62 @@ std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, const UnitRun& r
   return results;
 }
 
+// With PETSc groups, which work units only a group's leader may claim: those whose trial model
+// the job's rule sends to a group ([farm] petsc_min_factor_mib, petsc_min_dofs), so that no
+// plain rank's CHOLMOD takes a system the rule says is too big for it. Rank 0 builds each
+// (object, gripper) pair's model once and tells every rank; without groups, none.
+std::vector<char> group_only_units(const std::vector<WorkUnit>& units, const Job& job,
+                                   RunnerCache& runners, MPI_Comm comm) {
+  std::vector<char> group_only(units.size(), 0);
+  if (job.petsc.group_ranks == 0) return group_only;
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0) {
+    const trial::BigSystemRoute rule{nullptr, job.petsc.min_dofs, job.petsc.min_factor_bytes()};
+    std::map<std::pair<std::uint32_t, std::uint32_t>, char> by_pair;
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < units.size(); ++k) {
+      const auto pair = std::make_pair(units[k].object, units[k].gripper);
+      auto known = by_pair.find(pair);
+      if (known == by_pair.end()) {
+        known =
+            by_pair.emplace(pair, rule.too_big(runners.get(pair.first, pair.second).model())).first;
+      }
+      group_only[k] = known->second;
+      count += known->second ? units[k].ids.size() : 0;
+    }
+    spdlog::info("PETSc: {} candidate(s) too big for one rank's CHOLMOD, for the groups' leaders",
+                 count);
+  }
+  MPI_Bcast(group_only.data(), static_cast<int>(group_only.size()), MPI_CHAR, 0, comm);
+  return group_only;
+}
+
 struct RankTrials {
   std::uint64_t committed = 0;  // candidates this rank committed
   std::string error;            // its failed trial's message, if one failed
 };
 
 // This rank's share: claim a work unit, run it, commit it alone, claim the next, until the
-// units are handed out. A stop request or a failed trial here ends the handing out for every
-// rank, each finishing the work unit it runs.
-RankTrials run_claimed_units(const std::vector<WorkUnit>& units, const UnitRun& run,
+// units are handed out. Two queues: the units every rank may run (queue 0), and those only a
+// PETSc group's leader may (queue 1, `group_only`), which a leader takes first. A stop request
+// or a failed trial here ends the handing out for every rank, each finishing the work unit it
+// runs.
+RankTrials run_claimed_units(const std::vector<WorkUnit>& units,
+                             const std::vector<char>& group_only, bool leader, const UnitRun& run,
                              WorkUnitClaims& claims, int rank) {
+  std::array<std::vector<std::size_t>, 2> queues;
+  for (std::size_t k = 0; k < units.size(); ++k) queues[group_only[k] ? 1 : 0].push_back(k);
   RankTrials mine;
+  int queue = leader ? 1 : 0;
   while (!stop_requested()) {
-    const std::uint64_t k = claims.claim();
-    if (k >= units.size()) break;
+    const std::uint64_t claimed = claims.claim(queue);
+    if (claimed >= queues[queue].size()) {
+      if (queue == 0 || claimed >= units.size()) break;  // handed out, or no more at all
+      queue = 0;
+      continue;
+    }
+    const std::size_t k = queues[queue][claimed];
     std::vector<io::CandidateResult> results;
     try {
       results = run_unit(units[k], run);
@@ -338,26 +380,28 @@ void run_trials(const FarmOptions& options, const FarmPlan& plan, const Job& job
   const Clock::time_point trial_start = Clock::now();
   progress.start_trials(pending.size());
   RunnerCache runners(plan, job);
-  WorkUnitClaims claims(comm);
+  const std::vector<char> group_only = group_only_units(units, job, runners, comm);
+  WorkUnitClaims claims(comm, 2);
   PetscGroups groups(job.petsc, options.petsc_options, comm);
-  UnitRun run{plan, job, report.threads, runners, progress, writer, comm, nullptr, 0};
-  if (const auto solver = groups.leader_solver()) {
+  UnitRun run{plan, job, report.threads, runners, progress, writer, comm, {}};
+  if (groups.leader()) {
     // One caller at a time, on this thread (MPI_THREAD_FUNNELED): the leader runs one thread.
     run.threads = 1;
-    run.big_system_solver = solver;
-    run.big_system_min_dofs = groups.min_dofs();
+    run.big_systems = groups.route();
   }
   if (rank == 0 && job.petsc.group_ranks > 0) {
     spdlog::info(
         "PETSc: {} group(s) of {} rank(s) (the last {} ranks; each group's first rank "
-        "claims work units on one thread) solve Newton systems of at least {} rows",
-        job.petsc.groups, job.petsc.group_ranks, job.petsc.ranks(), groups.min_dofs());
+        "claims work units on one thread) solve the Newton systems of trials whose CHOLMOD "
+        "factor would take {} MiB or more{}",
+        job.petsc.groups, job.petsc.group_ranks, job.petsc.ranks(), job.petsc.min_factor_mib,
+        job.petsc.min_dofs > 0 ? fmt::format(", or of {} DOFs or more", job.petsc.min_dofs) : "");
   }
   RankTrials mine;
   if (groups.member()) {
     groups.serve();
   } else {
-    mine = run_claimed_units(units, run, claims, rank);
+    mine = run_claimed_units(units, group_only, groups.leader(), run, claims, rank);
     groups.release();
   }
   report.petsc_groups = job.petsc.group_ranks > 0 ? job.petsc.groups : 0;

@@ -275,7 +275,7 @@ void read_outputs(const Table& t, Job& job) {
 
 void read_farm(const Table& t, Job& job) {
   t.allow({"batch", "max_candidates", "max_tets", "petsc_group_ranks", "petsc_groups",
-           "petsc_min_dofs"});
+           "petsc_min_dofs", "petsc_min_factor_mib"});
   const std::int64_t size = t.integer_or("batch", 0);
   if (size < 0 || size > 100000) t.fail("batch", "must be 0 (automatic) or a positive count");
   job.work_unit_size = static_cast<int>(size);
@@ -290,10 +290,14 @@ void read_farm(const Table& t, Job& job) {
   PetscGroupSetting& petsc = job.petsc;
   petsc.group_ranks = t.count_or("petsc_group_ranks", 0, 0, 1 << 20);
   petsc.groups = t.count_or("petsc_groups", 1, 1, 1 << 20);
-  petsc.min_dofs =
-      t.count_or("petsc_min_dofs", PetscGroupSetting::kDefaultMinDofs, 1, 2'000'000'000);
+  if (t.has("petsc_min_dofs")) petsc.min_dofs = t.count_or("petsc_min_dofs", 1, 1, 2'000'000'000);
+  petsc.min_factor_mib =
+      t.number_or("petsc_min_factor_mib", PetscGroupSetting::kDefaultMinFactorMib);
+  if (!(petsc.min_factor_mib > 0.0 && petsc.min_factor_mib <= 1e9)) {
+    t.fail("petsc_min_factor_mib", "must be a size in MiB, more than 0 and at most 1e9");
+  }
   if (petsc.group_ranks == 0) {
-    for (const char* key : {"petsc_groups", "petsc_min_dofs"}) {
+    for (const char* key : {"petsc_groups", "petsc_min_dofs", "petsc_min_factor_mib"}) {
       if (t.has(key))
         t.fail(key, "needs petsc_group_ranks (the ranks of a PETSc group, 1 or more)");
     }

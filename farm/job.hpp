@@ -46,14 +46,22 @@ struct GripperSetting {
 struct PetscGroupSetting {
   int group_ranks = 0;
   int groups = 1;
-  int min_dofs = kDefaultMinDofs;
+  // A trial's systems go to a group when CHOLMOD's factor of its model's contact-free pattern
+  // would take min_factor_mib or more (Model::contact_free_factor_bytes), or, if min_dofs > 0,
+  // when the model has min_dofs DOFs or more.
+  double min_factor_mib = kDefaultMinFactorMib;
+  int min_dofs = 0;
   std::string location;
 
-  // Past the size where PETSc on one rank overtakes one core's CHOLMOD on the development
-  // machine (between 71,151 and 137,001 DOFs; docs/linear-solvers.md), so that a group of any
-  // size pays from there.
-  static constexpr int kDefaultMinDofs = 100'000;
+  // A memory budget (docs/linear-solvers.md, "Which systems go to PETSc"): a rank of a 24 GB,
+  // 2-core node has 12 GiB, and keeps up to 2 x threads environments in flight, each with its
+  // own factor. Neither this nor the DOFs tells where PETSc gets faster: that depends on the
+  // object's shape.
+  static constexpr double kDefaultMinFactorMib = 2048.0;
   int ranks() const { return group_ranks * groups; }
+  std::size_t min_factor_bytes() const {
+    return static_cast<std::size_t>(min_factor_mib * 1024 * 1024);
+  }
 };
 
 struct Job {
@@ -81,9 +89,9 @@ struct Job {
   // [farm] max_tets: a soft object whose tet_edge would make more tets (estimated before
   // meshing) is refused while planning.
   double max_tets = geometry::kMaxEstimatedTets;
-  // [farm] petsc_group_ranks, petsc_groups, petsc_min_dofs: petsc_groups groups of
-  // petsc_group_ranks ranks each solve their leader's Newton systems of at least
-  // petsc_min_dofs rows through PETSc (docs/farm.md, "PETSc groups"); 0 ranks: none, every
+  // [farm] petsc_group_ranks, petsc_groups, petsc_min_factor_mib, petsc_min_dofs: petsc_groups
+  // groups of petsc_group_ranks ranks each solve the Newton systems of their leader's trials
+  // too big for CHOLMOD through PETSc (docs/farm.md, "PETSc groups"); 0 ranks: none, every
   // system is CHOLMOD's. A run with fewer ranks than the groups need is refused before any
   // work, at location ("FILE:LINE" of petsc_group_ranks).
   PetscGroupSetting petsc;

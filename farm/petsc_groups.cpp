@@ -21,7 +21,7 @@ void check_petsc_groups(const PetscGroupSetting& setting, MPI_Comm comm) {
 
 PetscGroups::PetscGroups(const PetscGroupSetting& setting,
                          const std::vector<std::string>& petsc_options, MPI_Comm comm)
-    : min_dofs_(setting.min_dofs) {
+    : min_dofs_(setting.min_dofs), min_factor_bytes_(setting.min_factor_bytes()) {
   if (setting.group_ranks == 0) return;
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
@@ -45,8 +45,9 @@ PetscGroups::~PetscGroups() {
   if (group_ != MPI_COMM_NULL) MPI_Comm_free(&group_);
 }
 
-std::shared_ptr<solver::LinearSystemSolver> PetscGroups::leader_solver() const {
-  return leader_ ? solver_ : nullptr;
+trial::BigSystemRoute PetscGroups::route() const {
+  if (!leader_) return {};
+  return {solver_, min_dofs_, min_factor_bytes_};
 }
 
 void PetscGroups::serve() {

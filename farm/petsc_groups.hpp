@@ -3,9 +3,9 @@
 // Newton systems of their leader's trials together through PETSc (farm/petsc), while the farm's
 // other ranks keep taking work units alone. The groups are the communicator's last
 // groups x group_ranks ranks; each group's lowest rank is its leader: it claims work units as
-// any rank does, on one thread, and hands its environments' systems of at least min_dofs rows to
-// the group. The others (its members) take no work unit: they serve the leader's solves until
-// it has no more (docs/farm.md, "PETSc groups").
+// any rank does, on one thread, and hands the group every system of the models too big for one
+// rank (by the factor CHOLMOD would need, or by DOFs). The others (its members) take no work unit:
+// they serve the leader's solves until it has no more (docs/farm.md, "PETSc groups").
 #include <mpi.h>
 
 #include <cstdint>
@@ -17,6 +17,7 @@
 #include "farm/job.hpp"
 #include "farm/petsc/petsc_session.hpp"
 #include "farm/petsc/petsc_system_solver.hpp"
+#include "src/trial/trial_protocol.hpp"
 
 namespace grip::farm {
 
@@ -37,9 +38,10 @@ class PetscGroups {
 
   // A group member that is not its leader: it serves, and takes no work unit.
   bool member() const { return solver_ && !leader_; }
-  // This rank's group solver if it leads a group, else null.
-  std::shared_ptr<solver::LinearSystemSolver> leader_solver() const;
-  int min_dofs() const { return min_dofs_; }
+  bool leader() const { return leader_; }
+  // A leader's: its group's solver and the rule of the job for which models it takes. Other
+  // ranks': no solver.
+  trial::BigSystemRoute route() const;
 
   // A member: takes part in its leader's solves until the leader calls release().
   void serve();
@@ -54,6 +56,7 @@ class PetscGroups {
   std::shared_ptr<PetscSystemSolver> solver_;
   bool leader_ = false;
   int min_dofs_ = 0;
+  std::size_t min_factor_bytes_ = 0;
 };
 
 }  // namespace grip::farm

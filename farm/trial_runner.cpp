@@ -71,10 +71,14 @@ io::GripperRecord TrialRunner::gripper_record() const {
   return std::visit([](const auto& scene) { return trial::gripper_record(*scene); }, scene_->scene);
 }
 
+const solver::Model& TrialRunner::model() const {
+  return *std::visit([](const auto& scene) { return scene->model(); }, scene_->scene);
+}
+
 std::vector<trial::TrialOutcome> TrialRunner::run(
     const std::vector<const synth::Candidate*>& candidates, const std::vector<std::uint64_t>& ids,
     int threads, bool trajectory, std::function<void(std::size_t)> after_step,
-    std::shared_ptr<solver::LinearSystemSolver> big_system_solver, int big_system_min_dofs) const {
+    trial::BigSystemRoute big_systems) const {
   const std::size_t hands = bimanual_ ? 2 : 1;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     if (candidates[k]->hands.size() != hands) {
@@ -90,8 +94,7 @@ std::vector<trial::TrialOutcome> TrialRunner::run(
   options.ids = ids;
   options.max_active = 2 * threads;  // enough to keep every thread busy while others freeze
   options.after_step = std::move(after_step);
-  options.big_system_solver = std::move(big_system_solver);
-  options.big_system_min_dofs = big_system_min_dofs;
+  options.big_systems = std::move(big_systems);
   if (auto* parallel = std::get_if<std::unique_ptr<trial::TrialScene>>(&scene_->scene)) {
     if (bimanual_) {
       return trial::run_bimanual_trials(**parallel, two_hands(candidates, parallel_grasp), options);

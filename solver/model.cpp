@@ -8,6 +8,7 @@
 #include "solver/body/body.hpp"
 #include "solver/contact/candidates.hpp"
 #include "solver/linear/block_ordering.hpp"
+#include "solver/linear/sparse_cholesky.hpp"
 
 namespace grip::solver {
 namespace {
@@ -64,6 +65,35 @@ std::shared_ptr<const Model> Model::build(const SceneDescription& scene) {
   model->build_collision_mesh();
   model->build_rest_proximity();
   return model;
+}
+
+std::size_t Model::contact_free_factor_bytes() const {
+  // The lower triangle of the Newton matrix's pattern, column by column: a free DOF couples to
+  // the free DOFs of its own block and of the blocks it shares a tet with; a prescribed one is
+  // an identity row.
+  const BlockGraph graph = block_graph(*this);
+  std::vector<int> outer{0};
+  std::vector<int> inner;
+  for (std::size_t b = 0; b < graph.neighbours.size(); ++b) {
+    std::vector<int> coupled = graph.neighbours[b];
+    coupled.push_back(static_cast<int>(b));
+    std::sort(coupled.begin(), coupled.end());
+    coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
+    for (int col = graph.block_offset[b]; col < graph.block_offset[b + 1]; ++col) {
+      if (prescribed_[col]) {
+        inner.push_back(col);
+      } else {
+        for (const int c : coupled) {
+          for (int row = std::max(col, graph.block_offset[c]); row < graph.block_offset[c + 1];
+               ++row) {
+            if (!prescribed_[row]) inner.push_back(row);
+          }
+        }
+      }
+      outer.push_back(static_cast<int>(inner.size()));
+    }
+  }
+  return symbolic_factor_bytes(dof_count_, outer, inner, *ordering_);
 }
 
 void Model::build_bodies() {

@@ -103,6 +103,11 @@ class Model {
   // pins), computed once and shared by every environment's factorizations: contacts add
   // couplings, but re-ordering for each new contact set costs more than the extra fill.
   const std::shared_ptr<const std::vector<int>>& ordering() const { return ordering_; }
+  // The numeric values of CHOLMOD's factor of that pattern under ordering(), bytes, from its
+  // symbolic analysis alone: the least one environment's Cholesky needs (contacts add fill), so
+  // a farm can tell a model too big for one rank's memory before any numeric work. Computed
+  // on each call (about as costly as one symbolic analysis).
+  std::size_t contact_free_factor_bytes() const;
 
  private:
   // The steps of build(), in order.

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "bench/linear/bimanual_squeeze.hpp"
+#include "bench/linear/bimanual_trial_system.hpp"
 #include "bench/linear/newton_system.hpp"
 #include "solver/linear/sparse_cholesky.hpp"
 #include "src/json/json_text.hpp"
@@ -45,9 +46,12 @@ void time_side_by_side(int repeats, A first, B second, std::vector<double>& firs
   }
 }
 
-LinearBenchmarkRow measure(farm::PetscSystemSolver& petsc, double cell, int repeats) {
-  // One step of the squeeze: contacts are active and the pads are pinned, as in a trial.
-  const NewtonSystem system = capture_newton_system(bimanual_squeeze(cell), 1);
+LinearBenchmarkRow measure(farm::PetscSystemSolver& petsc, LinearSystemSource source, double cell,
+                           int repeats) {
+  // The squeeze's first step already has contacts, and its pads are pinned, as in a trial.
+  const NewtonSystem system = source == LinearSystemSource::kBimanualTrial
+                                  ? capture_bimanual_trial_system(cell)
+                                  : capture_newton_system(bimanual_squeeze(cell), 1);
   LinearBenchmarkRow row;
   row.cell = cell;
   row.dofs = static_cast<int>(system.lower.rows());
@@ -69,6 +73,8 @@ LinearBenchmarkRow measure(farm::PetscSystemSolver& petsc, double cell, int repe
       direct_s, petsc_s);
   row.direct_s = median(direct_s);
   row.direct_mib = static_cast<double>(cholesky.peak_bytes()) / (1 << 20);
+  row.factor_mib = static_cast<double>(cholesky.factor_bytes()) / (1 << 20);
+  row.factor_gflop = cholesky.factor_flops() / 1e9;
   row.petsc_s = median(petsc_s);
   row.iterations = petsc.iterations();
   row.relative_difference = (iterative - direct).norm() / direct.norm();
@@ -76,6 +82,10 @@ LinearBenchmarkRow measure(farm::PetscSystemSolver& petsc, double cell, int repe
 }
 
 }  // namespace
+
+const char* to_string(LinearSystemSource source) {
+  return source == LinearSystemSource::kBimanualTrial ? "bimanual-trial" : "squeeze";
+}
 
 // This process's peak resident memory (VmHWM of /proc/self/status), MiB; 0 if unreadable.
 double peak_rss_mib() {
@@ -102,6 +112,7 @@ LinearBenchmarkResult run_linear_benchmark(farm::PetscSystemSolver& petsc,
                                            const LinearBenchmarkOptions& options, std::ostream& out,
                                            MPI_Comm comm) {
   LinearBenchmarkResult result;
+  result.source = options.source;
   result.ranks = petsc.ranks();
   if (petsc.rank() != 0) {
     petsc.serve();
@@ -109,16 +120,18 @@ LinearBenchmarkResult run_linear_benchmark(farm::PetscSystemSolver& petsc,
     return result;
   }
   result.method = petsc.method();
-  out << "PETSc " << result.method << " on " << result.ranks
-      << " rank(s) against CHOLMOD on one core; median of " << options.repeats << " repeats\n"
-      << "    cell m      DOFs    nonzeros   direct s  direct MiB    PETSc s  iterations  rel. "
-         "difference\n";
+  out << "Newton systems of the " << to_string(options.source) << "; PETSc " << result.method
+      << " on " << result.ranks << " rank(s) against CHOLMOD on one core; median of "
+      << options.repeats << " repeats\n"
+      << "    cell m      DOFs    nonzeros  factor MiB  factor Gflop   direct s  direct MiB    "
+         "PETSc s  iterations  rel. difference\n";
   try {
     for (const double cell : options.cells) {
-      const LinearBenchmarkRow row = measure(petsc, cell, options.repeats);
+      const LinearBenchmarkRow row = measure(petsc, options.source, cell, options.repeats);
       result.rows.push_back(row);
       out << std::setw(10) << cell << std::setw(10) << row.dofs << std::setw(12) << row.nonzeros
-          << std::fixed << std::setprecision(4) << std::setw(11) << row.direct_s
+          << std::fixed << std::setprecision(1) << std::setw(12) << row.factor_mib << std::setw(14)
+          << row.factor_gflop << std::setprecision(4) << std::setw(11) << row.direct_s
           << std::setprecision(1) << std::setw(12) << row.direct_mib << std::setprecision(4)
           << std::setw(11) << row.petsc_s << std::defaultfloat << std::setw(12) << row.iterations
           << std::setw(17) << std::setprecision(3) << row.relative_difference
@@ -155,11 +168,14 @@ void write_json_line(std::ostream& out, const LinearBenchmarkResult& result) {
                                           {"nonzeros", row.nonzeros},
                                           {"direct_s", row.direct_s},
                                           {"direct_mib", row.direct_mib},
+                                          {"factor_mib", row.factor_mib},
+                                          {"factor_gflop", row.factor_gflop},
                                           {"petsc_s", row.petsc_s},
                                           {"iterations", row.iterations},
                                           {"relative_difference", row.relative_difference}});
   }
   const nlohmann::ordered_json line = {{"benchmark", "linear"},
+                                       {"system", to_string(result.source)},
                                        {"ranks", result.ranks},
                                        {"method", result.method},
                                        {"crossover_dofs", result.crossover_dofs},

@@ -11,8 +11,14 @@
 
 namespace grip::bench {
 
+// Where the systems come from: a real bimanual soft trial (capture_bimanual_trial_system: a long
+// bar, whose factor fills in little) or the bimanual squeeze (bimanual_squeeze: a cube, the
+// worst case of fill for its size).
+enum class LinearSystemSource { kBimanualTrial, kSqueeze };
+
 struct LinearBenchmarkOptions {
-  // Tet cell sizes (m) of bimanual_squeeze(), one system size each.
+  LinearSystemSource source = LinearSystemSource::kBimanualTrial;
+  // Tet cell sizes (m) of the source's soft object, one system size each.
   std::vector<double> cells{0.01, 0.006, 0.004, 0.003, 0.0025};
   int repeats = 5;  // timed factorize + solve pairs per size and solver (after one untimed)
 };
@@ -20,15 +26,18 @@ struct LinearBenchmarkOptions {
 struct LinearBenchmarkRow {
   double cell = 0.0;
   int dofs = 0;
-  long nonzeros = 0;        // of the whole symmetric matrix
-  double direct_s = 0.0;    // median CHOLMOD numeric factorization + solve (symbolic reused)
-  double direct_mib = 0.0;  // the most memory CHOLMOD held (factor and workspace), MiB
-  double petsc_s = 0.0;     // median PETSc factorize + solve (pattern and partition reused)
-  int iterations = 0;       // of PETSc's last solve
+  long nonzeros = 0;          // of the whole symmetric matrix
+  double direct_s = 0.0;      // median CHOLMOD numeric factorization + solve (symbolic reused)
+  double direct_mib = 0.0;    // the most memory CHOLMOD held (factor and workspace), MiB
+  double factor_mib = 0.0;    // the factor's values, MiB ([farm] petsc_min_factor_mib's measure)
+  double factor_gflop = 0.0;  // one numeric factorization's floating-point operations, 10^9
+  double petsc_s = 0.0;       // median PETSc factorize + solve (pattern and partition reused)
+  int iterations = 0;         // of PETSc's last solve
   double relative_difference = 0.0;  // |x_petsc - x_direct| / |x_direct|
 };
 
 struct LinearBenchmarkResult {
+  LinearSystemSource source = LinearSystemSource::kBimanualTrial;
   int ranks = 1;
   std::string method;  // PETSc's KSP and preconditioner
   std::vector<LinearBenchmarkRow> rows;
@@ -48,6 +57,9 @@ struct LinearBenchmarkResult {
 LinearBenchmarkResult run_linear_benchmark(farm::PetscSystemSolver& petsc,
                                            const LinearBenchmarkOptions& options, std::ostream& out,
                                            MPI_Comm comm);
+
+// "bimanual-trial" or "squeeze", the command line's and the JSON's word for a source.
+const char* to_string(LinearSystemSource source);
 
 // The result as one JSON object on one line.
 void write_json_line(std::ostream& out, const LinearBenchmarkResult& result);

@@ -30,6 +30,29 @@ cholmod_sparse view_lower(const Eigen::SparseMatrix<double>& m) {
   return a;
 }
 
+// The settings every analysis and factorization here shares.
+void configure(cholmod_common& common, int ordering) {
+  common.nmethods = 1;  // exactly the ordering asked for, not CHOLMOD's try-several default
+  common.method[0].ordering = ordering;
+  common.supernodal = CHOLMOD_AUTO;  // supernodal or simplicial by flop count
+  // LL' also in the simplicial case: LDL' would "succeed" on an indefinite matrix.
+  common.final_ll = 1;
+  // Silent: factorize() reports a matrix that is not positive definite (Newton then projects
+  // its contact Hessians and tries again), and CHOLMOD would print it as an error.
+  common.print = 0;
+}
+
+// Entries of L's numeric values: a supernodal factor's are allocated by the analysis (xsize);
+// a simplicial one's are its columns' counts of nonzeros (without the slack CHOLMOD allocates
+// for growth).
+std::size_t factor_entries(const cholmod_factor& factor) {
+  if (factor.is_super) return factor.xsize;
+  const int* counts = static_cast<const int*>(factor.ColCount);
+  std::size_t entries = 0;
+  for (std::size_t j = 0; j < factor.n; ++j) entries += static_cast<std::size_t>(counts[j]);
+  return entries;
+}
+
 }  // namespace
 
 struct SparseCholesky::Impl {
@@ -54,15 +77,7 @@ struct SparseCholesky::Impl {
 };
 
 SparseCholesky::SparseCholesky(Ordering ordering) : impl_(std::make_unique<Impl>()) {
-  cholmod_common& common = impl_->common;
-  common.nmethods = 1;  // exactly the ordering asked for, not CHOLMOD's try-several default
-  common.method[0].ordering = ordering == Ordering::kMetis ? CHOLMOD_METIS : CHOLMOD_AMD;
-  common.supernodal = CHOLMOD_AUTO;  // supernodal or simplicial by flop count
-  // LL' also in the simplicial case: LDL' would "succeed" on an indefinite matrix.
-  common.final_ll = 1;
-  // Silent: factorize() reports a matrix that is not positive definite (Newton then projects
-  // its contact Hessians and tries again), and CHOLMOD would print it as an error.
-  common.print = 0;
+  configure(impl_->common, ordering == Ordering::kMetis ? CHOLMOD_METIS : CHOLMOD_AMD);
 }
 
 SparseCholesky::SparseCholesky(std::shared_ptr<const std::vector<int>> permutation)
@@ -130,5 +145,45 @@ bool SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
 int SparseCholesky::analyses() const { return impl_->analyses; }
 
 std::size_t SparseCholesky::peak_bytes() const { return impl_->common.memory_usage; }
+
+std::size_t SparseCholesky::factor_bytes() const {
+  return impl_->factor == nullptr ? 0 : factor_entries(*impl_->factor) * sizeof(double);
+}
+
+double SparseCholesky::factor_flops() const { return impl_->common.fl; }
+
+std::size_t symbolic_factor_bytes(int n, const std::vector<int>& outer,
+                                  const std::vector<int>& inner,
+                                  const std::vector<int>& permutation) {
+  if (outer.size() != static_cast<std::size_t>(n) + 1 ||
+      permutation.size() != static_cast<std::size_t>(n) ||
+      inner.size() != static_cast<std::size_t>(outer.back())) {
+    throw std::invalid_argument("symbolic_factor_bytes: inconsistent pattern or permutation");
+  }
+  cholmod_common common{};
+  cholmod_start(&common);
+  configure(common, CHOLMOD_GIVEN);
+  cholmod_sparse a{};
+  a.nrow = a.ncol = static_cast<std::size_t>(n);
+  a.nzmax = inner.size();
+  a.p = const_cast<int*>(outer.data());
+  a.i = const_cast<int*>(inner.data());
+  a.stype = -1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_PATTERN;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  cholmod_factor* factor =
+      cholmod_analyze_p(&a, const_cast<int*>(permutation.data()), nullptr, 0, &common);
+  if (factor == nullptr) {
+    cholmod_finish(&common);
+    throw std::runtime_error("CHOLMOD analysis failed");
+  }
+  const std::size_t bytes = factor_entries(*factor) * sizeof(double);
+  cholmod_free_factor(&factor, &common);
+  cholmod_finish(&common);
+  return bytes;
+}
 
 }  // namespace grip::solver

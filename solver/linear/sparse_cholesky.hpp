@@ -44,10 +44,22 @@ class SparseCholesky : public LinearSystemSolver {
   int analyses() const;
   // The most memory CHOLMOD held at once for this solver so far (factor and workspace), bytes.
   std::size_t peak_bytes() const;
+  // The last factor's numeric values, bytes (0 before the first factorize()).
+  std::size_t factor_bytes() const;
+  // The floating-point operations of one numeric factorization, by the last analysis.
+  double factor_flops() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The numeric values of the Cholesky factor of an n x n symmetric pattern (its lower triangle,
+// compressed by columns: outer, inner) under `permutation` (new-to-old), bytes, as
+// SparseCholesky would allocate them: from CHOLMOD's symbolic analysis alone, with no numeric
+// work, so a caller can tell before factorizing whether the factor fits its memory.
+std::size_t symbolic_factor_bytes(int n, const std::vector<int>& outer,
+                                  const std::vector<int>& inner,
+                                  const std::vector<int>& permutation);
 
 }  // namespace grip::solver

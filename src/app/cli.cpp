@@ -629,6 +629,11 @@ int main(int argc, char** argv) {
       "linear",
       "CHOLMOD against PETSc on Newton systems by size, under mpirun (docs/linear-solvers.md)");
   bench_linear
+      ->add_option("--system", bench_linear_args.system,
+                   "Newton systems of a bimanual soft trial (a long bar) or of a squeezed cube")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"bimanual-trial", "squeeze"}));
+  bench_linear
       ->add_option("--cells", bench_linear_args.cells, "Tet cell sizes (m), e.g. 0.01,0.004")
       ->delimiter(',')
       ->capture_default_str()

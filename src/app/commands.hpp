@@ -185,6 +185,7 @@ int bench_scale_probe(const BenchScaleProbeArgs& args);
 // PETSc's KSP on Newton systems of growing size, on the ranks it runs with (bench/linear/,
 // docs/linear-solvers.md).
 struct BenchLinearArgs {
+  std::string system = "bimanual-trial";  // or "squeeze" (bench/linear/linear_benchmark.hpp)
   std::vector<double> cells{0.01, 0.006, 0.004, 0.003, 0.0025};  // tet cell sizes (m)
   int repeats = 5;
   std::vector<std::string> petsc_options;  // after a lone `--`

@@ -48,17 +48,18 @@ TEST(BenchJsonLines, LinearLine) {
   result.ranks = 2;
   result.method = "cg + gamg";
   result.crossover_dofs = 0;
-  result.rows = {{0.01, 1234, 56789, 0.0123456789, 3.75, 0.5, 17, 2.5e-9}};
+  result.source = LinearSystemSource::kSqueeze;
+  result.rows = {{0.01, 1234, 56789, 0.0123456789, 3.75, 2.5, 0.125, 0.5, 17, 2.5e-9}};
   result.peak_rss_mib = {86.5, 48.25};
   std::ostringstream out;
   write_json_line(out, result);
-  EXPECT_EQ(
-      out.str(),
-      "{\"benchmark\":\"linear\",\"ranks\":2,\"method\":\"cg + gamg\",\"crossover_dofs\":0,"
-      "\"peak_rss_mib\":[86.5,48.25],"
-      "\"rows\":[{\"cell\":0.01,\"dofs\":1234,\"nonzeros\":56789,\"direct_s\":0.0123457,"
-      "\"direct_mib\":3.75,\"petsc_s\":0.5,\"iterations\":17,\"relative_difference\":2.5e-09}]}"
-      "\n");
+  EXPECT_EQ(out.str(),
+            "{\"benchmark\":\"linear\",\"system\":\"squeeze\",\"ranks\":2,\"method\":\"cg + "
+            "gamg\",\"crossover_dofs\":0,"
+            "\"peak_rss_mib\":[86.5,48.25],"
+            "\"rows\":[{\"cell\":0.01,\"dofs\":1234,\"nonzeros\":56789,\"direct_s\":0.0123457,"
+            "\"direct_mib\":3.75,\"factor_mib\":2.5,\"factor_gflop\":0.125,\"petsc_s\":0.5,"
+            "\"iterations\":17,\"relative_difference\":2.5e-09}]}\n");
 
   result.method = kOdd;
   out.str("");

@@ -3,7 +3,8 @@
 // verdicts CHOLMOD gives, with trajectories within 1e-6 m, on 1 rank without mpirun (a group of
 // one), on 2 ranks (one group: rank 0 leads, rank 1 serves) and on 3 (rank 0 alone beside a
 // group of ranks 1 and 2); a group larger than the run, and PETSc options without a group, are
-// refused before any work.
+// refused before any work. Which models go to a group: by their CHOLMOD factor's size (the
+// default rule) or by their DOFs.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +16,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "io/dataset_reader.hpp"
 #include "tests/app/run_grip.hpp"
@@ -105,6 +108,62 @@ TEST_F(FarmPetscGroups, ForcedOnGivesCholmodsVerdictsAndTrajectoriesWithinOneMic
     EXPECT_EQ(r["done"], 2);
     expect_same_within(dir_ / "cholmod.h5", dir_ / (name + ".h5"), 1e-6);
   }
+}
+
+// The default rule: a model goes to the group by the size of CHOLMOD's factor of its
+// contact-free pattern. The job's soft cylinder and fingers need far less than a MiB; the
+// leader's CHOLMOD keeps them under the default and any larger budget, the group takes them
+// under a budget below their factor, and the DOF rule takes them whatever the budget.
+TEST_F(FarmPetscGroups, ModelsGoToTheGroupByTheirFactorsSizeOrByDofs) {
+  std::string err;
+  const std::string group = "petsc_group_ranks = 1\n";
+  const std::vector<std::pair<std::string, bool>> rules = {
+      {"", false},
+      {"petsc_min_factor_mib = 0.001\n", true},
+      {"petsc_min_factor_mib = 1000000\n", false},
+      {"petsc_min_factor_mib = 1000000\npetsc_min_dofs = 1\n", true}};
+  for (std::size_t i = 0; i < rules.size(); ++i) {
+    const auto& [rule, to_group] = rules[i];
+    const std::string name = "rule" + std::to_string(i);
+    ASSERT_EQ(farm(testing::bimanual_soft_job(1, group + rule), 0, name, err), 0) << err;
+    const nlohmann::json r = report(name);
+    EXPECT_EQ(r["done"], 1) << rule;
+    if (to_group) {
+      EXPECT_GT(r["petsc_solves"].get<long>(), 10) << rule;
+    } else {
+      EXPECT_EQ(r["petsc_solves"], 0) << rule;
+    }
+  }
+}
+
+// The rule decides per (object, gripper) model, and only a group's leader runs the trials of a
+// model the rule sends to its group: a plain rank never hands such a system to its own CHOLMOD.
+// A soft and a rigid cylinder under mpirun -np 2, a group of one on rank 1, the DOF rule
+// between the two models (the rigid model's two jaws and affine body have 36 DOFs, the soft
+// one some 1,300): every Newton iteration of a soft trial went to PETSc, whichever rank
+// claimed first, and no rigid one did.
+TEST_F(FarmPetscGroups, OnlyALeaderRunsTheTrialsTheRuleSendsToItsGroup) {
+  std::string err;
+  std::string job = testing::bimanual_soft_job(
+      2, "petsc_group_ranks = 1\npetsc_min_dofs = 1000\npetsc_min_factor_mib = 1000000\n");
+  const std::string soft = "tet_edge = 0.01\n";  // the soft cylinder's last line
+  job.replace(job.find(soft), soft.size(), soft + "\n[[objects]]\ncategory = \"cylinder\"\n");
+  ASSERT_EQ(farm(job, 2, "mixed", err), 0) << err;
+  const nlohmann::json r = report("mixed");
+  EXPECT_EQ(r["done"], 4);
+  const io::DatasetReader reader(dir_ / "mixed.h5");
+  const io::DatasetLayout& layout = reader.layout();
+  long soft_iterations = 0, rigid_iterations = 0;
+  for (const io::CandidateRecord& c : reader.candidates()) {
+    const bool soft_object = layout.objects[layout.object[c.id]].tets > 0;
+    (soft_object ? soft_iterations : rigid_iterations) += c.newton.iterations;
+  }
+  ASSERT_GT(soft_iterations, 0);
+  ASSERT_GT(rigid_iterations, 0);
+  const long solves = r["petsc_solves"].get<long>();
+  // Every Newton iteration solves at least one system; a retried step's discarded ones add.
+  EXPECT_GE(solves, soft_iterations);
+  EXPECT_LT(solves, soft_iterations + rigid_iterations);
 }
 
 TEST_F(FarmPetscGroups, AGroupLargerThanTheRunIsRefusedBeforeAnyWork) {

@@ -225,17 +225,25 @@ TEST(Job, PetscGroupsAreReadAndCheckedOnTheirKeys) {
   const Job plain = parse_job(kValid, "job.toml");
   EXPECT_EQ(plain.petsc.group_ranks, 0);
   EXPECT_EQ(plain.petsc.ranks(), 0);
-  EXPECT_EQ(plain.petsc.min_dofs, PetscGroupSetting::kDefaultMinDofs);
+  EXPECT_EQ(plain.petsc.min_dofs, 0);  // no rule on DOFs
+  EXPECT_EQ(plain.petsc.min_factor_mib, PetscGroupSetting::kDefaultMinFactorMib);
 
   const std::string farm = std::string(kValid) + "\n[farm]\npetsc_group_ranks = 2\n";
-  const Job grouped = parse_job(farm + "petsc_groups = 3\npetsc_min_dofs = 5000\n", "job.toml");
+  const Job grouped = parse_job(
+      farm + "petsc_groups = 3\npetsc_min_dofs = 5000\npetsc_min_factor_mib = 512.5\n", "job.toml");
   EXPECT_EQ(grouped.petsc.group_ranks, 2);
   EXPECT_EQ(grouped.petsc.groups, 3);
   EXPECT_EQ(grouped.petsc.ranks(), 6);
   EXPECT_EQ(grouped.petsc.min_dofs, 5000);
+  EXPECT_EQ(grouped.petsc.min_factor_mib, 512.5);
   EXPECT_EQ(grouped.petsc.location.rfind("job.toml:", 0), 0u) << grouped.petsc.location;
 
   EXPECT_NE(error_of(farm + "petsc_min_dofs = 0\n").find("farm.petsc_min_dofs"), std::string::npos);
+  EXPECT_NE(error_of(farm + "petsc_min_factor_mib = 0\n").find("farm.petsc_min_factor_mib"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kValid) + "\n[farm]\npetsc_min_factor_mib = 100\n")
+                .find("key 'farm.petsc_min_factor_mib' needs petsc_group_ranks"),
+            std::string::npos);
   EXPECT_NE(error_of(replaced(farm, "= 2", "= -1")).find("farm.petsc_group_ranks"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kValid) + "\n[farm]\npetsc_groups = 2\n")

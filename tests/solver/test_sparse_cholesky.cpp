@@ -1,11 +1,16 @@
 // CHOLMOD solves: correct answers, one symbolic analysis per pattern, honest failure on
-// matrices that are not positive definite.
+// matrices that are not positive definite; the factor's size from the symbolic analysis alone,
+// exact against analytic fill and against the numeric factor, also for a model's contact-free
+// pattern.
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <numeric>
 #include <random>
 #include <vector>
 
 #include "solver/linear/sparse_cholesky.hpp"
+#include "tests/solver/scene_builders.hpp"
 
 namespace grip::solver {
 namespace {
@@ -93,6 +98,106 @@ TEST(SparseCholesky, OrderingsAgree) {
   ASSERT_TRUE(metis.factorize(lower));
   ASSERT_TRUE(amd.factorize(lower));
   EXPECT_LT((metis.solve(b) - amd.solve(b)).norm() / amd.solve(b).norm(), 1e-10);
+}
+
+// The compressed lower pattern of a star: vertex 0 is the hub, coupled to every leaf.
+void star_pattern(int n, std::vector<int>& outer, std::vector<int>& inner) {
+  outer = {0};
+  inner.clear();
+  for (int col = 0; col < n; ++col) {
+    inner.push_back(col);
+    if (col == 0) {
+      for (int leaf = 1; leaf < n; ++leaf) inner.push_back(leaf);
+    }
+    outer.push_back(static_cast<int>(inner.size()));
+  }
+}
+
+TEST(SparseCholesky, SymbolicFactorSizeIsTheAnalyticFillOfAStar) {
+  const int n = 200;
+  std::vector<int> outer, inner;
+  star_pattern(n, outer, inner);
+  std::vector<int> hub_last(n);
+  std::iota(hub_last.begin(), hub_last.end(), 1);
+  hub_last.back() = 0;
+  // Hub last: each leaf's column holds itself and the hub, no fill.
+  EXPECT_EQ(symbolic_factor_bytes(n, outer, inner, hub_last), (2 * n - 1) * sizeof(double));
+  // Hub first: eliminating it couples every leaf to every other, a dense triangle (supernodal,
+  // so CHOLMOD may pad it; never less than the triangle).
+  std::vector<int> hub_first(n);
+  std::iota(hub_first.begin(), hub_first.end(), 0);
+  EXPECT_GE(symbolic_factor_bytes(n, outer, inner, hub_first),
+            static_cast<std::size_t>(n) * (n + 1) / 2 * sizeof(double));
+  EXPECT_THROW(symbolic_factor_bytes(n, outer, inner, std::vector<int>(n - 1)),
+               std::invalid_argument);
+}
+
+TEST(SparseCholesky, SymbolicFactorSizeIsTheNumericFactorsSize) {
+  for (const int n : {4, 14}) {  // simplicial and supernodal
+    const auto lower = grid_system(n, 1.0, 0.1);
+    auto order = std::make_shared<std::vector<int>>(lower.rows());
+    std::iota(order->rbegin(), order->rend(), 0);  // reversed: any fixed permutation will do
+    SparseCholesky cholesky(order);
+    ASSERT_TRUE(cholesky.factorize(lower));
+    const std::vector<int> outer(lower.outerIndexPtr(), lower.outerIndexPtr() + lower.cols() + 1);
+    const std::vector<int> inner(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros());
+    EXPECT_EQ(symbolic_factor_bytes(static_cast<int>(lower.rows()), outer, inner, *order),
+              cholesky.factor_bytes())
+        << n;
+    EXPECT_GT(cholesky.factor_bytes(), lower.nonZeros() * sizeof(double)) << n;  // it fills in
+  }
+}
+
+// Keeps the first system's factor size, solving by the model's own ordering as the
+// environment does.
+class FactorSizeRecorder final : public LinearSystemSolver {
+ public:
+  explicit FactorSizeRecorder(const Model& model) : cholesky_(model.ordering()) {}
+  bool factorize(const Eigen::SparseMatrix<double>& lower) override {
+    const bool ok = cholesky_.factorize(lower);
+    if (first_bytes_ == 0) first_bytes_ = cholesky_.factor_bytes();
+    return ok;
+  }
+  bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) override {
+    return cholesky_.solve(rhs, x);
+  }
+  std::string failure() const override { return cholesky_.failure(); }
+  bool refuses_indefinite() const override { return true; }
+  std::size_t first_bytes() const { return first_bytes_; }
+
+ private:
+  SparseCholesky cholesky_;
+  std::size_t first_bytes_ = 0;
+};
+
+TEST(SparseCholesky, AModelsContactFreeFactorSizeIsItsFirstSystemsFactor) {
+  // Two soft boxes apart, one of them pinned by a face to a kinematic plate, and an affine box:
+  // free, prescribed and 12-DOF blocks, no contact in the first step.
+  SceneDescription scene;
+  scene.bodies.push_back(testing::soft_box("free", Eigen::Vector3d(0.04, 0.03, 0.02), 0.005,
+                                           Eigen::Vector3d::Zero(), 1e5));
+  BodyDescription pinned = testing::soft_box("pinned", Eigen::Vector3d(0.03, 0.03, 0.03), 0.006,
+                                             Eigen::Vector3d(0.2, 0.0, 0.0), 1e6);
+  scene.bodies.push_back(testing::rigid_box("plate", BodyType::kKinematic,
+                                            Eigen::Vector3d(0.05, 0.05, 0.005),
+                                            Eigen::Vector3d(0.2, 0.0, 0.02)));
+  Pin pin;
+  pin.kinematic_body = 1;
+  for (Eigen::Index v = 0; v < pinned.vertices.rows(); ++v) {
+    if (pinned.vertices(v, 2) > 0.0149) pin.vertices.push_back(static_cast<int>(v));
+  }
+  ASSERT_FALSE(pin.vertices.empty());
+  pinned.pins = {pin};
+  scene.bodies.push_back(pinned);
+  scene.bodies.push_back(testing::rigid_box("affine", BodyType::kAffine,
+                                            Eigen::Vector3d::Constant(0.02),
+                                            Eigen::Vector3d(-0.2, 0.0, 0.0)));
+  Environment env(Model::build(scene));
+  auto recorder = std::make_shared<FactorSizeRecorder>(env.model());
+  env.use_linear_solver(recorder, 0);
+  ASSERT_TRUE(env.step()) << env.failure();
+  EXPECT_GT(recorder->first_bytes(), 0u);
+  EXPECT_EQ(env.model().contact_free_factor_bytes(), recorder->first_bytes());
 }
 
 }  // namespace

@@ -17,6 +17,8 @@ int bench_linear(const BenchLinearArgs& args) {
     const farm::PetscSession petsc_session(args.petsc_options);
     farm::PetscSystemSolver petsc(MPI_COMM_WORLD);
     bench::LinearBenchmarkOptions options;
+    options.source = args.system == "squeeze" ? bench::LinearSystemSource::kSqueeze
+                                              : bench::LinearSystemSource::kBimanualTrial;
     options.cells = args.cells;
     options.repeats = args.repeats;
     const bench::LinearBenchmarkResult result =
