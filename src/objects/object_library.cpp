@@ -65,6 +65,12 @@ const std::vector<CategoryInfo>& categories() {
       {ObjectCategory::kPlate,
        "plate",
        {{"size_x", 0.08, 0.20}, {"size_y", 0.06, 0.15}, {"thickness", 0.004, 0.012}}},
+      // A fin-ray gripper opens to 85 mm and a LEAP hand closes around about 10 cm: at most
+      // 7 cm across, with the synthesis margin to spare.
+      {ObjectCategory::kBar,
+       "bar",
+       {{"length", 0.20, 0.60}, {"width", 0.03, 0.07}, {"height", 0.03, 0.07}}},
+      {ObjectCategory::kRod, "rod", {{"radius", 0.015, 0.035}, {"length", 0.25, 0.60}}},
   };
   return kCategories;
 }
@@ -257,6 +263,10 @@ double thinnest_feature(const ObjectShape& shape) {
       return p[1];
     case ObjectCategory::kPlate:
       return p[2];
+    case ObjectCategory::kBar:
+      return std::min(p[1], p[2]);
+    case ObjectCategory::kRod:
+      return p[0];  // a long rod's round section needs a few tets across its radius
   }
   throw std::invalid_argument("unknown object category");
 }
@@ -293,7 +303,10 @@ SurfaceMesh generate_surface(const ObjectShape& shape, int segments) {
     case ObjectCategory::kBowl:
       return bowl(p[0], p[1], segments);
     case ObjectCategory::kPlate:
+    case ObjectCategory::kBar:
       return box(p[0], p[1], p[2]);
+    case ObjectCategory::kRod:
+      return cylinder(p[0], p[1], segments);
   }
   throw std::invalid_argument("unknown object category");
 }

@@ -24,6 +24,10 @@ enum class ObjectCategory {
   kMug,
   kBowl,
   kPlate,
+  // Large enough to need two grippers (GRIP's bimanual half), yet thin enough across for one
+  // gripper or hand to close on: a long bar (box) and a long rod (cylinder).
+  kBar,
+  kRod,
 };
 
 struct ParameterRange {

@@ -61,7 +61,9 @@ std::vector<ObjectShape> compact_shapes() {
           {ObjectCategory::kCup, {0.03, 0.06, 0.008, 0.01}},
           {ObjectCategory::kMug, {0.035, 0.08, 0.008, 0.01, 0.018, 0.007}},
           {ObjectCategory::kBowl, {0.05, 0.008}},
-          {ObjectCategory::kPlate, {0.08, 0.06, 0.012}}};
+          {ObjectCategory::kPlate, {0.08, 0.06, 0.012}},
+          {ObjectCategory::kBar, {0.2, 0.03, 0.03}},
+          {ObjectCategory::kRod, {0.015, 0.25}}};
 }
 
 TEST(ObjectsObjectTetrahedralizeTest, EveryCategoryMeshesWithoutInvertedOrSliverTets) {

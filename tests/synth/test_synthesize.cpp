@@ -1,11 +1,15 @@
 // Tests of the entry points `grip synth` uses: the object spec and bimanual synthesis end to
 // end (two rigid parallel-jaw grippers on a box), whose hands keep their clearance from the
-// object and from each other.
+// object and from each other, and the large categories that bimanual jobs grasp.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "src/geometry/mesh_io.hpp"
 #include "src/geometry/primitives.hpp"
@@ -57,6 +61,34 @@ TEST(SynthSynthesizeTest, BimanualParallelJawsKeepClearOfObjectAndEachOther) {
     EXPECT_GE(testing::brute_force_distance(right, left, 0.01),
               params.bimanual.hand_clearance - 1e-12);
     EXPECT_EQ(testing::mesh_intersections(right, left), 0);
+  }
+}
+
+// The library's large categories, bar and rod, are what bimanual jobs need: 20-60 cm long,
+// 3-7 cm across, so that both a pair of fin-ray grippers (85 mm jaws) and a right and a left
+// LEAP hand find candidates on them.
+TEST(SynthSynthesizeTest, TheLargeCategoriesTakeBimanualFinRayAndHandCandidates) {
+  for (const char* category : {"bar", "rod"}) {
+    for (const std::uint64_t seed : {1, 2}) {
+      const std::string name = std::string(category) + "/" + std::to_string(seed);
+      const geometry::SurfaceMesh surface = load_object(category, seed);
+      const Eigen::Vector3d extent =
+          surface.vertices.colwise().maxCoeff() - surface.vertices.colwise().minCoeff();
+      std::array<double, 3> sides = {extent.x(), extent.y(), extent.z()};
+      std::sort(sides.begin(), sides.end());
+      EXPECT_GE(sides[2], 0.2) << name;
+      EXPECT_LE(sides[1], 0.07 + 1e-9) << name;
+      const PreparedObject object(surface);
+      const SynthesisParams params;  // the hand needs its default annealing steps on a rod
+      EXPECT_GE(
+          synthesize(object, grippers::GripperKind::kFinRay, true, params, 1, 2).candidates.size(),
+          1u)
+          << name;
+      EXPECT_GE(
+          synthesize(object, grippers::GripperKind::kLeap, true, params, 1, 1).candidates.size(),
+          1u)
+          << name;
+    }
   }
 }
 
