@@ -175,15 +175,21 @@ void check_off(const std::filesystem::path& file, std::uintmax_t size) {
     }
     in.clear();
     in.seekg(header);
-    if (dimensional) in >> dimension;
+    if (dimensional) {
+      skip_off_comments(in);
+      in >> dimension;
+    }
   } else {  // no keyword: the counts from the start
     in.clear();
     in.seekg(0);
-    skip_off_comments(in);
   }
+  // As CGAL reads them, skipping '#' comments before each.
   long long vertices = 0, faces = 0, edges = 0;
-  in >> vertices >> faces >> edges;  // as CGAL reads them
-  if (!in) return;                   // not counts: CGAL's parser says what is wrong
+  for (long long* count : {&vertices, &faces, &edges}) {
+    skip_off_comments(in);
+    in >> *count;
+  }
+  if (!in) return;  // not counts: CGAL's parser says what is wrong
   const std::string counts =
       std::to_string(vertices) + " vertices and " + std::to_string(faces) + " faces";
   if (vertices < 0 || faces < 0) {
