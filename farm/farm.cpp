@@ -251,13 +251,15 @@ struct UnitRun {
   LiveProgress& progress;
   io::DatasetWriter& writer;
   MPI_Comm comm;
-  // A PETSc group's leader: its group's solver and the models it takes.
-  trial::BigSystemRoute big_systems;
+  // A PETSc group's leader: its group's solver, for its group-only units.
+  std::shared_ptr<solver::LinearSystemSolver> big_system_solver;
 };
 
 // One work unit's trials, its results as the dataset keeps them; each solver step adds the
-// trials that ended to the progress, and rank 0 polls the progress and the journal.
-std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, const UnitRun& run) {
+// trials that ended to the progress, and rank 0 polls the progress and the journal. A
+// group-only unit's systems all go to the leader's group.
+std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, bool group_only,
+                                          const UnitRun& run) {
   std::vector<const synth::Candidate*> candidates;
   for (std::uint64_t id : unit.ids) candidates.push_back(&run.plan.candidates[id]);
   const bool trajectory = run.plan.dataset.candidates[unit.ids.front()].frames;
@@ -271,7 +273,8 @@ std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, const UnitRun& r
   std::vector<io::CandidateResult> results;
   for (trial::TrialOutcome& outcome :
        run.runners.get(unit.object, unit.gripper)
-           .run(candidates, unit.ids, run.threads, trajectory, after_step, run.big_systems)) {
+           .run(candidates, unit.ids, run.threads, trajectory, after_step,
+                group_only ? run.big_system_solver : nullptr)) {
     io::CandidateResult& result = outcome.result;
     if (!run.plan.dataset.candidates[result.record.id].stress) result.stress.reset();
     results.push_back(std::move(result));
@@ -291,15 +294,14 @@ std::vector<char> group_only_units(const std::vector<WorkUnit>& units, const Job
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   if (rank == 0) {
-    const trial::BigSystemRoute rule{nullptr, job.petsc.min_dofs, job.petsc.min_factor_bytes()};
     std::map<std::pair<std::uint32_t, std::uint32_t>, char> by_pair;
     std::size_t count = 0;
     for (std::size_t k = 0; k < units.size(); ++k) {
       const auto pair = std::make_pair(units[k].object, units[k].gripper);
       auto known = by_pair.find(pair);
       if (known == by_pair.end()) {
-        known =
-            by_pair.emplace(pair, rule.too_big(runners.get(pair.first, pair.second).model())).first;
+        const solver::Model& model = runners.get(pair.first, pair.second).model();
+        known = by_pair.emplace(pair, too_big_for_one_rank(job.petsc, model)).first;
       }
       group_only[k] = known->second;
       count += known->second ? units[k].ids.size() : 0;
@@ -338,7 +340,7 @@ RankTrials run_claimed_units(const std::vector<WorkUnit>& units,
     const std::size_t k = queues[queue][claimed];
     std::vector<io::CandidateResult> results;
     try {
-      results = run_unit(units[k], run);
+      results = run_unit(units[k], queue == 1, run);
     } catch (const std::exception& e) {
       mine.error = trial_failure(rank, units[k], run.plan, run.job, e.what());
       break;
@@ -387,7 +389,7 @@ void run_trials(const FarmOptions& options, const FarmPlan& plan, const Job& job
   if (groups.leader()) {
     // One caller at a time, on this thread (MPI_THREAD_FUNNELED): the leader runs one thread.
     run.threads = 1;
-    run.big_systems = groups.route();
+    run.big_system_solver = groups.leader_solver();
   }
   if (rank == 0 && job.petsc.group_ranks > 0) {
     spdlog::info(

@@ -19,9 +19,13 @@ void check_petsc_groups(const PetscGroupSetting& setting, MPI_Comm comm) {
                             std::to_string(setting.ranks()) + " or more, or ask for fewer ranks");
 }
 
+bool too_big_for_one_rank(const PetscGroupSetting& setting, const solver::Model& model) {
+  if (setting.min_dofs > 0 && model.dof_count() >= setting.min_dofs) return true;
+  return model.contact_free_factor_bytes() >= setting.min_factor_bytes();
+}
+
 PetscGroups::PetscGroups(const PetscGroupSetting& setting,
-                         const std::vector<std::string>& petsc_options, MPI_Comm comm)
-    : min_dofs_(setting.min_dofs), min_factor_bytes_(setting.min_factor_bytes()) {
+                         const std::vector<std::string>& petsc_options, MPI_Comm comm) {
   if (setting.group_ranks == 0) return;
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
@@ -45,9 +49,8 @@ PetscGroups::~PetscGroups() {
   if (group_ != MPI_COMM_NULL) MPI_Comm_free(&group_);
 }
 
-trial::BigSystemRoute PetscGroups::route() const {
-  if (!leader_) return {};
-  return {solver_, min_dofs_, min_factor_bytes_};
+std::shared_ptr<solver::LinearSystemSolver> PetscGroups::leader_solver() const {
+  return leader_ ? solver_ : nullptr;
 }
 
 void PetscGroups::serve() {

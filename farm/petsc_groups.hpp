@@ -17,13 +17,19 @@
 #include "farm/job.hpp"
 #include "farm/petsc/petsc_session.hpp"
 #include "farm/petsc/petsc_system_solver.hpp"
-#include "src/trial/trial_protocol.hpp"
+#include "solver/linear/linear_system_solver.hpp"
+#include "solver/model.hpp"
 
 namespace grip::farm {
 
 // Throws config::ConfigError at the job's key when the groups need more ranks than `comm` has:
 // checked on every rank before any work.
 void check_petsc_groups(const PetscGroupSetting& setting, MPI_Comm comm);
+
+// The job's rule: whether the trials of `model` go to a group, by CHOLMOD's factor of its
+// contact-free pattern (Model::contact_free_factor_bytes, a symbolic analysis) or, if the job
+// sets min_dofs, by its DOFs.
+bool too_big_for_one_rank(const PetscGroupSetting& setting, const solver::Model& model);
 
 class PetscGroups {
  public:
@@ -39,9 +45,8 @@ class PetscGroups {
   // A group member that is not its leader: it serves, and takes no work unit.
   bool member() const { return solver_ && !leader_; }
   bool leader() const { return leader_; }
-  // A leader's: its group's solver and the rule of the job for which models it takes. Other
-  // ranks': no solver.
-  trial::BigSystemRoute route() const;
+  // This rank's group solver if it leads a group, else null.
+  std::shared_ptr<solver::LinearSystemSolver> leader_solver() const;
 
   // A member: takes part in its leader's solves until the leader calls release().
   void serve();
@@ -55,8 +60,6 @@ class PetscGroups {
   MPI_Comm group_ = MPI_COMM_NULL;
   std::shared_ptr<PetscSystemSolver> solver_;
   bool leader_ = false;
-  int min_dofs_ = 0;
-  std::size_t min_factor_bytes_ = 0;
 };
 
 }  // namespace grip::farm

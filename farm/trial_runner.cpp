@@ -78,7 +78,7 @@ const solver::Model& TrialRunner::model() const {
 std::vector<trial::TrialOutcome> TrialRunner::run(
     const std::vector<const synth::Candidate*>& candidates, const std::vector<std::uint64_t>& ids,
     int threads, bool trajectory, std::function<void(std::size_t)> after_step,
-    trial::BigSystemRoute big_systems) const {
+    std::shared_ptr<solver::LinearSystemSolver> big_system_solver) const {
   const std::size_t hands = bimanual_ ? 2 : 1;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     if (candidates[k]->hands.size() != hands) {
@@ -94,7 +94,7 @@ std::vector<trial::TrialOutcome> TrialRunner::run(
   options.ids = ids;
   options.max_active = 2 * threads;  // enough to keep every thread busy while others freeze
   options.after_step = std::move(after_step);
-  options.big_systems = std::move(big_systems);
+  options.big_system_solver = std::move(big_system_solver);
   if (auto* parallel = std::get_if<std::unique_ptr<trial::TrialScene>>(&scene_->scene)) {
     if (bimanual_) {
       return trial::run_bimanual_trials(**parallel, two_hands(candidates, parallel_grasp), options);

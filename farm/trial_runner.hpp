@@ -9,12 +9,13 @@
 #include <vector>
 
 #include "io/gripper_record.hpp"
+#include "solver/linear/linear_system_solver.hpp"
+#include "solver/model.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/synth/candidate.hpp"
 #include "src/trial/trial_object.hpp"
 #include "src/trial/trial_outcome.hpp"
 #include "src/trial/trial_parameters.hpp"
-#include "src/trial/trial_protocol.hpp"
 
 namespace grip::farm {
 
@@ -34,12 +35,11 @@ class TrialRunner {
 
   // The candidates' trials as one solver::Batch on `threads` threads; outcome k carries ids[k].
   // Throws std::invalid_argument for a candidate with other than the runner's number of hands.
-  // after_step and big_systems: trial::TrialRunOptions' (may be empty).
-  std::vector<trial::TrialOutcome> run(const std::vector<const synth::Candidate*>& candidates,
-                                       const std::vector<std::uint64_t>& ids, int threads,
-                                       bool trajectory,
-                                       std::function<void(std::size_t)> after_step = {},
-                                       trial::BigSystemRoute big_systems = {}) const;
+  // after_step and big_system_solver: trial::TrialRunOptions' (may be empty).
+  std::vector<trial::TrialOutcome> run(
+      const std::vector<const synth::Candidate*>& candidates, const std::vector<std::uint64_t>& ids,
+      int threads, bool trajectory, std::function<void(std::size_t)> after_step = {},
+      std::shared_ptr<solver::LinearSystemSolver> big_system_solver = nullptr) const;
 
  private:
   struct Scene;

@@ -77,7 +77,7 @@ NewtonSystem capture_bimanual_trial_system(double cell) {
   trial::TrialRunOptions options;
   options.threads = 1;
   options.trajectory = false;
-  options.big_systems = {recorder, 1, 0};  // every system
+  options.big_system_solver = recorder;
   try {
     const trial::TrialOutcome outcome =
         trial::run_bimanual_trials(scene, {grasps}, options).front();

@@ -132,8 +132,7 @@ class ProtocolRunner {
         options_(options),
         fingers_(gripper.finger_count()),
         batch_(options.threads),
-        arena_(batch_.threads()),
-        big_systems_(options.big_systems.solver && options.big_systems.too_big(*gripper.model())) {
+        arena_(batch_.threads()) {
     steps_per_phase_ = static_cast<int>(phase_steps(p_));
     max_steps_per_phase_ = steps_per_phase_ + static_cast<int>(rest_steps(p_));
   }
@@ -171,7 +170,7 @@ class ProtocolRunner {
   void add(std::size_t k) {
     const int i = batch_.add(gripper_.model());
     solver::Environment& env = batch_.environment(i);
-    if (big_systems_) env.use_linear_solver(options_.big_systems.solver, 0);
+    if (options_.big_system_solver) env.use_linear_solver(options_.big_system_solver, 0);
     std::vector<double> max_travel;
     try {
       max_travel = gripper_.place(env, k);
@@ -623,7 +622,6 @@ class ProtocolRunner {
   int fingers_ = 0;
   solver::Batch batch_;
   tbb::task_arena arena_;
-  bool big_systems_ = false;  // every environment's systems go to options_.big_systems.solver
   int steps_per_phase_ = 1;
   int max_steps_per_phase_ = 1;  // with the wait for rest
   std::vector<TrialState> states_;
@@ -632,18 +630,13 @@ class ProtocolRunner {
 
 }  // namespace
 
-bool BigSystemRoute::too_big(const solver::Model& model) const {
-  if (min_dofs > 0 && model.dof_count() >= min_dofs) return true;
-  return min_factor_bytes > 0 && model.contact_free_factor_bytes() >= min_factor_bytes;
-}
-
 std::vector<TrialOutcome> run_protocol(const TrialGripper& gripper,
                                        const TrialRunOptions& options) {
   if (!options.ids.empty() && options.ids.size() != gripper.candidate_count()) {
     throw std::invalid_argument("run_trials: " + std::to_string(options.ids.size()) + " ids for " +
                                 std::to_string(gripper.candidate_count()) + " candidates");
   }
-  if (options.big_systems.solver && options.threads != 1) {
+  if (options.big_system_solver && options.threads != 1) {
     throw std::invalid_argument("run_trials: a big-system solver needs threads = 1, not " +
                                 std::to_string(options.threads));
   }

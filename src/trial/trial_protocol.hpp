@@ -22,19 +22,6 @@
 
 namespace grip::trial {
 
-// Which trials' Newton systems go to another solver than their environments' own CHOLMOD (the
-// farm's PETSc group): every system of a model with at least min_dofs DOFs, or whose
-// contact-free CHOLMOD factor (Model::contact_free_factor_bytes) has at least min_factor_bytes.
-struct BigSystemRoute {
-  std::shared_ptr<solver::LinearSystemSolver> solver;  // null: CHOLMOD solves every system
-  int min_dofs = 0;                                    // 0: no rule on DOFs
-  std::size_t min_factor_bytes = 0;                    // 0: no rule on the factor's size
-
-  // Whether the rule sends `model`'s environments to a solver (whether or not one is set). The
-  // factor rule costs a symbolic analysis.
-  bool too_big(const solver::Model& model) const;
-};
-
 struct TrialRunOptions {
   int threads = 0;           // the batch's threads; 0: all cores. Results do not depend on it.
   bool trajectory = true;    // fill CandidateResult::trajectory
@@ -46,9 +33,10 @@ struct TrialRunOptions {
   // Called on the calling thread after every step of the batch with how many of its trials
   // have ended so far (the farm's live progress). Results do not depend on it.
   std::function<void(std::size_t ended)> after_step;
-  // The solver for the systems too big for CHOLMOD (the farm's PETSc group). It serves one
-  // system at a time and may talk MPI: with a solver, threads must be 1.
-  BigSystemRoute big_systems;
+  // Every Newton system of these trials goes to this solver instead of their environments' own
+  // CHOLMOD (the farm's PETSc group, for a model too big for one rank). It serves one system at
+  // a time and may talk MPI: it needs threads = 1. Null: CHOLMOD solves every system.
+  std::shared_ptr<solver::LinearSystemSolver> big_system_solver;
 };
 
 // One gripper's side of a batch of trials: its scene (object, fingers, measurements) and its
