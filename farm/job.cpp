@@ -163,7 +163,7 @@ void read_trial(const Table& t, trial::TrialParameters& p) {
   t.allow({"placement_gap", "squeeze_speed", "grip_force", "final_opening", "finger_stiffness",
            "hand_drive_stiffness", "settle_speed", "settle_angular_speed", "force_tolerance",
            "settle_steps", "settle_max_steps", "gravity", "phase_duration", "rest_duration",
-           "displacement_factor", "metric_samples", "finger_friction"});
+           "displacement_factor", "object_damping", "metric_samples", "finger_friction"});
   p.placement_gap = t.number_or("placement_gap", p.placement_gap);
   if (!(p.placement_gap >= 1.0)) t.fail("placement_gap", "must be at least 1 (times d_hat)");
   p.squeeze_speed = positive(t, "squeeze_speed", p.squeeze_speed);
@@ -185,6 +185,10 @@ void read_trial(const Table& t, trial::TrialParameters& p) {
     t.fail("rest_duration", "must be a non-negative time (s)");
   }
   p.displacement_factor = positive(t, "displacement_factor", p.displacement_factor);
+  p.object_damping = t.number_or("object_damping", p.object_damping);
+  if (!(p.object_damping >= 0 && std::isfinite(p.object_damping))) {
+    t.fail("object_damping", "must be a non-negative time (s, Rayleigh beta)");
+  }
   p.metric_samples = positive_integer(t, "metric_samples", p.metric_samples);
   if (p.metric_samples > trial::kMaxMetricSamples) {
     t.fail("metric_samples", "is " + std::to_string(p.metric_samples) +
@@ -492,7 +496,9 @@ std::vector<io::Parameter> resolved_parameters(const Job& job) {
   add("trial.settle_max_steps", t.settle_max_steps);
   add("trial.gravity", t.gravity_magnitude);
   add("trial.phase_duration", t.phase_duration);
+  add("trial.rest_duration", t.rest_duration);
   add("trial.displacement_threshold", t.displacement_threshold());
+  add("trial.object_damping", t.object_damping);
   add("trial.metric_samples", t.metric_samples);
   add("trial.finger_friction", t.rigid_finger_friction);
   add("synthesis.steps", job.synthesis_steps);

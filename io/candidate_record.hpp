@@ -47,8 +47,12 @@ struct CandidateRecord {
   FailureKind failure = FailureKind::kNone;
   double d1 = 0;  // m, penetration depth (paper Eq. D1)
   double d2 = 0;  // m, absolute gripper-object distance (paper Eq. D2)
-  // m, centre-of-mass displacement at the end of each gravity phase: +x, -x, +y, -y, +z, -z.
+  // m, how far the object slipped in the gripper by the end of each gravity phase: +x, -x, +y,
+  // -y, +z, -z.
   std::array<double, 6> displacement{};
+  // s, how long each gravity phase ran: phase_duration plus the wait for the object to come to
+  // rest; the verdict's threshold grows with the time under gravity (TrialParameters).
+  std::array<double, 6> phase_seconds{};
   std::vector<double> closing_forces;  // N, per finger per hand, when the squeeze settled
   double contact_friction = 0;         // mu of the finger-object contact pairs
   NewtonStatistics newton;

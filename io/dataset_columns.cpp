@@ -141,6 +141,8 @@ constexpr std::array kColumns = {
     Column{"d2", P::kResult, E::kFloat64, F::kNaN, one_value, record_field<&CandidateRecord::d2>()},
     Column{"displacement", P::kResult, E::kFloat64, F::kNaN, gravity_phases,
            record_field<&CandidateRecord::displacement>()},
+    Column{"phase_seconds", P::kResult, E::kFloat64, F::kNaN, gravity_phases,
+           record_field<&CandidateRecord::phase_seconds>()},
     Column{"closing_forces", P::kResult, E::kFloat64, F::kNaN, table_fingers,
            record_field<&CandidateRecord::closing_forces>(), finger_values},
     Column{"contact_friction", P::kResult, E::kFloat64, F::kNaN, one_value,

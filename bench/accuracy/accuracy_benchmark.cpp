@@ -115,7 +115,9 @@ void write_markdown(const fs::path& path, const std::vector<AccuracyRow>& rows,
      << ", on a shared, noisy machine; the Pareto fronts use the CPU time, which other "
         "processes' load moves far less. Errors are means over the scene's candidates "
         "against the reference run; verdicts count the candidates whose held/not held agrees "
-        "with the reference's (judged by the default threshold, 1 mm).\n\n"
+        "with the reference's (judged by the reference's threshold: 1 mm plus eps_v x the time "
+        "under "
+        "gravity).\n\n"
      << accuracy_settings_text() << "\n\nScenes:\n\n";
   for (const AccuracyScene& s : scenes) {
     md << "- **" << s.name << "**: " << s.setup << "; mesh sweep: " << s.mesh_setting << ".\n";
@@ -266,7 +268,7 @@ std::vector<AccuracyRow> run_accuracy(const AccuracyOptions& options) {
       }
     }
 
-    const double threshold = scene.parameters.displacement_threshold();
+    const trial::TrialParameters& judge = scene.parameters;
     const int frames = scene.parameters.validation_frames + 1;
     const auto measured = [&](AccuracyRow& row, const Point& p) {
       std::vector<double> cpu;
@@ -279,7 +281,7 @@ std::vector<AccuracyRow> run_accuracy(const AccuracyOptions& options) {
       for (const trial::TrialOutcome& o : p.repeats.front().outcomes) {
         row.newton_iterations += o.result.record.newton.iterations;
         row.steps += o.result.record.newton.steps;
-        row.held += held(o.result.record, threshold);
+        row.held += held(o.result.record, judge);
       }
     };
     const Point& reference = points.front();
@@ -288,7 +290,7 @@ std::vector<AccuracyRow> run_accuracy(const AccuracyOptions& options) {
     reference_row.sweep = "reference";
     measured(reference_row, reference);
     reference_row.error = run_error(reference.repeats.front().outcomes,
-                                    reference.repeats.front().outcomes, frames, threshold);
+                                    reference.repeats.front().outcomes, frames, judge);
     const std::size_t first = rows.size();
     rows.push_back(reference_row);
     for (const Planned& plan : planned) {
@@ -309,7 +311,7 @@ std::vector<AccuracyRow> run_accuracy(const AccuracyOptions& options) {
                                               ->point]
                                  : reference;
       row.error = run_error(points[plan.point].repeats.front().outcomes,
-                            against.repeats.front().outcomes, frames, threshold);
+                            against.repeats.front().outcomes, frames, judge);
       rows.push_back(row);
     }
     // Fronts: per sweep, and over every numerical setting of the scene (each point once).

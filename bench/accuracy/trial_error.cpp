@@ -61,16 +61,16 @@ void add(double value, double& sum, int& count) {
 
 }  // namespace
 
-bool held(const io::CandidateRecord& record, double threshold) {
+bool held(const io::CandidateRecord& record, const trial::TrialParameters& judge) {
   if (record.failure != io::FailureKind::kNone && record.failure != io::FailureKind::kDisplaced)
     return false;
-  return *std::max_element(record.displacement.begin(), record.displacement.end()) < threshold;
+  return !trial::slipped_beyond_threshold(judge, record.displacement, record.phase_seconds);
 }
 
 TrialError trial_error(const io::CandidateResult& run, const io::CandidateResult& reference,
-                       int frames, double threshold) {
+                       int frames, const trial::TrialParameters& judge) {
   TrialError error;
-  error.verdict_agrees = held(run.record, threshold) == held(reference.record, threshold);
+  error.verdict_agrees = held(run.record, judge) == held(reference.record, judge);
   error.slip = 0;
   for (int phase = 0; phase < 6; ++phase) {
     const double a = run.record.displacement[phase], b = reference.record.displacement[phase];
@@ -111,7 +111,7 @@ TrialError trial_error(const io::CandidateResult& run, const io::CandidateResult
 
 RunError run_error(const std::vector<trial::TrialOutcome>& run,
                    const std::vector<trial::TrialOutcome>& reference, int frames,
-                   double threshold) {
+                   const trial::TrialParameters& judge) {
   if (run.size() != reference.size()) {
     throw std::invalid_argument("run_error: the run and its reference differ in candidates");
   }
@@ -120,7 +120,7 @@ RunError run_error(const std::vector<trial::TrialOutcome>& run,
   double sums[4] = {0, 0, 0, 0};
   int counts[4] = {0, 0, 0, 0};
   for (std::size_t k = 0; k < run.size(); ++k) {
-    const TrialError e = trial_error(run[k].result, reference[k].result, frames, threshold);
+    const TrialError e = trial_error(run[k].result, reference[k].result, frames, judge);
     add(e.translation, sums[0], counts[0]);
     add(e.rotation, sums[1], counts[1]);
     add(e.slip, sums[2], counts[2]);

@@ -6,6 +6,7 @@
 
 #include "io/candidate_record.hpp"
 #include "src/trial/trial_outcome.hpp"
+#include "src/trial/trial_parameters.hpp"
 
 namespace grip::bench {
 
@@ -30,19 +31,20 @@ struct RunError {
   int candidates = 0;
 };
 
-// Whether the protocol holds the grasp, judged with `threshold` (m) on the recorded
-// displacements: a run whose dt or eps_v moved the protocol's own threshold is judged by the
-// same bar as the reference.
-bool held(const io::CandidateRecord& record, double threshold);
+// Whether the protocol holds the grasp, judged by `judge`'s verdict threshold
+// (trial::slipped_beyond_threshold) on the recorded displacements and phase times: a run whose
+// dt or eps_v moved the protocol's own threshold is judged by the same bar as the reference.
+bool held(const io::CandidateRecord& record, const trial::TrialParameters& judge);
 
 // Compares the last `frames` recorded frames of each trajectory (validation_frames + 1: the
 // settled grasp, then the validation frames). An unreached phase's displacement (NaN) against
 // a reached one counts as the reached one's whole displacement.
 TrialError trial_error(const io::CandidateResult& run, const io::CandidateResult& reference,
-                       int frames, double threshold);
+                       int frames, const trial::TrialParameters& judge);
 
 // Throws std::invalid_argument unless both runs hold the same number of candidates.
 RunError run_error(const std::vector<trial::TrialOutcome>& run,
-                   const std::vector<trial::TrialOutcome>& reference, int frames, double threshold);
+                   const std::vector<trial::TrialOutcome>& reference, int frames,
+                   const trial::TrialParameters& judge);
 
 }  // namespace grip::bench

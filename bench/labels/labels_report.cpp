@@ -141,7 +141,8 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
   const trial::TrialParameters& r = result.reference;
   md << "# grip bench labels\n\nDefaults: dt " << d.sim.dt << " s, newton_tol " << d.sim.newton_tol
      << ", " << d.sim.friction_lag_iterations << " friction lag iteration(s), verdict threshold "
-     << d.displacement_threshold() * 1e3 << " mm. Reference: dt " << r.sim.dt << " s, newton_tol "
+     << d.displacement_threshold() * 1e3
+     << " mm plus eps_v x the time under gravity. Reference: dt " << r.sim.dt << " s, newton_tol "
      << r.sim.newton_tol << ", " << r.sim.friction_lag_iterations
      << " friction lag iterations, the same threshold (" << r.displacement_threshold() * 1e3
      << " mm). Grip force " << d.grip_force << " N, tolerance " << d.force_tolerance * 100 << " %. "
@@ -159,7 +160,7 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
   csv << "arm,category,seed,candidate,verdict,verdict_reference,closed,closing_forces_n,"
          "settle_displacement_mm,slip_mm,center_displacement_mm,slip_reference_mm,"
          "closing_forces_reference_n,settle_displacement_reference_mm,end_speed_mm_s,"
-         "end_speed_reference_mm_s\n";
+         "end_speed_reference_mm_s,gravity_s,gravity_reference_s,slip_ratio,slip_ratio_reference\n";
   for (const LabelsArmResult& arm : result.arms) {
     for (const LabelsPair& pair : pair_trials(arm)) {
       const RobustnessTrial& t = *pair.defaults;
@@ -174,7 +175,10 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
           << (pair.reference ? fixed_or_dash(pair.reference->settle_displacement * 1e3, 4) : "-")
           << ',' << fixed_or_dash(t.largest_end_speed * 1e3, 3) << ','
           << (pair.reference ? fixed_or_dash(pair.reference->largest_end_speed * 1e3, 3) : "-")
-          << '\n';
+          << ',' << fixed_or_dash(t.gravity_seconds, 3) << ','
+          << (pair.reference ? fixed_or_dash(pair.reference->gravity_seconds, 3) : "-") << ','
+          << fixed_or_dash(t.largest_slip_ratio, 4) << ','
+          << (pair.reference ? fixed_or_dash(pair.reference->largest_slip_ratio, 4) : "-") << '\n';
     }
   }
 }

@@ -1,10 +1,11 @@
 #!/usr/bin/python3
-"""Plot `grip bench labels`'s CSV: left, each candidate's slip at the defaults against the
-reference, one colour per arm, the verdict's threshold as lines (points in the off-diagonal
-quadrants are verdicts that disagree; candidates that never reached the gravity test are left
-out); right, the closing forces of the fingers in contact at the end of closing, per arm.
-Writes labels.png into OUT_DIR.
-Usage: plot_labels.py labels.csv OUT_DIR [THRESHOLD_MM] (Debian: python3-matplotlib)."""
+"""Plot `grip bench labels`'s CSV: left, each candidate's slip over the verdict's threshold
+(largest over the gravity phases: 1 mm plus eps_v x the time under gravity by the phase's end)
+at the defaults against the reference, one colour per arm, 1 as lines (points in the
+off-diagonal quadrants are verdicts that disagree; candidates that never reached the gravity test
+are left out); right, the closing forces of the fingers in contact at the end of closing, per
+arm. Writes labels.png into OUT_DIR.
+Usage: plot_labels.py labels.csv OUT_DIR (Debian: python3-matplotlib)."""
 import csv
 import os
 import sys
@@ -23,11 +24,11 @@ def number(text):
 
 
 def main():
-    if len(sys.argv) not in (3, 4):
+    if len(sys.argv) != 3:
         sys.exit(__doc__)
     with open(sys.argv[1], newline="") as f:
         rows = list(csv.DictReader(f))
-    threshold = float(sys.argv[3]) if len(sys.argv) == 4 else 1.0
+    threshold = 1.0  # slip over the verdict's threshold
     arms = []
     for r in rows:
         if r["arm"] not in arms:
@@ -37,7 +38,7 @@ def main():
     forces = []
     for k, arm in enumerate(arms):
         mine = [r for r in rows if r["arm"] == arm]
-        points = [(number(r["slip_mm"]), number(r["slip_reference_mm"])) for r in mine]
+        points = [(number(r["slip_ratio"]), number(r["slip_ratio_reference"])) for r in mine]
         points = [(a, b) for a, b in points if a == a and b == b]
         if points:
             slip_ax.scatter([max(a, 1e-4) for a, _ in points], [max(b, 1e-4) for _, b in points],
@@ -53,8 +54,8 @@ def main():
                      right=max(slip_ax.get_xlim()[1], threshold * 100))
     slip_ax.set_ylim(bottom=min(slip_ax.get_ylim()[0], threshold / 100),
                      top=max(slip_ax.get_ylim()[1], threshold * 100))
-    slip_ax.set_xlabel("largest slip at the defaults (mm)")
-    slip_ax.set_ylabel("largest slip at the reference (mm)")
+    slip_ax.set_xlabel("slip over the verdict's threshold, defaults")
+    slip_ax.set_ylabel("slip over the verdict's threshold, reference")
     slip_ax.set_title("verdicts: the same on the diagonal quadrants", fontsize=10)
     slip_ax.legend(fontsize=7)
     slip_ax.grid(alpha=0.3, which="both")

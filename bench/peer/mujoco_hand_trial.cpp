@@ -220,17 +220,19 @@ class HandSimulation {
     record_patch();
     const Eigen::Vector3d center = object_center();
     const long phase_windows = std::lround(p_.phase_duration / p_.sim.dt);
+    bool slipped = false;  // beyond the verdict's threshold for the time under gravity
+    double seconds = 0.0;
     for (const Eigen::Vector3d& axis : trial::kGravityAxes) {
       const Eigen::Vector3d g = p_.gravity_magnitude * axis;
       for (long k = 0; k < phase_windows; ++k) {
         if (!window(g, false)) return unstable(out);
       }
-      out.largest_slip =
-          std::max(out.largest_slip, (object_center() - center - patch_moved()).norm());
+      const double slip = (object_center() - center - patch_moved()).norm();
+      seconds += static_cast<double>(phase_windows) * p_.sim.dt;
+      slipped = slipped || slip >= p_.slip_threshold(seconds);
+      out.largest_slip = std::max(out.largest_slip, slip);
     }
-    out.verdict = !touching_                                       ? "lost_contact"
-                  : out.largest_slip > p_.displacement_threshold() ? "displaced"
-                                                                   : "success";
+    out.verdict = !touching_ ? "lost_contact" : slipped ? "displaced" : "success";
     return finish(out);
   }
 

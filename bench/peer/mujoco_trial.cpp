@@ -165,6 +165,8 @@ class Simulation {
     const double total = mean_force_[0] + mean_force_[1];
     const std::array<double, 2> weight = {mean_force_[0] / total, mean_force_[1] / total};
     const long phase_windows = std::lround(p_.phase_duration / p_.sim.dt);
+    bool slipped = false;  // beyond the verdict's threshold for the time under gravity
+    double seconds = 0.0;
     for (const Eigen::Vector3d& axis : trial::kGravityAxes) {
       const Eigen::Vector3d g = p_.gravity_magnitude * axis;
       for (long k = 0; k < phase_windows; ++k) {
@@ -175,12 +177,12 @@ class Simulation {
         patch +=
             weight[j] * (body_pose(d_, jaw_body_[j]).translation() - out.fingers[j].translation());
       }
-      const Eigen::Vector3d moved = object_center() - center;
-      out.largest_slip = std::max(out.largest_slip, (moved - patch).norm());
+      const double slip = (object_center() - center - patch).norm();
+      seconds += static_cast<double>(phase_windows) * p_.sim.dt;
+      slipped = slipped || slip >= p_.slip_threshold(seconds);
+      out.largest_slip = std::max(out.largest_slip, slip);
     }
-    out.verdict = !touching_                                       ? "lost_contact"
-                  : out.largest_slip > p_.displacement_threshold() ? "displaced"
-                                                                   : "success";
+    out.verdict = !touching_ ? "lost_contact" : slipped ? "displaced" : "success";
     return out;
   }
 

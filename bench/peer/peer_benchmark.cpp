@@ -33,7 +33,8 @@ std::vector<std::string> categories_of(const PeerOptions& options) {
 // A row's grip half: candidate k of the shape, its verdict, D1/D2 and largest slip, and the
 // thread's CPU seconds `grip_cpu_seconds`.
 PeerTrial grip_row(const RobustnessSet& set, std::uint64_t seed, std::size_t k,
-                   const trial::TrialOutcome& outcome, double grip_cpu_seconds) {
+                   const trial::TrialOutcome& outcome, const trial::TrialParameters& parameters,
+                   double grip_cpu_seconds) {
   PeerTrial t;
   t.gripper = set.gripper;
   t.category = set.category;
@@ -44,7 +45,7 @@ PeerTrial grip_row(const RobustnessSet& set, std::uint64_t seed, std::size_t k,
   t.grip_verdict = verdict_text(record);
   t.grip_d1 = record.d1;
   t.grip_d2 = record.d2;
-  t.grip_slip = robustness_trial(set, seed, k, outcome).largest_slip;
+  t.grip_slip = robustness_trial(set, seed, k, outcome, parameters).largest_slip;
   return t;
 }
 
@@ -79,7 +80,8 @@ void run_jaws_shape(const RobustnessSet& set, std::uint64_t seed,
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const double start = process_cpu_seconds();
     const trial::TrialOutcome outcome = scene.run({candidates[k]}, options.threads).front();
-    PeerTrial t = grip_row(set, seed, k, outcome, process_cpu_seconds() - start);
+    PeerTrial t =
+        grip_row(set, seed, k, outcome, options.parameters, process_cpu_seconds() - start);
 
     const synth::HandGrasp& hand = candidates[k].hands.front();
     const MujocoOutcome m = run_mujoco_trial(object.surface, object.material.density, friction,
@@ -110,7 +112,8 @@ void run_hand_shape(const RobustnessSet& set, std::uint64_t seed,
     const trial::HandTrialGrasp grasp{h.pose, h.joints, h.contacts, h.contact_normals};
     const double start = process_cpu_seconds();
     const trial::TrialOutcome outcome = trial::run_hand_trials(scene, {grasp}, run).front();
-    PeerTrial t = grip_row(set, seed, k, outcome, process_cpu_seconds() - start);
+    PeerTrial t =
+        grip_row(set, seed, k, outcome, options.parameters, process_cpu_seconds() - start);
 
     const MujocoHandOutcome m = run_mujoco_hand_trial(object.surface, object.material.density,
                                                       friction, scene, grasp, options.parameters);

@@ -165,7 +165,9 @@ void write_peer_files(const fs::path& out, const PeerResult& result,
      << " (dt 0.001 s, the object's convex hull, multiccd), rigid objects; grip force "
      << p.grip_force << " N, gravity " << p.gravity_magnitude << " m/s^2 for " << p.phase_duration
      << " s along +x, -x, +y, -y, +z, -z; held: still in contact and slip "
-     << "below " << p.displacement_threshold() * 1e3 << " mm. D1/D2 (cm, as the paper's Table "
+     << "below " << p.displacement_threshold() * 1e3 << " mm plus eps_v x the time under gravity ("
+     << p.sim.eps_v * 1e3
+     << " mm per second; the trial's verdict). D1/D2 (cm, as the paper's Table "
      << "I) over the grasps each engine holds, by grip's code at each engine's settled grasp. "
      << "Compared: every candidate grip simulates (its initial_penetration refusals are left "
      << "out). " << result.threads << " thread(s), " << fixed_or_dash(result.wall_seconds / 60, 1)

@@ -81,7 +81,7 @@ struct CategoryRun {
         {set.gripper, set.category, seed, set.soft, static_cast<int>(outcomes.size())});
     std::map<io::FailureKind, int> counts;
     for (std::size_t k = 0; k < outcomes.size(); ++k) {
-      result.trials.push_back(robustness_trial(set, seed, k, outcomes[k]));
+      result.trials.push_back(robustness_trial(set, seed, k, outcomes[k], parameters));
       ++counts[result.trials.back().failure];
     }
     std::string summary;

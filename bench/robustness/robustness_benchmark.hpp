@@ -74,8 +74,12 @@ struct RobustnessTrial {
   bool closed = false;                    // closing ended (trial::TrialOutcome::closed)
   double settle_displacement = 0.0;       // m; NaN if it did not settle
   double largest_slip = 0.0;  // m, the verdict's, over the gravity phases run; NaN if none
+  // The largest slip over the verdict's threshold at a phase's end (trial::slip_over_threshold):
+  // at least 1 if it slipped; NaN if no gravity phase ran.
+  double largest_slip_ratio = 0.0;
   double largest_center_displacement = 0.0;  // m, the centre of mass's (sag and slip); NaN if none
   double largest_end_speed = 0.0;  // m/s, trial::TrialOutcome::end_speed's largest; NaN if none
+  double gravity_seconds = 0.0;    // s, the gravity phases' time together (phase_seconds' sum)
 };
 
 // "success" or the trial's failure kind.

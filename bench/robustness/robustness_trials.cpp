@@ -73,6 +73,15 @@ double largest_measured(const std::array<double, 6>& values) {
   return most;
 }
 
+// The sum of the values measured (not NaN): 0 if none.
+double measured_sum(const std::array<double, 6>& values) {
+  double sum = 0.0;
+  for (const double d : values) {
+    if (!std::isnan(d)) sum += d;
+  }
+  return sum;
+}
+
 }  // namespace
 
 std::string robustness_object_model(bool soft, bool production_models) {
@@ -132,6 +141,10 @@ RobustnessScene::RobustnessScene(const RobustnessSet& set, const trial::TrialObj
 
 RobustnessScene::~RobustnessScene() = default;
 
+const trial::TrialParameters& RobustnessScene::parameters() const {
+  return hand_ ? hand_->parameters() : parallel_->parameters();
+}
+
 std::vector<trial::TrialOutcome> RobustnessScene::run(
     const std::vector<synth::Candidate>& candidates, int threads) const {
   trial::TrialRunOptions options;
@@ -153,7 +166,8 @@ std::vector<trial::TrialOutcome> RobustnessScene::run(
 }
 
 RobustnessTrial robustness_trial(const RobustnessSet& set, std::uint64_t seed, std::uint64_t k,
-                                 const trial::TrialOutcome& outcome) {
+                                 const trial::TrialOutcome& outcome,
+                                 const trial::TrialParameters& parameters) {
   const io::CandidateRecord& record = outcome.result.record;
   return {set.gripper,
           set.category,
@@ -169,8 +183,10 @@ RobustnessTrial robustness_trial(const RobustnessSet& set, std::uint64_t seed, s
           outcome.closed,
           outcome.settle_displacement,
           largest_measured(record.displacement),
+          trial::slip_over_threshold(parameters, record.displacement, record.phase_seconds),
           largest_measured(outcome.center_displacement),
-          largest_measured(outcome.end_speed)};
+          largest_measured(outcome.end_speed),
+          measured_sum(record.phase_seconds)};
 }
 
 }  // namespace grip::bench

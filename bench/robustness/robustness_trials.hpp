@@ -46,14 +46,16 @@ class RobustnessScene {
   // trajectories. Throws std::out_of_range for a candidate the gripper cannot take.
   std::vector<trial::TrialOutcome> run(const std::vector<synth::Candidate>& candidates,
                                        int threads) const;
+  const trial::TrialParameters& parameters() const;
 
  private:
   std::unique_ptr<trial::TrialScene> parallel_;  // rigid jaws, fin-ray
   std::unique_ptr<trial::HandTrialScene> hand_;  // leap
 };
 
-// Candidate k of the set's shape of `seed`, as its trial ended.
+// Candidate k of the set's shape of `seed`, as its trial under `parameters` ended.
 RobustnessTrial robustness_trial(const RobustnessSet& set, std::uint64_t seed, std::uint64_t k,
-                                 const trial::TrialOutcome& outcome);
+                                 const trial::TrialOutcome& outcome,
+                                 const trial::TrialParameters& parameters);
 
 }  // namespace grip::bench

@@ -138,7 +138,7 @@ TrialBenchRun run_slot(const TrialBenchSlot& slot, const PlannedArm& arm) {
   run.process_cpu_seconds = clock_seconds(CLOCK_PROCESS_CPUTIME_ID) - process_start;
   run.slot = slot;
   run.trial = robustness_trial(set_of(arm.plan.arm, c.category, arm.production_models), c.seed,
-                               c.candidate, outcomes.front());
+                               c.candidate, outcomes.front(), scene.parameters());
   run.displacement = outcomes.front().result.record.displacement;
   run.stages = outcomes.front().stage_seconds;
   return run;

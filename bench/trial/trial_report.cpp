@@ -200,7 +200,8 @@ void write_settings(std::ostream& md, const TrialBenchResult& result) {
        << r.sim.newton_tol << ", " << r.sim.friction_lag_iterations
        << " friction lag iterations, the same verdict threshold ("
        << r.displacement_threshold() * 1e3
-       << " mm), each candidate once; the same verdict is held at both or at neither. ";
+       << " mm plus eps_v x the time under gravity), each candidate once; the same verdict is held "
+          "at both or at neither. ";
   } else {
     md << "No reference runs. ";
   }

@@ -49,22 +49,24 @@ const Eigen::SparseMatrix<double>& SparseAssembly::assemble(
 
 void SparseAssembly::build_pattern(int n, const std::vector<Eigen::Triplet<double>>& triplets,
                                    bool grow) {
-  pattern_.clear();
+  // Scratch, freed on return: a pattern is built rarely (the first iterations of a scene, and when
+  // contacts add entries), and kept it would cost as much memory as the triplets, per environment.
+  std::vector<Eigen::Triplet<double>> pattern;
   if (grow) {
     for (int col = 0; col < matrix_.outerSize(); ++col) {
       for (Eigen::SparseMatrix<double>::InnerIterator it(matrix_, col); it; ++it) {
-        pattern_.emplace_back(static_cast<int>(it.row()), col, 0.0);
+        pattern.emplace_back(static_cast<int>(it.row()), col, 0.0);
       }
     }
   }
   for (const auto& t : triplets) {
-    if (!is_fixed(t.row()) && !is_fixed(t.col())) pattern_.emplace_back(t.row(), t.col(), 0.0);
+    if (!is_fixed(t.row()) && !is_fixed(t.col())) pattern.emplace_back(t.row(), t.col(), 0.0);
   }
   for (int i = 0; i < n; ++i) {
-    if (is_fixed(i)) pattern_.emplace_back(i, i, 0.0);
+    if (is_fixed(i)) pattern.emplace_back(i, i, 0.0);
   }
   matrix_.resize(n, n);
-  matrix_.setFromTriplets(pattern_.begin(), pattern_.end());
+  matrix_.setFromTriplets(pattern.begin(), pattern.end());
   matrix_.makeCompressed();
   if (!grow) fresh_nonzeros_ = matrix_.nonZeros();
   unit_slots_.clear();

@@ -37,11 +37,10 @@ class SparseAssembly {
 
   Eigen::SparseMatrix<double> matrix_;
   std::vector<char> fixed_;
-  std::vector<long long> positions_;             // the last triplets' (row, col) keys
-  std::vector<int> slot_;                        // each one's triplet_slot
-  std::vector<int> unit_slots_;                  // the fixed DOFs' diagonal entries
-  long long fresh_nonzeros_ = 0;                 // the pattern's size when it was last built fresh
-  std::vector<Eigen::Triplet<double>> pattern_;  // scratch of build_pattern()
+  std::vector<long long> positions_;  // the last triplets' (row, col) keys
+  std::vector<int> slot_;             // each one's triplet_slot
+  std::vector<int> unit_slots_;       // the fixed DOFs' diagonal entries
+  long long fresh_nonzeros_ = 0;      // the pattern's size when it was last built fresh
   int pattern_builds_ = 0;
 };
 

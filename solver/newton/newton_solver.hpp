@@ -41,7 +41,6 @@ struct NewtonStep {
   double standard_weight = 0.0;
   Eigen::VectorXd gradient;
   Eigen::VectorXd kinematic_force;
-  std::vector<Eigen::Triplet<double>> triplets;
   // The DOFs eliminated from the system (prescribed or held): the assembly leaves out their
   // rows and columns.
   std::vector<char> fixed;
@@ -94,6 +93,9 @@ class NewtonSolver {
   // The Newton system at the current iterate, pinned DOFs eliminated:
   // H_ff p_f = -(g_f + H_fp lift_p + H_fk dk), p_p = lift_p.
   struct System {
+    explicit System(std::vector<Eigen::Triplet<double>>& buffer) : triplets(buffer) {}
+    // The Hessian's lower-triangle triplets: the calling thread's buffer (hessian_triplets()).
+    std::vector<Eigen::Triplet<double>>& triplets;
     Vertices x;  // collision vertices now
     Eigen::VectorXd rhs;
     double residual = 0.0;  // largest |g| over the free DOFs

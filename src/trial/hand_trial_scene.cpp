@@ -82,7 +82,7 @@ HandTrialScene::HandTrialScene(const TrialObject& object, std::vector<grippers::
   solver::SceneDescription scene;
   scene.sim = parameters.sim;
   scene.sim.gravity = Eigen::Vector3d::Zero();
-  scene.bodies.push_back(object_.description());
+  scene.bodies.push_back(object_.description(parameters.object_damping));
   std::vector<geometry::SurfaceMesh> hand_surfaces;
   for (std::size_t h = 0; h < hands_.size(); ++h) {
     const grippers::KinematicTree& tree = hands_[h].kinematics;

@@ -20,12 +20,13 @@ ObjectBody::~ObjectBody() = default;
 ObjectBody::ObjectBody(ObjectBody&&) noexcept = default;
 ObjectBody& ObjectBody::operator=(ObjectBody&&) noexcept = default;
 
-solver::BodyDescription ObjectBody::description() const {
+solver::BodyDescription ObjectBody::description(double soft_damping) const {
   solver::BodyDescription body;
   body.name = object_.name.empty() ? "object" : object_.name;
   body.material = object_.material;
   if (soft_) {
     body.type = solver::BodyType::kFem;
+    body.material.damping = soft_damping;
     scene::set_fem_mesh(body, rest_tets_);
   } else {
     body.type = solver::BodyType::kAffine;

@@ -24,8 +24,9 @@ class ObjectBody {
   ObjectBody& operator=(ObjectBody&&) noexcept;
 
   bool soft() const { return soft_; }
-  // The body to put first in the scene.
-  solver::BodyDescription description() const;
+  // The body to put first in the scene; a soft one damps with Rayleigh beta soft_damping (s,
+  // TrialParameters::object_damping).
+  solver::BodyDescription description(double soft_damping) const;
   // Once the scene's Model exists: the soft object's rest centre of mass (by its vertex masses).
   void bind(std::shared_ptr<const solver::Model> model);
 

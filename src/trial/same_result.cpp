@@ -12,6 +12,7 @@ bool same_result(const io::CandidateResult& a, const io::CandidateResult& b) {
   };
   for (std::size_t k = 0; k < x.record.displacement.size(); ++k) {
     same_nan(x.record.displacement[k], y.record.displacement[k]);
+    same_nan(x.record.phase_seconds[k], y.record.phase_seconds[k]);
   }
   same_nan(x.record.d1, y.record.d1);
   same_nan(x.record.d2, y.record.d2);

@@ -49,9 +49,6 @@ struct TrialOutcome {
   // about eps_v; one that swings on compliant fingers or slides moves orders of magnitude faster
   // (docs/trial.md, "Verdict"). Not in the dataset.
   std::array<double, 6> end_speed = {nan, nan, nan, nan, nan, nan};
-  // How long each gravity phase ran (s): phase_duration, plus the wait for the object to come
-  // to rest (at most rest_duration); NaN for phases not run. Not in the dataset.
-  std::array<double, 6> phase_seconds = {nan, nan, nan, nan, nan, nan};
   static constexpr int kEndSpeedSteps = 3;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -23,6 +24,18 @@ double rest_steps(const TrialParameters& p) { return std::round(p.rest_duration 
 
 double max_trial_steps(const TrialParameters& p) {
   return p.settle_max_steps + 6.0 * (phase_steps(p) + rest_steps(p));
+}
+
+double slip_over_threshold(const TrialParameters& p, const std::array<double, 6>& displacement,
+                           const std::array<double, 6>& phase_seconds, int phases) {
+  double seconds = 0.0;
+  double largest = std::numeric_limits<double>::quiet_NaN();
+  for (int k = 0; k < phases; ++k) {
+    seconds += phase_seconds[k];
+    const double ratio = displacement[k] / p.slip_threshold(seconds);
+    if (!std::isnan(ratio)) largest = std::isnan(largest) ? ratio : std::max(largest, ratio);
+  }
+  return largest;
 }
 
 void validate(const TrialParameters& p) {
@@ -48,6 +61,7 @@ void validate(const TrialParameters& p) {
   require(p.phase_duration >= p.sim.dt, "phase_duration", "at least one time step (s)");
   require(p.rest_duration >= 0.0 && std::isfinite(p.rest_duration), "rest_duration", ">= 0 (s)");
   require(p.displacement_factor > 0.0, "displacement_factor", "positive");
+  require(p.object_damping >= 0.0 && std::isfinite(p.object_damping), "object_damping", ">= 0 (s)");
   require(p.closing_frames >= 2, "closing_frames", "at least 2");
   require(p.validation_frames >= 6 && p.validation_frames % 6 == 0, "validation_frames",
           "a positive multiple of 6 (equal parts per gravity phase)");

@@ -59,11 +59,21 @@ struct TrialParameters {
   double phase_duration = 0.1;     // s
   double rest_duration = 0.5;      // s
 
-  // Verdict: held if the object still touches a finger at the last step and its centre of
-  // mass moved less than displacement_factor * eps_v * dt from the settled grasp at the end of
-  // every gravity phase.
+  // Verdict: held if the object still touches a finger at the last step and, at the end of
+  // every gravity phase k, it has slipped less than slip_threshold(t_k) from the settled grasp,
+  // t_k the time it has spent under gravity by then: displacement_factor * eps_v * dt (the
+  // paper's threshold, 1 mm at its eps_v and dt) plus eps_v * t_k, how far IPC's static
+  // friction lets a held contact creep in that time (docs/trial.md, "Verdict").
   double displacement_factor = 100.0;
   double displacement_threshold() const { return displacement_factor * sim.eps_v * sim.dt; }
+  double slip_threshold(double seconds_under_gravity) const {
+    return displacement_threshold() + sim.eps_v * seconds_under_gravity;
+  }
+
+  // A soft object's Rayleigh damping beta (solver::Material::damping), as the fin-ray's TPU:
+  // real soft materials dissipate, and without it a soft object's swing dies out only by the
+  // integrator's damping, which halves with dt (docs/trial.md, "Why soft objects damp").
+  double object_damping = 5e-3;  // s
 
   // Frames recorded per trial: closing (closing and settling, evenly spread) and validation
   // (spread evenly over the six gravity phases; a multiple of 6).
@@ -94,6 +104,19 @@ double max_trial_steps(const TrialParameters& parameters);
 // A gravity phase's steps at full length (at least 1), and the most it may add waiting for rest.
 double phase_steps(const TrialParameters& parameters);
 double rest_steps(const TrialParameters& parameters);
+
+// The largest, over the first `phases` gravity phases, of the slip at a phase's end over the
+// verdict's threshold for the time under gravity by then (slip_threshold): at least 1 if the
+// grasp slipped. displacement and phase_seconds are the record's, NaN for phases not run
+// (left out); NaN if no phase ran.
+double slip_over_threshold(const TrialParameters& parameters,
+                           const std::array<double, 6>& displacement,
+                           const std::array<double, 6>& phase_seconds, int phases = 6);
+inline bool slipped_beyond_threshold(const TrialParameters& parameters,
+                                     const std::array<double, 6>& displacement,
+                                     const std::array<double, 6>& phase_seconds, int phases = 6) {
+  return slip_over_threshold(parameters, displacement, phase_seconds, phases) >= 1.0;
+}
 
 // Throws std::invalid_argument naming the first setting that is out of range.
 void validate(const TrialParameters& parameters);

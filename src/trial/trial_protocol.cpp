@@ -186,6 +186,7 @@ class ProtocolRunner {
     record.contact_friction =
         gripper_.model()->pair_friction(gripper_.object_body(), gripper_.finger_bodies(0).front());
     record.displacement.fill(std::numeric_limits<double>::quiet_NaN());
+    record.phase_seconds.fill(std::numeric_limits<double>::quiet_NaN());
     for (int j = 0; j < fingers_; ++j) {
       const double longest = max_travel.at(static_cast<std::size_t>(j));
       state.fingers.emplace_back(place_near_object(env, k, j, longest), longest, p_.grip_force,
@@ -548,7 +549,7 @@ class ProtocolRunner {
         (env.center_of_mass(object) - state.settled_center).norm();
     state.outcome.end_speed[phase] =
         *std::max_element(state.recent_speed.begin(), state.recent_speed.end());
-    state.outcome.phase_seconds[phase] = state.phase_step * p_.sim.dt;
+    record.phase_seconds[phase] = state.phase_step * p_.sim.dt;
     if (!at_rest && !slid && state.restless_phase < 0) state.restless_phase = phase;
     state.phase_step = 0;
     state.steady_steps = 0;
@@ -558,9 +559,9 @@ class ProtocolRunner {
       return;
     }
     if (!object_touches_gripper(object, env)) return finish(i, io::FailureKind::kLostContact);
-    double largest = 0.0;
-    for (double d : record.displacement) largest = std::max(largest, d);
-    if (largest >= p_.displacement_threshold()) return finish(i, io::FailureKind::kDisplaced);
+    if (slipped_beyond_threshold(p_, record.displacement, record.phase_seconds)) {
+      return finish(i, io::FailureKind::kDisplaced);
+    }
     if (state.restless_phase >= 0) {
       char reason[128];
       std::snprintf(reason, sizeof reason,
@@ -587,8 +588,8 @@ class ProtocolRunner {
     }
     const bool displaced_before =
         state.phase == Phase::kGravity &&
-        std::any_of(record.displacement.begin(), record.displacement.begin() + state.gravity_phase,
-                    [&](double d) { return d >= p_.displacement_threshold(); });
+        slipped_beyond_threshold(p_, record.displacement, record.phase_seconds,
+                                 state.gravity_phase);
     finish(i, displaced_before ? io::FailureKind::kDisplaced
                                : solver_failure_kind(env.failure_code()));
   }

@@ -42,7 +42,7 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
   solver::SceneDescription scene;
   scene.sim = parameters.sim;
   scene.sim.gravity = Eigen::Vector3d::Zero();
-  scene.bodies.push_back(object_.description());
+  scene.bodies.push_back(object_.description(parameters.object_damping));
 
   geometry::SurfaceMesh finger_mesh;  // every finger over its body vertices
   geometry::SurfaceMesh one_gripper;  // the first gripper's two fingers

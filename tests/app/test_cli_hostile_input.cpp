@@ -318,6 +318,8 @@ TEST(HostileInput, JobFilesPastTheTrialLimitsAreRefusedBeforeAnyFile) {
                      "key 'trial.rest_duration' makes a trial of up to");
   expect_job_refused(dir, rigid + "[trial]\nrest_duration = -1\n",
                      "key 'trial.rest_duration' must be a non-negative time (s)");
+  expect_job_refused(dir, rigid + "[trial]\nobject_damping = -0.001\n",
+                     "key 'trial.object_damping' must be a non-negative time (s, Rayleigh beta)");
   expect_job_refused(dir, rigid + "[physics]\ndt = 0\n", "key 'physics.dt' must be positive");
   // 1e8 frames once created a 1.18 TB dataset, then ran out of memory.
   expect_job_refused(dir, rigid + "[outputs]\nclosing_frames = 100000000\n",

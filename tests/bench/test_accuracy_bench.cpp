@@ -24,6 +24,7 @@ io::CandidateResult candidate() {
   io::CandidateResult result;
   result.record.status = io::Status::kSuccess;
   result.record.displacement = {1e-4, 1e-4, 2e-4, 1e-4, 3e-4, 1e-4};
+  result.record.phase_seconds = {0.1, 0.1, 0.1, 0.1, 0.1, 0.1};
   io::TrajectoryRecord t;
   Eigen::Isometry3d gripper = Eigen::Isometry3d::Identity();
   gripper.rotate(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()));
@@ -42,6 +43,14 @@ io::CandidateResult candidate() {
   return result;
 }
 
+// The protocol's defaults with a verdict threshold of `metres` before the creep allowance (eps_v,
+// 1 mm/s, times the time under gravity).
+trial::TrialParameters judged_by(double metres) {
+  trial::TrialParameters p;
+  p.displacement_factor = metres / (p.sim.eps_v * p.sim.dt);
+  return p;
+}
+
 // Moves the object of frame `frame` by `offset` and turns it by `angle` about x.
 void move_object(io::CandidateResult& result, int frame, const Eigen::Vector3d& offset,
                  double angle) {
@@ -55,7 +64,7 @@ void move_object(io::CandidateResult& result, int frame, const Eigen::Vector3d& 
 
 TEST(AccuracyBench, ARunAgainstItselfHasNoError) {
   const io::CandidateResult a = candidate();
-  const TrialError e = trial_error(a, a, kFrames, 1e-3);
+  const TrialError e = trial_error(a, a, kFrames, judged_by(1e-3));
   EXPECT_EQ(e.translation, 0.0);
   EXPECT_EQ(e.rotation, 0.0);
   EXPECT_EQ(e.slip, 0.0);
@@ -69,7 +78,7 @@ TEST(AccuracyBench, AKnownPoseOffsetGivesTheKnownError) {
   move_object(run, 1, Eigen::Vector3d(0.003, 0.0, -0.004), 0.2);  // 5 mm, 0.2 rad
   move_object(run, 2, Eigen::Vector3d(0.001, 0.0, 0.0), 0.0);
   run.trajectory->gripper_vertices[3 * 2 + 1] += 0.007f;  // the last frame's gripper vertex
-  const TrialError e = trial_error(run, reference, kFrames, 1e-3);
+  const TrialError e = trial_error(run, reference, kFrames, judged_by(1e-3));
   EXPECT_NEAR(e.translation, 0.005, 1e-12);  // the gripper's turn leaves the distance alone
   EXPECT_NEAR(e.rotation, 0.2, 1e-12);
   EXPECT_NEAR(e.vertices, 0.007, 1e-6);  // floats
@@ -78,7 +87,7 @@ TEST(AccuracyBench, AKnownPoseOffsetGivesTheKnownError) {
   // Only the compared frames count: an offset in a frame before them is no error.
   io::CandidateResult earlier = candidate();
   move_object(earlier, 0, Eigen::Vector3d(0.01, 0.0, 0.0), 0.0);
-  EXPECT_EQ(trial_error(earlier, reference, kFrames - 1, 1e-3).translation, 0.0);
+  EXPECT_EQ(trial_error(earlier, reference, kFrames - 1, judged_by(1e-3)).translation, 0.0);
 }
 
 TEST(AccuracyBench, SlipAndVerdictFollowTheReferenceThreshold) {
@@ -87,16 +96,25 @@ TEST(AccuracyBench, SlipAndVerdictFollowTheReferenceThreshold) {
   run.record.displacement[4] = 2.3e-3;  // the +z phase slips past 1 mm
   run.record.status = io::Status::kFailure;
   run.record.failure = io::FailureKind::kDisplaced;
-  TrialError e = trial_error(run, reference, kFrames, 1e-3);
+  TrialError e = trial_error(run, reference, kFrames, judged_by(1e-3));
   EXPECT_NEAR(e.slip, 2.0e-3, 1e-12);
   EXPECT_FALSE(e.verdict_agrees);
   // Judged by a 3 mm bar (a run whose own dt or eps_v raised it), both hold.
-  EXPECT_TRUE(held(run.record, 3e-3));
-  EXPECT_TRUE(trial_error(run, reference, kFrames, 3e-3).verdict_agrees);
+  EXPECT_TRUE(held(run.record, judged_by(3e-3)));
+  EXPECT_TRUE(trial_error(run, reference, kFrames, judged_by(3e-3)).verdict_agrees);
+  // The threshold grows by eps_v times the time under gravity (0.5 s by the +z phase's end): a
+  // slip of 1.4 mm there is held by a 1 mm bar; had the phases waited 0.2 s each for the object
+  // to come to rest (1 s under gravity by then), 1.9 mm would be.
+  run.record.displacement[4] = 1.4e-3;
+  EXPECT_TRUE(held(run.record, judged_by(1e-3)));
+  run.record.displacement[4] = 1.9e-3;
+  EXPECT_FALSE(held(run.record, judged_by(1e-3)));
+  run.record.phase_seconds.fill(0.2);
+  EXPECT_TRUE(held(run.record, judged_by(1e-3)));
   // A run that never reached the gravity phases slips by the reference's whole displacement.
   run.record.displacement.fill(std::numeric_limits<double>::quiet_NaN());
   run.record.failure = io::FailureKind::kNoContact;
-  e = trial_error(run, reference, kFrames, 1e-3);
+  e = trial_error(run, reference, kFrames, judged_by(1e-3));
   EXPECT_NEAR(e.slip, 3e-4, 1e-12);
   EXPECT_FALSE(e.verdict_agrees);
 }
@@ -107,11 +125,11 @@ TEST(AccuracyBench, RunErrorAveragesCandidatesAndCountsVerdicts) {
   b.result = candidate();
   move_object(b.result, 2, Eigen::Vector3d(0.004, 0.0, 0.0), 0.0);
   b.result.record.failure = io::FailureKind::kLostContact;
-  const RunError e = run_error({a, b}, {a, a}, kFrames, 1e-3);
+  const RunError e = run_error({a, b}, {a, a}, kFrames, judged_by(1e-3));
   EXPECT_EQ(e.candidates, 2);
   EXPECT_EQ(e.agreeing, 1);
   EXPECT_NEAR(e.translation, 0.002, 1e-12);
-  EXPECT_THROW(run_error({a}, {a, a}, kFrames, 1e-3), std::invalid_argument);
+  EXPECT_THROW(run_error({a}, {a, a}, kFrames, judged_by(1e-3)), std::invalid_argument);
 }
 
 TEST(AccuracyBench, ParetoFrontOfAHandMadeTable) {
@@ -137,8 +155,7 @@ TEST(AccuracyBench, OneSweepPointRunsEndToEnd) {
   const SceneRun run = scene.run(coarse, scene.default_mesh, 2);
   ASSERT_EQ(run.outcomes.size(), 3u);
   const int frames = scene.parameters.validation_frames + 1;
-  const double threshold = scene.parameters.displacement_threshold();
-  const RunError self = run_error(run.outcomes, run.outcomes, frames, threshold);
+  const RunError self = run_error(run.outcomes, run.outcomes, frames, scene.parameters);
   EXPECT_EQ(self.translation, 0.0);
   EXPECT_EQ(self.agreeing, 3);
   for (const trial::TrialOutcome& o : run.outcomes) {

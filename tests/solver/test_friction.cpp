@@ -1,5 +1,6 @@
-// Coulomb friction on an incline: sticking above the critical coefficient, sliding with
-// acceleration g (sin theta - mu cos theta) below it, and a soft squeeze held by mu = 3.5.
+// Coulomb friction on an incline: sticking above the critical coefficient (creeping at the
+// speed IPC's smoothed static friction predicts), sliding with acceleration
+// g (sin theta - mu cos theta) below it. (A soft object held by mu = 3.5: test_contact.cpp.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,6 +36,24 @@ TEST(Friction, BoxSticksWhenMuExceedsTanTheta) {
     EXPECT_LT(incline.env->center_of_mass_velocity(1).norm(), 1e-3);
   });
   EXPECT_LT((incline.env->center_of_mass(1) - settled).norm(), 1e-3);
+}
+
+TEST(Friction, BelowTheLimitABoxCreepsAtTheSpeedOfIpcsSmoothedStaticFriction) {
+  // IPC's static friction is smoothed: f1(v) = 2 v / eps_v - v^2 / eps_v^2 of mu N below eps_v.
+  // A box whose downhill load is r = tan(theta) / mu of mu N therefore creeps at the speed where
+  // f1 = r: v = eps_v (1 - sqrt(1 - r)), however long it is loaded. The trial's verdict allows
+  // for this creep (docs/trial.md, "Verdict").
+  const double mu = 0.5;
+  const double eps_v = SimParameters{}.eps_v;
+  for (const double r : {0.1, 0.5, 0.9}) {
+    const double theta = std::atan(r * mu);
+    Incline incline = make_incline(theta, mu);
+    run_checked(*incline.env, 40);  // 0.2 s to land and settle
+    const Eigen::Vector3d start = incline.env->center_of_mass(1);
+    run_checked(*incline.env, 100);  // 0.5 s
+    const double speed = (incline.env->center_of_mass(1) - start).dot(incline.downhill) / 0.5;
+    EXPECT_NEAR(speed, eps_v * (1.0 - std::sqrt(1.0 - r)), 0.02 * eps_v) << "r = " << r;
+  }
 }
 
 // Slides from rest; the acceleration is measured between 0.3 s and 0.6 s, after any transient.

@@ -131,9 +131,9 @@ TEST(HandTrial, SynthesizedGraspClosesOnACylinderWithoutIntersecting) {
     // nearest of them may sit a little farther than the contact itself).
     EXPECT_GT(r.d2, 0.0);
     EXPECT_LT(r.d2, 2.0 * p.sim.d_hat);
-    // The verdict follows the displacements.
-    const double largest = *std::max_element(r.displacement.begin(), r.displacement.end());
-    EXPECT_EQ(r.status == io::Status::kSuccess, largest < p.displacement_threshold());
+    // The verdict follows the displacements and the phases' times.
+    EXPECT_EQ(r.status == io::Status::kSuccess,
+              !slipped_beyond_threshold(p, r.displacement, r.phase_seconds));
   }
   EXPECT_EQ(r.joints, std::vector<double>(grasp.joints.data(), grasp.joints.data() + 16));
 
