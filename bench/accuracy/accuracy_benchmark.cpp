@@ -116,8 +116,7 @@ void write_markdown(const fs::path& path, const std::vector<AccuracyRow>& rows,
         "processes' load moves far less. Errors are means over the scene's candidates "
         "against the reference run; verdicts count the candidates whose held/not held agrees "
         "with the reference's (judged by the reference's threshold: 1 mm plus eps_v x the time "
-        "under "
-        "gravity).\n\n"
+        "under gravity).\n\n"
      << accuracy_settings_text() << "\n\nScenes:\n\n";
   for (const AccuracyScene& s : scenes) {
     md << "- **" << s.name << "**: " << s.setup << "; mesh sweep: " << s.mesh_setting << ".\n";

@@ -220,19 +220,21 @@ class HandSimulation {
     record_patch();
     const Eigen::Vector3d center = object_center();
     const long phase_windows = std::lround(p_.phase_duration / p_.sim.dt);
-    bool slipped = false;  // beyond the verdict's threshold for the time under gravity
-    double seconds = 0.0;
-    for (const Eigen::Vector3d& axis : trial::kGravityAxes) {
-      const Eigen::Vector3d g = p_.gravity_magnitude * axis;
+    // Each phase's slip and length, judged by the trial's own verdict rule.
+    std::array<double, 6> slip{};
+    std::array<double, 6> seconds{};
+    for (std::size_t phase = 0; phase < trial::kGravityAxes.size(); ++phase) {
+      const Eigen::Vector3d g = p_.gravity_magnitude * trial::kGravityAxes[phase];
       for (long k = 0; k < phase_windows; ++k) {
         if (!window(g, false)) return unstable(out);
       }
-      const double slip = (object_center() - center - patch_moved()).norm();
-      seconds += static_cast<double>(phase_windows) * p_.sim.dt;
-      slipped = slipped || slip >= p_.slip_threshold(seconds);
-      out.largest_slip = std::max(out.largest_slip, slip);
+      slip[phase] = (object_center() - center - patch_moved()).norm();
+      seconds[phase] = static_cast<double>(phase_windows) * p_.sim.dt;
+      out.largest_slip = std::max(out.largest_slip, slip[phase]);
     }
-    out.verdict = !touching_ ? "lost_contact" : slipped ? "displaced" : "success";
+    out.verdict = !touching_                                           ? "lost_contact"
+                  : trial::slipped_beyond_threshold(p_, slip, seconds) ? "displaced"
+                                                                       : "success";
     return finish(out);
   }
 
