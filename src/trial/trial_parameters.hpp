@@ -53,8 +53,9 @@ struct TrialParameters {
   // Gravity test: gravity_magnitude along +x, -x, +y, -y, +z, -z (world), phase_duration each
   // (the paper's 0.1 s). A phase whose object is not still by then (slower than settle_speed
   // and settle_angular_speed, settle_steps steps in a row) keeps its gravity until it is, for at
-  // most rest_duration more: the slip is measured on an object at rest in the fingers, not at a
-  // random point of a swing (docs/trial.md, "Verdict").
+  // most rest_duration more: the slip is measured on an object at rest in the fingers where it
+  // comes to rest, not at a random point of a swing; one still swinging when the wait ends is
+  // judged by its slip there (docs/trial.md, "Verdict").
   double gravity_magnitude = 9.8;  // m/s^2
   double phase_duration = 0.1;     // s
   double rest_duration = 0.5;      // s

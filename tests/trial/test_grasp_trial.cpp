@@ -149,17 +149,18 @@ TEST(GraspTrial, AnOffCentreFinRayGraspTurnsWithTheFingersAndSlipsOnlyWhenTooHea
   EXPECT_GT(largest(held.phase_seconds), p.phase_duration + 1.5 * p.sim.dt);
   EXPECT_LE(largest(held.phase_seconds), p.phase_duration + p.rest_duration + 0.5 * p.sim.dt);
   EXPECT_LT(largest(light.end_speed), p.settle_speed);
-  // Without the wait the phases end mid-swing: the object never came to rest, so the grasp is
-  // `unsettled`, not held.
+  // Without the wait the phases end mid-swing, the paper's 0.1 s each: the bar is still moving,
+  // and the grasp is judged by its slip there, which the swing does not carry past the
+  // threshold: held.
   TrialParameters hasty = p;
   hasty.rest_duration = 0.0;
   const TrialOutcome swinging = trial(1000.0, hasty);
-  EXPECT_EQ(swinging.result.record.failure, io::FailureKind::kUnsettled)
-      << io::to_string(swinging.result.record.failure) << " " << swinging.failure_reason;
-  EXPECT_NE(swinging.failure_reason.find("still moving at the end of gravity phase"),
-            std::string::npos)
-      << swinging.failure_reason;
-  EXPECT_LT(largest(swinging.result.record.displacement), p.displacement_threshold());
+  const io::CandidateRecord& hasty_record = swinging.result.record;
+  EXPECT_EQ(hasty_record.failure, io::FailureKind::kNone)
+      << io::to_string(hasty_record.failure) << " " << swinging.failure_reason;
+  EXPECT_GT(largest(swinging.end_speed), p.settle_speed);
+  EXPECT_LE(largest(hasty_record.phase_seconds), p.phase_duration + 0.5 * p.sim.dt);
+  EXPECT_LT(largest(hasty_record.displacement), p.displacement_threshold());
 
   const TrialOutcome heavy = trial(4000.0, p);
   EXPECT_EQ(heavy.result.record.failure, io::FailureKind::kDisplaced)
