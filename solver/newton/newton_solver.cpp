@@ -100,9 +100,12 @@ NewtonSolver::Outcome NewtonSolver::iterate(State& state, NewtonStep& step,
     step.first_residual = std::max(system.residual, step.standard_weight * h * h);
   }
   diagnostics.residual = system.residual / (h * h);
+  // A residual already small enough needs no Newton step: the step's last iteration factorizes
+  // nothing.
+  if (residual_converged(step, system)) return Outcome::kConverged;
   Eigen::VectorXd p;
   if (!solve(state, step, system, p, failure)) return Outcome::kFailed;
-  if (converged(step, system, p)) return Outcome::kConverged;
+  if (step_converged(step, system, p)) return Outcome::kConverged;
   double alpha = 1.0;
   if (!filter_step(state, step, system, p, alpha, diagnostics, failure)) return Outcome::kFailed;
   commit(state, step, p, alpha);
@@ -203,16 +206,20 @@ bool NewtonSolver::solve(const State& state, NewtonStep& step, System& system, E
   return true;
 }
 
-// Converged: the residual fell by newton_tol against its scale, or the step would change no
-// vertex's velocity by more than newton_velocity_tol. A test on the step's length alone is not
-// enough: near d_hat the barrier (and sticking friction) is so stiff that a micrometre off
-// leaves the normal force, and friction's lagged lambda, wrong.
-bool NewtonSolver::converged(const NewtonStep& step, const System& system,
-                             const Eigen::VectorXd& p) const {
-  const SimParameters& sim = model_.sim();
+// Converged: the residual fell by newton_tol against its scale (residual_converged), or the
+// step would change no vertex's velocity by more than newton_velocity_tol (step_converged). A
+// test on the step's length alone is not enough: near d_hat the barrier (and sticking friction)
+// is so stiff that a micrometre off leaves the normal force, and friction's lagged lambda, wrong.
+// Neither while prescribed motion is still to come, nor in a step held open.
+bool NewtonSolver::residual_converged(const NewtonStep& step, const System& system) const {
   if (system.moving || step.held) return false;
-  return system.residual <= sim.newton_tol * step.first_residual ||
-         max_vertex_displacement(model_, p) <= sim.newton_velocity_tol * step.h;
+  return system.residual <= model_.sim().newton_tol * step.first_residual;
+}
+
+bool NewtonSolver::step_converged(const NewtonStep& step, const System& system,
+                                  const Eigen::VectorXd& p) const {
+  if (system.moving || step.held) return false;
+  return max_vertex_displacement(model_, p) <= model_.sim().newton_velocity_tol * step.h;
 }
 
 // CCD's safe fraction of the step, then positive volumes, then (once the prescribed motion is

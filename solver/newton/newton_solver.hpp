@@ -108,7 +108,8 @@ class NewtonSolver {
   void eliminate_prescribed(const State& state, NewtonStep& step, System& system) const;
   bool solve(const State& state, NewtonStep& step, System& system, Eigen::VectorXd& p,
              FailureReport& failure);
-  bool converged(const NewtonStep& step, const System& system, const Eigen::VectorXd& p) const;
+  bool residual_converged(const NewtonStep& step, const System& system) const;
+  bool step_converged(const NewtonStep& step, const System& system, const Eigen::VectorXd& p) const;
   bool filter_step(const State& state, NewtonStep& step, const System& system,
                    const Eigen::VectorXd& p, double& alpha, StepDiagnostics& diagnostics,
                    FailureReport& failure);
