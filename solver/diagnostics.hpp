@@ -44,6 +44,14 @@ struct StageSeconds {
   }
 };
 
+// How an environment's Newton systems were solved (NewtonSolver::solve): by a fresh
+// factorization, or by CG preconditioned with an earlier iteration's factorization.
+struct LinearSolveCounts {
+  long factorizations = 0;  // numeric factorizations (failed ones included)
+  long reused = 0;          // systems CG solved on an earlier factorization
+  long cg_iterations = 0;   // CG iterations, those that ended in a factorization included
+};
+
 // Adds the wall time from its construction to its destruction to `seconds`.
 class StageTimer {
  public:

@@ -78,6 +78,8 @@ class Environment {
   const EnvironmentStatistics& statistics() const { return statistics_; }
   // Where the steps' time went, by stage of the Newton iteration.
   const StageSeconds& stage_seconds() const { return newton_.stages(); }
+  // How the steps' Newton systems were solved.
+  const LinearSolveCounts& linear_solves() const { return newton_.linear_solves(); }
 
   const State& state() const { return state_; }
   const Eigen::VectorXd& dofs() const { return state_.q; }

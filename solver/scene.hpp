@@ -105,6 +105,12 @@ struct SimParameters {
   // many halvings deep (dt / 2^k), before the environment fails.
   int max_step_halvings = 3;
   int friction_lag_iterations = 1;
+  // A positive-definite (projected) Newton system is first solved by CG preconditioned with the
+  // last factorization, an earlier iteration's or step's, to a relative residual of
+  // reuse_tolerance within reuse_iterations iterations, and factorized afresh only if that fails
+  // (docs/simulation.md, item 3); 0 iterations factorizes every system.
+  int reuse_iterations = 10;
+  double reuse_tolerance = 1e-3;
   double ccd_rescaling = 0.1;  // ACCD's s: keep at least s of each gap per line search
 };
 

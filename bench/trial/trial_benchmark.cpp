@@ -141,6 +141,7 @@ TrialBenchRun run_slot(const TrialBenchSlot& slot, const PlannedArm& arm) {
                                c.candidate, outcomes.front(), scene.parameters());
   run.displacement = outcomes.front().result.record.displacement;
   run.stages = outcomes.front().stage_seconds;
+  run.linear_solves = outcomes.front().linear_solves;
   return run;
 }
 

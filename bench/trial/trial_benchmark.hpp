@@ -72,12 +72,13 @@ std::vector<TrialBenchSlot> trial_bench_schedule(const std::vector<std::size_t>&
 
 struct TrialBenchRun {
   TrialBenchSlot slot;
-  RobustnessTrial trial;                 // verdict, Newton statistics, largest slip
-  std::array<double, 6> displacement{};  // m, the record's slip per gravity phase (NaN: not run)
-  double cpu_seconds = 0.0;              // the running thread's CPU time
-  double process_cpu_seconds = 0.0;      // every thread of the process
-  double wall_seconds = 0.0;             // the trial alone, its scene built before
-  solver::StageSeconds stages;           // the solver's (trial::TrialOutcome::stage_seconds)
+  RobustnessTrial trial;                    // verdict, Newton statistics, largest slip
+  std::array<double, 6> displacement{};     // m, the record's slip per gravity phase (NaN: not run)
+  double cpu_seconds = 0.0;                 // the running thread's CPU time
+  double process_cpu_seconds = 0.0;         // every thread of the process
+  double wall_seconds = 0.0;                // the trial alone, its scene built before
+  solver::StageSeconds stages;              // the solver's (trial::TrialOutcome::stage_seconds)
+  solver::LinearSolveCounts linear_solves;  // trial::TrialOutcome::linear_solves
 
   // The protocol's own work (placement, servo, verdict, metrics) and everything not timed by
   // a stage.

@@ -227,7 +227,7 @@ void write_csv(std::ostream& csv, const TrialBenchResult& result) {
   csv << "arm,category,seed,candidate,settings,repeat,cpu_s,process_cpu_s,wall_s,steps,"
          "newton_iterations,retries";
   for (const std::string_view stage : kTrialBenchStages) csv << ',' << stage << "_s";
-  csv << ",verdict,slip_mm\n";
+  csv << ",factorizations,reused_factorizations,cg_iterations,verdict,slip_mm\n";
   for (const TrialBenchRun& run : result.runs) {
     const TrialBenchArm& arm = result.arms[run.slot.arm];
     const TrialBenchCandidate& c = arm.candidates[run.slot.candidate];
@@ -237,6 +237,8 @@ void write_csv(std::ostream& csv, const TrialBenchResult& result) {
         << seconds_text(run.wall_seconds) << ',' << run.trial.newton.steps << ','
         << run.trial.newton.iterations << ',' << run.trial.newton.retries;
     for (const double s : stage_seconds(run)) csv << ',' << seconds_text(s);
+    csv << ',' << run.linear_solves.factorizations << ',' << run.linear_solves.reused << ','
+        << run.linear_solves.cg_iterations;
     csv << ',' << verdict_of(run.trial) << ',' << fixed_or_dash(run.trial.largest_slip * 1e3, 4)
         << '\n';
   }

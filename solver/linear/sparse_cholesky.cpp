@@ -3,6 +3,7 @@
 #include "solver/linear/blas_threads.hpp"
 
 #include <cholmod.h>
+#include <Eigen/IterativeLinearSolvers>
 
 #include <algorithm>
 #include <stdexcept>
@@ -45,7 +46,7 @@ void configure(cholmod_common& common, int ordering) {
 // Entries of L's numeric values: a supernodal factor's are allocated by the analysis (xsize);
 // a simplicial one's are its columns' counts of nonzeros (without the slack CHOLMOD allocates
 // for growth).
-std::size_t factor_entries(const cholmod_factor& factor) {
+std::size_t entries_of(const cholmod_factor& factor) {
   if (factor.is_super) return factor.xsize;
   const int* counts = static_cast<const int*>(factor.ColCount);
   std::size_t entries = 0;
@@ -62,6 +63,7 @@ struct SparseCholesky::Impl {
   std::vector<int> outer;                               // the analysed pattern, to detect a change
   std::vector<int> inner;
   int analyses = 0;
+  bool factorized = false;  // the factor holds the last factorize()'s matrix, which succeeded
 
   Impl() { cholmod_start(&common); }
   ~Impl() {
@@ -116,7 +118,8 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
   }
   use_single_threaded_openmp();
   cholmod_factorize(&a, impl.factor, &impl.common);
-  return impl.common.status == CHOLMOD_OK && impl.factor->minor == impl.factor->n;
+  impl.factorized = impl.common.status == CHOLMOD_OK && impl.factor->minor == impl.factor->n;
+  return impl.factorized;
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
@@ -142,13 +145,64 @@ bool SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
   return true;
 }
 
+namespace {
+
+// Eigen's preconditioner interface over a SparseCholesky's factor of another matrix.
+class FactorPreconditioner {
+ public:
+  FactorPreconditioner() = default;
+  void use(const SparseCholesky& factor) { factor_ = &factor; }
+  template <typename Matrix>
+  FactorPreconditioner& analyzePattern(const Matrix&) {
+    return *this;
+  }
+  template <typename Matrix>
+  FactorPreconditioner& factorize(const Matrix&) {
+    return *this;
+  }
+  template <typename Matrix>
+  FactorPreconditioner& compute(const Matrix&) {
+    return *this;
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return factor_->solve(r); }
+  Eigen::ComputationInfo info() const { return Eigen::Success; }
+
+ private:
+  const SparseCholesky* factor_ = nullptr;
+};
+
+}  // namespace
+
+bool SparseCholesky::solve_preconditioned(const Eigen::SparseMatrix<double>& lower,
+                                          const Eigen::VectorXd& rhs, double tolerance,
+                                          int max_iterations, Eigen::VectorXd& x,
+                                          int& iterations) const {
+  iterations = 0;
+  if (!impl_->factorized || impl_->factor->n != static_cast<std::size_t>(lower.rows())) {
+    return false;
+  }
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower, FactorPreconditioner> cg;
+  cg.preconditioner().use(*this);
+  cg.setTolerance(tolerance);
+  cg.setMaxIterations(max_iterations);
+  cg.compute(lower);
+  x = cg.solve(rhs);
+  // Eigen counts the iterations before the one that got there; this counts products with the
+  // matrix, that one included (none for a zero right-hand side).
+  const bool converged = cg.info() == Eigen::Success;
+  iterations = static_cast<int>(cg.iterations()) + (converged && rhs.squaredNorm() > 0.0 ? 1 : 0);
+  return converged;
+}
+
 int SparseCholesky::analyses() const { return impl_->analyses; }
 
 std::size_t SparseCholesky::peak_bytes() const { return impl_->common.memory_usage; }
 
-std::size_t SparseCholesky::factor_bytes() const {
-  return impl_->factor == nullptr ? 0 : factor_entries(*impl_->factor) * sizeof(double);
+std::size_t SparseCholesky::factor_entries() const {
+  return impl_->factor == nullptr ? 0 : entries_of(*impl_->factor);
 }
+
+std::size_t SparseCholesky::factor_bytes() const { return factor_entries() * sizeof(double); }
 
 double SparseCholesky::factor_flops() const { return impl_->common.fl; }
 
@@ -180,7 +234,7 @@ std::size_t symbolic_factor_bytes(int n, const std::vector<int>& outer,
     cholmod_finish(&common);
     throw std::runtime_error("CHOLMOD analysis failed");
   }
-  const std::size_t bytes = factor_entries(*factor) * sizeof(double);
+  const std::size_t bytes = entries_of(*factor) * sizeof(double);
   cholmod_free_factor(&factor, &common);
   cholmod_finish(&common);
   return bytes;

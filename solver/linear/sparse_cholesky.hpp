@@ -37,6 +37,15 @@ class SparseCholesky : public LinearSystemSolver {
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   // The LinearSystemSolver form of solve(): never fails after a successful factorize().
   bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) override;
+  // Solves lower x = rhs (symmetric positive definite, lower triangle as for factorize()) by
+  // Eigen's conjugate gradients preconditioned with the last successful factorization, of an
+  // earlier, nearby matrix: to a relative residual |lower x - rhs| / |rhs| of `tolerance` within
+  // `max_iterations`. False (x unspecified) when there is no such factorization of this size or
+  // CG did not get there; `iterations` says how many it took (products with `lower`). The
+  // factorization is kept.
+  bool solve_preconditioned(const Eigen::SparseMatrix<double>& lower, const Eigen::VectorXd& rhs,
+                            double tolerance, int max_iterations, Eigen::VectorXd& x,
+                            int& iterations) const;
   std::string failure() const override { return "the matrix is not positive definite"; }
   bool refuses_indefinite() const override { return true; }
 
@@ -44,7 +53,8 @@ class SparseCholesky : public LinearSystemSolver {
   int analyses() const;
   // The most memory CHOLMOD held at once for this solver so far (factor and workspace), bytes.
   std::size_t peak_bytes() const;
-  // The last factor's numeric values, bytes (0 before the first factorize()).
+  // The last factor's numeric values: entries, and bytes (0 before the first factorize()).
+  std::size_t factor_entries() const;
   std::size_t factor_bytes() const;
   // The floating-point operations of one numeric factorization, by the last analysis.
   double factor_flops() const;

@@ -175,19 +175,26 @@ bool NewtonSolver::solve(const State& state, NewtonStep& step, System& system, E
                          FailureReport& failure) {
   const int n = model_.dof_count();
   LinearSystemSolver& solver = linear_solver();
+  const auto assembled = [&]() -> const Eigen::SparseMatrix<double>& {
+    const StageTimer timer(stages_.assembly);
+    return assembly_.assemble(n, system.triplets, step.fixed);
+  };
+  const Eigen::SparseMatrix<double>* matrix = &assembled();
+  // A projected matrix is positive definite, so CG may solve it.
+  if (&solver == &cholesky_ && system.projected &&
+      solve_by_earlier_factorization(*matrix, system.rhs, p)) {
+    return true;
+  }
   // Exact contact Hessians whose sum is not positive definite are projected one by one.
   const auto factorize = [&] {
-    const Eigen::SparseMatrix<double>* matrix = nullptr;
-    {
-      const StageTimer timer(stages_.assembly);
-      matrix = &assembly_.assemble(n, system.triplets, step.fixed);
-    }
     const StageTimer timer(stages_.factorization);
+    ++linear_solves_.factorizations;
     return solver.factorize(*matrix);
   };
   bool factorized = factorize();
   if (!factorized && !system.projected) {
     if (!assemble(state, step, system, true, failure)) return false;
+    matrix = &assembled();
     factorized = factorize();
   }
   bool solved = false;
@@ -203,6 +210,29 @@ bool NewtonSolver::solve(const State& state, NewtonStep& step, System& system, E
     failure = {Failure::kNonFinite, "non-finite Newton step"};
     return false;
   }
+  return true;
+}
+
+// CG on the last factorization (SimParameters::reuse_iterations, reuse_tolerance). Tried only
+// where its most iterations cost fewer flops than the factorization they spare: each is a pair
+// of triangular solves with the factor and a product with the matrix (4 flops per stored entry
+// of each). That leaves out small systems (rigid jaws, the rigid hand), and counting flops, not
+// seconds, keeps the choice, and so the trajectory, the same on any machine.
+bool NewtonSolver::solve_by_earlier_factorization(const Eigen::SparseMatrix<double>& matrix,
+                                                  const Eigen::VectorXd& rhs, Eigen::VectorXd& p) {
+  const int max_iterations = model_.sim().reuse_iterations;
+  const double iteration_flops =
+      4.0 * static_cast<double>(cholesky_.factor_entries() + matrix.nonZeros());
+  if (max_iterations == 0 || cholesky_.factor_flops() < max_iterations * iteration_flops) {
+    return false;
+  }
+  const StageTimer timer(stages_.solve);
+  int iterations = 0;
+  const bool solved = cholesky_.solve_preconditioned(matrix, rhs, model_.sim().reuse_tolerance,
+                                                     max_iterations, p, iterations);
+  linear_solves_.cg_iterations += iterations;
+  if (!solved || !p.allFinite()) return false;
+  ++linear_solves_.reused;
   return true;
 }
 

@@ -88,6 +88,8 @@ class NewtonSolver {
   // Where this solver's time went; callers may time their own stages into it.
   StageSeconds& stages() { return stages_; }
   const StageSeconds& stages() const { return stages_; }
+  // How its Newton systems were solved.
+  const LinearSolveCounts& linear_solves() const { return linear_solves_; }
 
  private:
   // The Newton system at the current iterate, pinned DOFs eliminated:
@@ -108,6 +110,8 @@ class NewtonSolver {
   void eliminate_prescribed(const State& state, NewtonStep& step, System& system) const;
   bool solve(const State& state, NewtonStep& step, System& system, Eigen::VectorXd& p,
              FailureReport& failure);
+  bool solve_by_earlier_factorization(const Eigen::SparseMatrix<double>& matrix,
+                                      const Eigen::VectorXd& rhs, Eigen::VectorXd& p);
   bool residual_converged(const NewtonStep& step, const System& system) const;
   bool step_converged(const NewtonStep& step, const System& system, const Eigen::VectorXd& p) const;
   bool filter_step(const State& state, NewtonStep& step, const System& system,
@@ -123,6 +127,7 @@ class NewtonSolver {
   std::shared_ptr<LinearSystemSolver> linear_solver_;  // null: cholesky_ solves every system
   int linear_solver_min_dofs_ = 0;
   StageSeconds stages_;
+  LinearSolveCounts linear_solves_;
 };
 
 }  // namespace grip::solver

@@ -31,6 +31,11 @@ void read_sim_parameters(const config::Table& table, solver::SimParameters& p) {
   p.max_step_halvings = table.count_or("max_step_halvings", p.max_step_halvings, 0, 20);
   p.friction_lag_iterations =
       table.count_or("friction_lag_iterations", p.friction_lag_iterations, 1, 100);
+  p.reuse_iterations = table.count_or("reuse_iterations", p.reuse_iterations, 0, 1000);
+  p.reuse_tolerance = table.number_or("reuse_tolerance", p.reuse_tolerance);
+  if (!(p.reuse_tolerance > 0 && p.reuse_tolerance < 1)) {
+    table.fail("reuse_tolerance", "must lie strictly between 0 and 1");
+  }
   p.ccd_rescaling = table.number_or("ccd_rescaling", p.ccd_rescaling);
   if (!(p.ccd_rescaling > 0 && p.ccd_rescaling < 1)) {
     table.fail("ccd_rescaling", "must lie strictly between 0 and 1");

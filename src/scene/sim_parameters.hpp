@@ -17,6 +17,8 @@ inline const std::initializer_list<std::string_view> kSimParameterKeys = {"dt",
                                                                           "projected_iterations",
                                                                           "max_step_halvings",
                                                                           "friction_lag_iterations",
+                                                                          "reuse_iterations",
+                                                                          "reuse_tolerance",
                                                                           "ccd_rescaling"};
 
 // Overwrites the settings the table gives (kappa = "auto" turns adaptive kappa on) and keeps

@@ -32,6 +32,8 @@ struct TrialOutcome {
   std::vector<long> steps_by_newton_iterations;
   // Where the solver's time went (solver::Environment::stage_seconds); not in the dataset.
   solver::StageSeconds stage_seconds;
+  // How its Newton systems were solved (solver::Environment::linear_solves); not in the dataset.
+  solver::LinearSolveCounts linear_solves;
   // D1/D2 of each gripper's own surface at the settled grasp, for a bimanual trial (the record's
   // d1/d2 are over both grippers' surfaces); empty for one gripper or no settled grasp.
   std::vector<metrics::DistanceMetrics> gripper_distances;

@@ -597,6 +597,7 @@ class ProtocolRunner {
     record.newton.retries = static_cast<std::uint32_t>(stats.retries);
     state.outcome.steps_by_newton_iterations = stats.steps_by_iterations;
     state.outcome.stage_seconds = env.stage_seconds();
+    state.outcome.linear_solves = env.linear_solves();
     std::vector<RecordedFrame> frames = state.recorder.frames();
     if (options_.trajectory) state.outcome.result.trajectory = trajectory_record(frames);
     if (options_.body_frames) {

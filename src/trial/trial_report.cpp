@@ -78,7 +78,11 @@ void write_report(std::ostream& out, const TrialReport& report,
                                    {"max_iterations", r.newton.max_iterations},
                                    {"retries", r.newton.retries}}},
                                  {"wall_time", r.wall_time},
-                                 {"stage_seconds", stage_json(outcome.stage_seconds)}};
+                                 {"stage_seconds", stage_json(outcome.stage_seconds)},
+                                 {"linear_solves",
+                                  {{"factorizations", outcome.linear_solves.factorizations},
+                                   {"reused", outcome.linear_solves.reused},
+                                   {"cg_iterations", outcome.linear_solves.cg_iterations}}}};
     if (report.grippers > 1) trial["grippers"] = gripper_json(report.grippers, outcome);
     trials.push_back(std::move(trial));
   }

@@ -82,6 +82,10 @@ TEST(HostileInput, CountsPast32BitsAreRefusedNotWrapped) {
                        "key 'sim.friction_lag_iterations' must be a whole number from 1 to 100");
   expect_scene_refused(dir, "[sim]\nprojected_iterations = -1\n" + kBox,
                        "key 'sim.projected_iterations' must be a whole number from 0 to 100000");
+  expect_scene_refused(dir, "[sim]\nreuse_iterations = 1001\n" + kBox,
+                       "key 'sim.reuse_iterations' must be a whole number from 0 to 1000");
+  expect_scene_refused(dir, "[sim]\nreuse_tolerance = 1\n" + kBox,
+                       "key 'sim.reuse_tolerance' must lie strictly between 0 and 1");
   const std::string sphere =
       "[[body]]\nname = \"s\"\ntype = \"affine\"\nshape = \"sphere\"\nradius = 0.05\n";
   // 2^32 + 3 segments wrapped to 3 (refused as "at least 6"); 1e8 built for ever.
@@ -89,10 +93,10 @@ TEST(HostileInput, CountsPast32BitsAreRefusedNotWrapped) {
                        "scene.toml:6: key 'body[0].segments' must be a whole number from 6 to "
                        "1024, not 4294967299");
   expect_scene_refused(dir, sphere + "segments = 100000000\n", "not 100000000");
-  // Both solver settings the format lists are read (they were refused as unknown keys).
+  // The solver settings the format lists are read (two were once refused as unknown keys).
   const fs::path scene = dir / "scene.toml";
   std::ofstream(scene) << "[sim]\nduration = 0.02\nprojected_iterations = 5\n"
-                          "max_step_halvings = 2\n"
+                          "max_step_halvings = 2\nreuse_iterations = 0\nreuse_tolerance = 1e-6\n"
                        << kBox;
   const GripRun run = run_grip("simulate " + quoted(scene));
   EXPECT_EQ(run.exit_code, 0) << run.err;

@@ -1,9 +1,10 @@
 // CHOLMOD solves: correct answers, one symbolic analysis per pattern, honest failure on
 // matrices that are not positive definite; the factor's size from the symbolic analysis alone,
 // exact against analytic fill and against the numeric factor, also for a model's contact-free
-// pattern.
+// pattern; CG on an earlier factorization, alone and as Newton uses it.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -89,6 +90,42 @@ TEST_P(SparseCholeskyOrdering, ReportsAnIndefiniteMatrix) {
 INSTANTIATE_TEST_SUITE_P(Orderings, SparseCholeskyOrdering,
                          ::testing::Values(SparseCholesky::Ordering::kMetis,
                                            SparseCholesky::Ordering::kAmd));
+
+TEST(SparseCholesky, SolvesANearbyMatrixByConjugateGradientsOnAnEarlierFactorization) {
+  SparseCholesky cholesky;
+  const auto earlier = grid_system(10, 1.0, 0.1);
+  const Eigen::VectorXd b = random_vector(earlier.rows(), 4);
+  Eigen::VectorXd x;
+  int iterations = -1;
+  EXPECT_FALSE(cholesky.solve_preconditioned(earlier, b, 1e-8, 50, x, iterations))
+      << "no factorization to precondition with";
+  ASSERT_TRUE(cholesky.factorize(earlier));
+  ASSERT_TRUE(cholesky.solve_preconditioned(earlier, b, 1e-8, 50, x, iterations));
+  EXPECT_EQ(iterations, 1) << "the factorized matrix itself";
+  EXPECT_LT(relative_residual(earlier, x, b), 1e-8);
+
+  // Stiffer on 20 DOFs, as new contacts make a Newton matrix: the preconditioned matrix is the
+  // identity but for a rank-20 change, so CG gets there in about 21 iterations.
+  auto nearby = earlier;
+  for (int i = 0; i < 20; ++i) nearby.coeffRef(37 * i, 37 * i) += 5.0;
+  ASSERT_TRUE(cholesky.solve_preconditioned(nearby, b, 1e-8, 50, x, iterations));
+  EXPECT_LT(relative_residual(nearby, x, b), 1e-8);
+  EXPECT_GT(iterations, 2);
+  EXPECT_LE(iterations, 25);
+  EXPECT_FALSE(cholesky.solve_preconditioned(nearby, b, 1e-8, 2, x, iterations));
+  EXPECT_EQ(iterations, 2);
+  // The factorization is kept: a direct solve is still the earlier matrix's.
+  EXPECT_LT(relative_residual(earlier, cholesky.solve(b), b), 1e-10);
+
+  const auto other_size = grid_system(9, 1.0, 0.1);
+  EXPECT_FALSE(cholesky.solve_preconditioned(other_size, random_vector(other_size.rows(), 5), 1e-8,
+                                             50, x, iterations));
+  auto indefinite = earlier;
+  indefinite.coeffRef(17, 17) = -5.0;
+  ASSERT_FALSE(cholesky.factorize(indefinite));
+  EXPECT_FALSE(cholesky.solve_preconditioned(earlier, b, 1e-8, 50, x, iterations))
+      << "a failed factorization preconditions nothing";
+}
 
 TEST(SparseCholesky, OrderingsAgree) {
   const auto lower = grid_system(10, 2.0, 0.01);
@@ -198,6 +235,41 @@ TEST(SparseCholesky, AModelsContactFreeFactorSizeIsItsFirstSystemsFactor) {
   ASSERT_TRUE(env.step()) << env.failure();
   EXPECT_GT(recorder->first_bytes(), 0u);
   EXPECT_EQ(env.model().contact_free_factor_bytes(), recorder->first_bytes());
+}
+
+// A soft box dropped onto a plate, and left to rest on it: most Newton systems are solved by CG
+// on an earlier factorization, and where it falls and where it rests are the exact solves'.
+TEST(NewtonSolver, SolvesOnEarlierFactorizationsWithoutChangingTheAnswer) {
+  SceneDescription scene;
+  scene.sim.gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+  scene.bodies.push_back(testing::rigid_box("plate", BodyType::kKinematic,
+                                            Eigen::Vector3d(0.1, 0.1, 0.01),
+                                            Eigen::Vector3d(0.0, 0.0, -0.005)));
+  scene.bodies.push_back(testing::soft_box("soft", Eigen::Vector3d(0.04, 0.04, 0.04), 0.004,
+                                           Eigen::Vector3d(0.0, 0.0, 0.0225), 1e5));
+  Environment reusing(Model::build(scene));
+  Environment exact(Model::build(scene));
+  // A solver other than the environment's own Cholesky: every system factorized.
+  exact.use_linear_solver(std::make_shared<SparseCholesky>(exact.model().ordering()), 0);
+  for (int s = 0; s < 40; ++s) {
+    ASSERT_TRUE(reusing.step()) << reusing.failure();
+    ASSERT_TRUE(exact.step()) << exact.failure();
+    ASSERT_GT(reusing.last_step().min_distance, 0.0) << "step " << s;
+    ASSERT_GT(reusing.last_step().min_volume_ratio, 0.0) << "step " << s;
+  }
+  const LinearSolveCounts& counts = reusing.linear_solves();
+  EXPECT_GT(counts.reused, counts.factorizations);
+  EXPECT_EQ(exact.linear_solves().reused, 0);
+  const Vertices box = exact.body_vertices(1);
+  EXPECT_LT(box.col(2).minCoeff(), 1e-3) << "the box fell onto the plate";
+  EXPECT_GT(box.col(2).minCoeff(), 0.0);
+  const double largest_difference = (reusing.body_vertices(1) - box).cwiseAbs().maxCoeff();
+  EXPECT_LT(largest_difference, 1e-6) << "m";
+  std::printf(
+      "reused %ld, factorizations %ld, CG iterations %ld; exact %ld factorizations; "
+      "largest difference %.3g m\n",
+      counts.reused, counts.factorizations, counts.cg_iterations,
+      exact.linear_solves().factorizations, largest_difference);
 }
 
 }  // namespace
