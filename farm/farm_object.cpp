@@ -52,6 +52,7 @@ std::vector<FarmObject> list_objects(const Job& job) {
       object.soft = group.soft;
       object.tet_edge = group.tet_edge;
       object.tet_edge_at = group.tet_edge_at;
+      object.tet_growth = group.tet_growth;
       object.max_tets = job.max_tets;
       object.mesh_scale = group.mesh_scale;
       object.material = group.randomize ? objects::randomize_material(job.randomization,
@@ -100,6 +101,7 @@ io::ObjectRecord prepare_object(const FarmObject& object) {
     geometry::TetOptions options;
     options.edge_length = synth::object_tet_edge(object.category, object.shape_seed,
                                                  object.material.scale, object.tet_edge);
+    options.interior_growth = object.tet_growth;
     const double estimate = geometry::estimated_tet_count(
         std::abs(geometry::surface_volume(surface)), options.edge_length);
     if (estimate > object.max_tets) {

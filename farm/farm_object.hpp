@@ -21,11 +21,12 @@ struct FarmObject {
   std::uint64_t shape_seed = 0;  // a category's shape
   std::uint64_t seed = 0;        // the object's own stream (material, synthesis, trials)
   bool soft = false;
-  double tet_edge = 0.008;                        // m, soft objects
-  std::string tet_edge_at;                        // "job.toml:LINE" of its entry's tet_edge
-  double max_tets = geometry::kMaxEstimatedTets;  // the job's [farm] max_tets
-  double mesh_scale = 1.0;                        // multiplies a mesh file's coordinates
-  objects::ObjectMaterial material;               // material.scale multiplies every length
+  double tet_edge = 0.008;  // m, soft objects
+  std::string tet_edge_at;  // "job.toml:LINE" of its entry's tet_edge
+  double tet_growth = geometry::kSoftObjectInteriorGrowth;  // TetOptions::interior_growth
+  double max_tets = geometry::kMaxEstimatedTets;            // the job's [farm] max_tets
+  double mesh_scale = 1.0;                                  // multiplies a mesh file's coordinates
+  objects::ObjectMaterial material;  // material.scale multiplies every length
 };
 
 // Every object of the job, in job order (entries in order, then count or sorted files).

@@ -70,8 +70,8 @@ std::vector<std::filesystem::path> resolve_meshes(const Table& group, const std:
 }
 
 ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_dir) {
-  t.allow({"category", "mesh", "count", "soft", "tet_edge", "scale", "randomize", "density",
-           "youngs", "poisson", "friction"});
+  t.allow({"category", "mesh", "count", "soft", "tet_edge", "tet_growth", "scale", "randomize",
+           "density", "youngs", "poisson", "friction"});
   ObjectGroup group;
   if (t.has("category") == t.has("mesh")) {
     t.fail(t.has("mesh") ? "mesh" : "category",
@@ -95,6 +95,10 @@ ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_d
   group.soft = t.boolean_or("soft", false);
   group.tet_edge = positive(t, "tet_edge", group.tet_edge);
   group.tet_edge_at = t.location("tet_edge");
+  group.tet_growth = t.number_or("tet_growth", group.tet_growth);
+  if (!(group.tet_growth >= 0 && group.tet_growth <= 4)) {
+    t.fail("tet_growth", "must lie in [0, 4] (0: tets of tet_edge throughout)");
+  }
   group.randomize = t.boolean_or("randomize", true);
   for (const char* key : {"density", "youngs", "poisson", "friction"}) {
     if (group.randomize && t.has(key)) {

@@ -25,7 +25,8 @@ struct ObjectGroup {
   bool soft = false;                          // FEM (tetrahedralized) instead of one affine body
   double tet_edge = 0.008;                    // m, soft objects' target tet edge length
   std::string tet_edge_at;                    // "job.toml:LINE" of tet_edge (or of the entry)
-  double mesh_scale = 1.0;                    // multiplies a mesh file's coordinates (units)
+  double tet_growth = geometry::kSoftObjectInteriorGrowth;  // TetOptions::interior_growth
+  double mesh_scale = 1.0;  // multiplies a mesh file's coordinates (units)
   // Draw scale and material from the job's ranges; otherwise use `material` as given.
   bool randomize = true;
   objects::ObjectMaterial material;

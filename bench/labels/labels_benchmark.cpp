@@ -40,7 +40,7 @@ trial::TrialParameters reference_parameters(const trial::TrialParameters& defaul
 namespace {
 
 RobustnessOptions arm_options(const LabelsOptions& options, const LabelsArm& arm,
-                              const trial::TrialParameters& parameters) {
+                              const trial::TrialParameters& parameters, bool uniform_mesh) {
   RobustnessOptions o;
   o.grippers = {arm.gripper};
   o.categories = options.categories.empty() ? kLabelsCategories : options.categories;
@@ -51,6 +51,7 @@ RobustnessOptions arm_options(const LabelsOptions& options, const LabelsArm& arm
   o.parameters = parameters;
   o.threads = options.threads;
   o.production_models = options.production_models;
+  o.soft_interior_growth = uniform_mesh ? 0.0 : options.soft_interior_growth;
   return o;
 }
 
@@ -62,12 +63,17 @@ std::vector<LabelsArm> arms_of(const LabelsOptions& options) {
 }  // namespace
 
 void check_labels_options(const LabelsOptions& options) {
+  if (options.refinement.mesh && !(options.production_models && options.soft_interior_growth > 0)) {
+    throw std::invalid_argument(
+        "grip bench labels: --refine mesh compares a graded soft mesh with a uniform one; give "
+        "--models production and a --tet-growth above 0");
+  }
   if (options.seeds < 1 || options.candidates < 1) {
     throw std::invalid_argument("grip bench labels: --seeds and --candidates must be at least 1");
   }
   for (const LabelsArm& arm : arms_of(options)) {
     try {
-      plan_robustness(arm_options(options, arm, {}));
+      plan_robustness(arm_options(options, arm, {}, false));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("grip bench labels: ") + e.what());
     }
@@ -79,16 +85,18 @@ LabelsResult run_labels(const LabelsOptions& options) {
   LabelsResult result;
   result.defaults = options.defaults;
   result.reference = reference_parameters(result.defaults, options.refinement);
+  result.uniform_mesh_reference = options.refinement.mesh;
   result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   const auto start = std::chrono::steady_clock::now();
   for (const LabelsArm& arm : arms_of(options)) {
     LabelsArmResult run{arm, {}, {}};
     spdlog::info("labels: {} x {} objects at the defaults", arm.gripper,
                  arm.soft ? "soft" : "rigid");
-    run.defaults = run_robustness(arm_options(options, arm, result.defaults));
+    run.defaults = run_robustness(arm_options(options, arm, result.defaults, false));
     spdlog::info("labels: {} x {} objects at the reference", arm.gripper,
                  arm.soft ? "soft" : "rigid");
-    run.reference = run_robustness(arm_options(options, arm, result.reference));
+    run.reference =
+        run_robustness(arm_options(options, arm, result.reference, options.refinement.mesh));
     result.arms.push_back(std::move(run));
   }
   result.wall_seconds =

@@ -20,6 +20,9 @@ struct LabelsRefinement {
   int dt_divisor = 2;        // a convergence study's finer references: 4, 8, ...
   bool newton_tol = true;    // divided by 10
   bool friction_lag = true;  // one more iteration
+  // Soft objects meshed uniformly (no interior growth) at the same surface edge; not by
+  // default: it asks whether the mesh, not the numerics, sets a verdict.
+  bool mesh = false;
 };
 
 // A gripper and an object model: one column of the benchmark.
@@ -43,7 +46,8 @@ struct LabelsOptions {
   int candidates = 4;                   // per shape
   int threads = 0;                      // 0: all cores
   bool production_models = false;       // RobustnessOptions::production_models
-  trial::TrialParameters defaults;      // the protocol's defaults unless a bench option says
+  double soft_interior_growth = geometry::kSoftObjectInteriorGrowth;  // RobustnessOptions's
+  trial::TrialParameters defaults;  // the protocol's defaults unless a bench option says
   LabelsRefinement refinement;
   std::filesystem::path out = "out/labels";
 };
@@ -70,6 +74,7 @@ struct LabelsResult {
   std::vector<LabelsArmResult> arms;
   trial::TrialParameters defaults;
   trial::TrialParameters reference;
+  bool uniform_mesh_reference = false;  // LabelsRefinement::mesh
   int threads = 0;
   double wall_seconds = 0.0;
 };

@@ -145,7 +145,11 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
      << " mm plus eps_v x the time under gravity. Reference: dt " << r.sim.dt << " s, newton_tol "
      << r.sim.newton_tol << ", " << r.sim.friction_lag_iterations
      << " friction lag iterations, the same threshold (" << r.displacement_threshold() * 1e3
-     << " mm). Grip force " << d.grip_force << " N, tolerance " << d.force_tolerance * 100 << " %. "
+     << " mm)"
+     << (result.uniform_mesh_reference
+             ? ", soft objects meshed uniformly inside (the defaults' tets grow with depth)"
+             : "")
+     << ". Grip force " << d.grip_force << " N, tolerance " << d.force_tolerance * 100 << " %. "
      << result.threads << " thread(s), " << fixed_or_dash(result.wall_seconds / 60, 1)
      << " min.\n\n";
   write_labels_table(md, tallies);

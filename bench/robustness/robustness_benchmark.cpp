@@ -190,7 +190,8 @@ std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options) {
         const int candidates = options.candidates > 0 ? options.candidates
                                : soft                 ? d.soft_candidates
                                                       : d.rigid_candidates;
-        sets.push_back({gripper, category, soft, seeds, candidates, options.production_models});
+        sets.push_back({gripper, category, soft, seeds, candidates, options.production_models,
+                        options.soft_interior_growth});
       }
     }
   }

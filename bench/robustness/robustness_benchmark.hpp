@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/candidate_record.hpp"
+#include "src/geometry/tetrahedralize.hpp"
 #include "src/trial/trial_parameters.hpp"
 
 namespace grip::bench {
@@ -22,6 +23,9 @@ struct RobustnessOptions {
   // The models `grip trial` and the farm simulate (the 4-layer fin-ray finger, the shipped LEAP
   // hand, `grip trial --soft`'s tets); false: the coarse ones (robustness_gripper_model).
   bool production_models = false;
+  // The production soft objects' interior growth (geometry::TetOptions::interior_growth), as
+  // `grip trial --soft` meshes them by default.
+  double soft_interior_growth = geometry::kSoftObjectInteriorGrowth;
   trial::TrialParameters parameters;  // the protocol and the solver's settings
   int threads = 0;                    // 0: all cores
   std::filesystem::path out = "out/robustness";
@@ -37,6 +41,7 @@ struct RobustnessSet {
   int seeds = 0;
   int candidates = 0;
   bool production_models = false;  // RobustnessOptions::production_models
+  double soft_interior_growth = geometry::kSoftObjectInteriorGrowth;  // RobustnessOptions's
 };
 
 // At most this many seeds are tried per shape asked for.

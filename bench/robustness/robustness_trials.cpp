@@ -84,13 +84,15 @@ double measured_sum(const std::array<double, 6>& values) {
 
 }  // namespace
 
-std::string robustness_object_model(bool soft, bool production_models) {
+std::string robustness_object_model(bool soft, bool production_models, double interior_growth) {
   if (!soft) return "rigid: one affine body";
   if (production_models) {
     return fmt::format(
-        "soft: FEM, E {:g} MPa, nu {:g}, tets as grip trial --soft meshes them (at most {:g} mm, "
-        "two across the thinnest wall)",
-        kObjectMaterial.youngs / 1e6, kObjectMaterial.poisson, kProductionTetEdge * 1e3);
+        "soft: FEM, E {:g} MPa, nu {:g}, tets as grip trial --soft meshes them (at most {:g} mm "
+        "at the surface, two across the thinnest wall; {})",
+        kObjectMaterial.youngs / 1e6, kObjectMaterial.poisson, kProductionTetEdge * 1e3,
+        interior_growth > 0 ? fmt::format("growing by {:g} m per m of depth", interior_growth)
+                            : std::string("uniform inside"));
   }
   return fmt::format(
       "soft: FEM, E {:g} MPa, nu {:g}, tets of at most {:g} mm, one across the "
@@ -115,6 +117,7 @@ trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed) {
     geometry::TetOptions options;
     if (set.production_models) {
       options.edge_length = synth::object_tet_edge(set.category, seed, 1.0, kProductionTetEdge);
+      options.interior_growth = set.soft_interior_growth;
     } else {
       const objects::ObjectShape shape =
           objects::sample_shape(objects::parse_object_category(set.category), seed);

@@ -21,7 +21,8 @@ class HandTrialScene;
 namespace grip::bench {
 
 // The object model of rigid or soft objects here, in words.
-std::string robustness_object_model(bool soft, bool production_models);
+std::string robustness_object_model(bool soft, bool production_models,
+                                    double interior_growth = geometry::kSoftObjectInteriorGrowth);
 
 // Candidates on the shape of the set's category and `seed`, `count` asked (fewer when synthesis
 // finds fewer), as `grip synth --seed` makes them.

@@ -158,6 +158,12 @@ int main(int argc, char** argv) {
   trial->add_option("--tet-edge", trial_args.tet_edge, "Soft object: target tet edge length (m)")
       ->capture_default_str()
       ->check(kPositive);
+  trial
+      ->add_option("--tet-growth", trial_args.tet_growth,
+                   "Soft object: how fast tets grow with depth below the surface (m per m; 0: "
+                   "uniform)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 4.0));
   trial->add_option("--density", trial_args.density, "Object density (kg/m^3)")
       ->capture_default_str()
       ->check(kPositive);
@@ -197,7 +203,7 @@ int main(int argc, char** argv) {
   trial->add_flag("--compare-solo", trial_args.compare_solo,
                   "Also run each candidate alone: batch speedup and bit-identity");
   trial->callback([&] {
-    for (const char* soft_only : {"--tet-edge", "--youngs", "--poisson"}) {
+    for (const char* soft_only : {"--tet-edge", "--tet-growth", "--youngs", "--poisson"}) {
       if (trial->count(soft_only) > 0 && !trial_args.soft) {
         throw CLI::ValidationError(soft_only, "applies to soft objects only: add --soft");
       }
@@ -538,10 +544,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"coarse", "production"}));
   bench_labels
       ->add_option("--refine", bench_labels_args.refine,
-                   "What the reference refines (default: all): dt (halved), newton_tol (/10), "
-                   "friction_lag (one more iteration)")
+                   "What the reference refines (default: the first three): dt (halved), "
+                   "newton_tol (/10), friction_lag (one more iteration), mesh (soft objects "
+                   "meshed uniformly inside)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"dt", "newton_tol", "friction_lag"}));
+      ->check(CLI::IsMember({"dt", "newton_tol", "friction_lag", "mesh"}));
   bench_labels
       ->add_option("--dt-divisor", bench_labels_args.dt_divisor,
                    "What the reference divides dt by (a convergence study's 4, 8, ...)")
@@ -555,6 +562,11 @@ int main(int argc, char** argv) {
       ->add_option("--friction-lag", bench_labels_args.friction_lag_iterations,
                    "The defaults' friction lag iterations (default: the trial's, 1)")
       ->check(kPositiveCount);
+  bench_labels
+      ->add_option("--tet-growth", bench_labels_args.tet_growth,
+                   "Production soft objects: tets grow with depth (grip trial --tet-growth)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 4.0));
   bench_labels->add_option("--out", bench_labels_args.out, "Folder for labels.md and labels.csv")
       ->capture_default_str()
       ->check(kOutputFolder);

@@ -92,10 +92,11 @@ struct TrialArgs {
   std::optional<std::uint64_t> seed;  // the category's shape, as given to grip synth
   bool soft = false;                  // FEM object (tetrahedralized) instead of one affine body
   double tet_edge = 0.008;            // m, target tet edge length of a soft object
-  double max_tets = geometry::kMaxEstimatedTets;  // a finer soft object is refused
-  double density = 1000.0;                        // kg/m^3
-  double youngs = 1e6;                            // Pa, soft objects
-  double poisson = 0.4;                           // soft objects
+  double tet_growth = geometry::kSoftObjectInteriorGrowth;  // TetOptions::interior_growth
+  double max_tets = geometry::kMaxEstimatedTets;            // a finer soft object is refused
+  double density = 1000.0;                                  // kg/m^3
+  double youngs = 1e6;                                      // Pa, soft objects
+  double poisson = 0.4;                                     // soft objects
   double friction = 3.5;               // the object's mu (a fin-ray pad's pairs use the pad's 3.5)
   std::optional<std::string> gripper;  // fin-ray, parallel-jaw or leap
   std::string candidates;              // candidate file (docs/synthesis.md)
@@ -251,6 +252,7 @@ struct BenchLabelsArgs {
   int dt_divisor = 2;               // what refining dt divides it by
   double newton_tol = 0.0;          // the defaults' Newton tolerance; 0: the trial's
   int friction_lag_iterations = 0;  // the defaults' friction lag iterations; 0: the trial's
+  double tet_growth = geometry::kSoftObjectInteriorGrowth;  // production soft objects
   std::string out = "out/labels";
 };
 int bench_labels(const BenchLabelsArgs& args);

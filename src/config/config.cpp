@@ -151,7 +151,12 @@ std::string Table::location(std::string_view key) const {
   return source_->file.string() + ":" + std::to_string(line);
 }
 
-void Table::allow(std::initializer_list<std::string_view> keys) const {
+void Table::allow(std::initializer_list<std::string_view> keys) const { allow(keys, {}); }
+
+void Table::allow(std::initializer_list<std::string_view> first,
+                  std::initializer_list<std::string_view> more) const {
+  std::vector<std::string_view> keys(first);
+  keys.insert(keys.end(), more.begin(), more.end());
   for (const auto& [key, value] : as_table(node_)) {
     const std::string_view name = key.str();
     if (std::find(keys.begin(), keys.end(), name) != keys.end()) continue;

@@ -42,9 +42,7 @@ double positive(const Table& table, std::string_view key, double fallback) {
 }
 
 void read_sim(const Table& sim, SceneFile& out) {
-  sim.allow({"dt", "duration", "gravity", "d_hat", "kappa", "eps_v", "newton_tol",
-             "newton_velocity_tol", "max_newton_iters", "projected_iterations", "max_step_halvings",
-             "friction_lag_iterations", "reuse_iterations", "reuse_tolerance", "ccd_rescaling"});
+  sim.allow(kSimParameterKeys, {"duration", "gravity"});
   solver::SimParameters& p = out.scene.sim;
   read_sim_parameters(sim, p);
   out.duration = positive(sim, "duration", out.duration);

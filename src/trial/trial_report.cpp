@@ -1,5 +1,7 @@
 #include "src/trial/trial_report.hpp"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "src/json/json_text.hpp"
@@ -84,6 +86,11 @@ void write_report(std::ostream& out, const TrialReport& report,
                                    {"reused", outcome.linear_solves.reused},
                                    {"cg_iterations", outcome.linear_solves.cg_iterations}}}};
     if (report.grippers > 1) trial["grippers"] = gripper_json(report.grippers, outcome);
+    // A soft object's largest von Mises stress over its tets at the settled grasp (Pa).
+    const auto& stress = outcome.result.stress;
+    if (stress && !stress->empty()) {
+      trial["peak_stress"] = *std::max_element(stress->begin(), stress->end());
+    }
     trials.push_back(std::move(trial));
   }
   root["trials"] = std::move(trials);

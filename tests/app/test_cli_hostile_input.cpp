@@ -334,6 +334,8 @@ TEST(HostileInput, JobFilesPastTheTrialLimitsAreRefusedBeforeAnyFile) {
   // A soft object's tet edge past the tet limit: refused before meshing.
   expect_job_refused(dir, "[[objects]]\ncategory = \"capsule\"\nsoft = true\ntet_edge = 1e-5\n",
                      "[[objects]] tet_edge: an edge of 1e-05 m would make about");
+  expect_job_refused(dir, "[[objects]]\ncategory = \"capsule\"\nsoft = true\ntet_growth = -0.5\n",
+                     "key 'objects[0].tet_growth' must lie in [0, 4]");
   // A billion objects once planned for hours, holding every candidate in memory, and a stop
   // signal waited for planning to end.
   expect_job_refused(dir, "[[objects]]\ncategory = \"cylinder\"\ncount = 1000000000\n",

@@ -73,6 +73,16 @@ TEST(LabelsBench, RefusesBadOptions) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()).rfind("grip bench labels: ", 0), 0u) << e.what();
   }
+  // A mesh reference needs a graded mesh to compare: production models, a growth above 0.
+  options.categories.clear();
+  options.refinement.mesh = true;
+  options.production_models = true;
+  options.soft_interior_growth = 0.0;
+  EXPECT_THROW(check_labels_options(options), std::invalid_argument);
+  options.soft_interior_growth = 0.5;
+  EXPECT_NO_THROW(check_labels_options(options));
+  options.production_models = false;
+  EXPECT_THROW(check_labels_options(options), std::invalid_argument);
 }
 
 TEST(LabelsBench, ForceSummaryCountsFingersInContactOfClosedTrials) {

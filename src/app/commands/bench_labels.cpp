@@ -19,6 +19,7 @@ int bench_labels(const BenchLabelsArgs& args) {
   options.candidates = args.candidates;
   options.threads = args.threads;
   options.production_models = args.models == "production";
+  options.soft_interior_growth = args.tet_growth;
   options.refinement.dt = args.refine.empty();
   options.refinement.newton_tol = args.refine.empty();
   options.refinement.friction_lag = args.refine.empty();
@@ -26,6 +27,7 @@ int bench_labels(const BenchLabelsArgs& args) {
     options.refinement.dt = options.refinement.dt || r == "dt";
     options.refinement.newton_tol = options.refinement.newton_tol || r == "newton_tol";
     options.refinement.friction_lag = options.refinement.friction_lag || r == "friction_lag";
+    options.refinement.mesh = options.refinement.mesh || r == "mesh";
   }
   options.refinement.dt_divisor = args.dt_divisor;
   if (args.newton_tol > 0.0) options.defaults.sim.newton_tol = args.newton_tol;

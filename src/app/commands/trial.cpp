@@ -207,6 +207,7 @@ int trial(const TrialArgs& given) {
   if (args.soft) {
     geometry::TetOptions options;
     options.edge_length = synth::object_tet_edge(*args.object, *args.seed, 1.0, args.tet_edge);
+    options.interior_growth = args.tet_growth;
     if (options.edge_length < args.tet_edge) {
       spdlog::info("tet edge {:.4f} m: half the object's thinnest part", options.edge_length);
     }
