@@ -240,7 +240,9 @@ void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double&
 void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
                              Eigen::VectorXd& gradient,
                              std::vector<Eigen::Triplet<double>>& hessian) {
-  if (body.type == BodyType::kFem) fem::add_elastic_derivatives(body, q, scale, gradient, hessian);
+  if (body.type == BodyType::kFem) {
+    fem::add_elastic_derivatives(body, q, scale, nullptr, gradient, hessian);
+  }
   if (body.type == BodyType::kAffine) {
     affine::add_elastic_derivatives(body, q, scale, gradient, hessian);
   }

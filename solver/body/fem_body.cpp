@@ -196,20 +196,6 @@ void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double&
   }
 }
 
-void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
-                             Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian) {
-  for (const FemTet& tet : body.tets) {
-    const Vector12 x = tet_positions(q, body.dof_offset, tet);
-    const Vector12 g = scale * kernels::tet_stable_neo_hookean_gradient(
-                                   x, tet.rest_shape_inverse, tet.rest_volume, body.elasticity);
-    const Matrix12 h =
-        scale * kernels::tet_stable_neo_hookean_hessian(x, tet.rest_shape_inverse, tet.rest_volume,
-                                                        body.elasticity, true);
-    add_tet_derivatives(body, tet, g, h, gradient, hessian);
-  }
-}
-
 void tet_stiffness(const BodyModel& body, const Eigen::VectorXd& q,
                    std::vector<Matrix12d>& stiffness) {
   stiffness.resize(body.tets.size());
@@ -233,17 +219,27 @@ void add_damping_energy(const BodyModel& body, const Eigen::VectorXd& q,
   }
 }
 
-void add_damping_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
-                             const Eigen::VectorXd& q_start,
-                             const std::vector<Matrix12d>& stiffness, double h, double scale,
-                             Eigen::VectorXd& gradient,
+void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
+                             const StepDamping* damping, Eigen::VectorXd& gradient,
                              std::vector<Eigen::Triplet<double>>& hessian) {
-  const double c = scale * body.material.damping / h;
+  const Eigen::Index dofs = 3 * body.rest.rows();
+  const bool at_start = damping != nullptr && q.segment(body.dof_offset, dofs) ==
+                                                  damping->q_start.segment(body.dof_offset, dofs);
+  const double c = damping ? body.material.damping / damping->h : 0.0;
   for (std::size_t t = 0; t < body.tets.size(); ++t) {
     const FemTet& tet = body.tets[t];
-    const Vector12 dx =
-        tet_positions(q, body.dof_offset, tet) - tet_positions(q_start, body.dof_offset, tet);
-    add_tet_derivatives(body, tet, c * (stiffness[t] * dx), c * stiffness[t], gradient, hessian);
+    const Vector12 x = tet_positions(q, body.dof_offset, tet);
+    Vector12 g = kernels::tet_stable_neo_hookean_gradient(x, tet.rest_shape_inverse,
+                                                          tet.rest_volume, body.elasticity);
+    Matrix12 h = at_start ? damping->stiffness[t]
+                          : kernels::tet_stable_neo_hookean_hessian(
+                                x, tet.rest_shape_inverse, tet.rest_volume, body.elasticity, true);
+    if (damping) {
+      const Matrix12d& k = damping->stiffness[t];
+      g += c * (k * (x - tet_positions(damping->q_start, body.dof_offset, tet)));
+      h += c * k;
+    }
+    add_tet_derivatives(body, tet, scale * g, scale * h, gradient, hessian);
   }
 }
 

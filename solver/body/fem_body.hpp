@@ -48,26 +48,34 @@ void add_inertia_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
                              const Eigen::VectorXd& q_tilde, double scale,
                              Eigen::VectorXd& gradient,
                              std::vector<Eigen::Triplet<double>>& hessian);
-// The elastic energy added to `sum`; `scale` times its gradient and PSD-projected Hessian added
-// to the gradient and the lower-triangle triplets.
+// The elastic energy added to `sum`.
 void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double& sum);
-void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
-                             Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian);
 
 // Rayleigh damping (Material::damping, beta): the viscous force -beta K v, with K the elastic
 // Hessian (PSD-projected) at the step's start and v = (x - x_start) / h, as the potential
-// beta / (2 h) |x - x_start|_K^2. tet_stiffness() evaluates K per tet at q; the energy and its
-// derivatives (`scale` times, lower-triangle triplets) are added for the step of length h.
+// beta / (2 h) |x - x_start|_K^2. tet_stiffness() evaluates K per tet at q; the energy is added
+// for the step of length h.
 void tet_stiffness(const BodyModel& body, const Eigen::VectorXd& q,
                    std::vector<Matrix12d>& stiffness);
 void add_damping_energy(const BodyModel& body, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& q_start, const std::vector<Matrix12d>& stiffness,
                         double h, double& sum);
-void add_damping_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
-                             const Eigen::VectorXd& q_start,
-                             const std::vector<Matrix12d>& stiffness, double h, double scale,
-                             Eigen::VectorXd& gradient,
+
+// One step's damping of a body: its start DOFs, K per tet there (tet_stiffness) and the step's
+// length h.
+struct StepDamping {
+  const Eigen::VectorXd& q_start;
+  const std::vector<Matrix12d>& stiffness;
+  double h = 0.0;
+};
+
+// `scale` times the gradient and PSD-projected Hessian of the elastic energy and, with
+// `damping`, of the damping potential, added to the gradient and the lower-triangle triplets.
+// The two are summed per tet before they are scattered, so a damped tet costs one 12x12 block of
+// triplets, not two; where q is still the step's start (a step's first Newton iteration) the
+// elastic Hessian is K itself and is not evaluated again.
+void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
+                             const StepDamping* damping, Eigen::VectorXd& gradient,
                              std::vector<Eigen::Triplet<double>>& hessian);
 
 }  // namespace grip::solver::fem

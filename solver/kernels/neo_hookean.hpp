@@ -10,7 +10,6 @@
 // (mu_L, lambda_L) needs the reparametrization mu = mu_L, lambda = lambda_L + mu_L.
 // Unlike classic Neo-Hookean there is no log(J): the energy stays finite for J <= 0 (inverted
 // elements get a restoring force), which IPC's line search filter still forbids.
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -208,12 +207,12 @@ inline RotationVariantSvd rotation_variant_svd(const Eigen::Matrix3d& f) {
 //     mu I + lambda g_s g_s^T + c [[0, s2, s1], [s2, 0, s0], [s1, s0, 0]],  g_s = (s1 s2, s0 s2, s0
 //     s1).
 // The negative modes are removed from the exact dP/dF, so a PSD one is returned unchanged.
-// Host only, like rotation_variant_svd.
+// No Cholesky test first: the twists' eigenvalues are zero at rest (rotations), and almost any
+// strain that is not a pure dilation makes one slightly negative, so such a test fails for most
+// tets of a deformed body and only adds its cost. Host only, like rotation_variant_svd.
 inline Matrix9d stable_neo_hookean_stress_derivative_psd(const Eigen::Matrix3d& f,
                                                          const StableNeoHookeanParameters& m) {
   Matrix9d dpdf = stable_neo_hookean_stress_derivative(f, m);
-  // Most elements are not compressed enough to be indefinite: a Cholesky test says so cheaply.
-  if (Eigen::LLT<Matrix9d>(dpdf).info() == Eigen::Success) return dpdf;
   const RotationVariantSvd svd = rotation_variant_svd(f);
   const Eigen::Vector3d& s = svd.s;
   const double c = m.lambda * (s.prod() - 1.0) - m.mu;
@@ -242,6 +241,10 @@ inline Matrix9d stable_neo_hookean_stress_derivative_psd(const Eigen::Matrix3d& 
   scaling(1, 0) = scaling(0, 1);
   scaling(2, 0) = scaling(0, 2);
   scaling(2, 1) = scaling(1, 2);
+  // Positive leading minors (Sylvester): no negative scaling, and no eigensolve, as for most
+  // tets (about 2 mu I + (lambda - mu) 11^T near rest).
+  const double minor2 = scaling(0, 0) * scaling(1, 1) - scaling(0, 1) * scaling(0, 1);
+  if (scaling(0, 0) > 0.0 && minor2 > 0.0 && scaling.determinant() > 0.0) return dpdf;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> modes;
   modes.computeDirect(scaling);
   for (int k = 0; k < 3; ++k) {

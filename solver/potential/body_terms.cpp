@@ -27,17 +27,6 @@ void DriveTerm::add_derivatives(const PotentialPoint& at, double scale,
   }
 }
 
-void ElasticityTerm::add_energy(const PotentialPoint& at, double& sum) const {
-  for (const BodyModel& body : model_.bodies()) add_elastic_energy(body, at.q, sum);
-}
-
-void ElasticityTerm::add_derivatives(const PotentialPoint& at, double scale,
-                                     PotentialDerivatives& out) const {
-  for (const BodyModel& body : model_.bodies()) {
-    add_elastic_derivatives(body, at.q, scale, out.gradient, out.hessian);
-  }
-}
-
 namespace {
 
 bool damped(const BodyModel& body) {
@@ -46,7 +35,7 @@ bool damped(const BodyModel& body) {
 
 }  // namespace
 
-void DampingTerm::begin_step(const Eigen::VectorXd& q_start, double h) {
+void ElasticityTerm::begin_step(const Eigen::VectorXd& q_start, double h) {
   h_ = h;
   stiffness_.resize(model_.bodies().size());
   bool any = false;
@@ -58,20 +47,23 @@ void DampingTerm::begin_step(const Eigen::VectorXd& q_start, double h) {
   if (any) q_start_ = q_start;
 }
 
-void DampingTerm::add_energy(const PotentialPoint& at, double& sum) const {
+void ElasticityTerm::add_energy(const PotentialPoint& at, double& sum) const {
   for (std::size_t b = 0; b < model_.bodies().size(); ++b) {
     const BodyModel& body = model_.bodies()[b];
+    add_elastic_energy(body, at.q, sum);
     if (damped(body)) fem::add_damping_energy(body, at.q, q_start_, stiffness_[b], h_, sum);
   }
 }
 
-void DampingTerm::add_derivatives(const PotentialPoint& at, double scale,
-                                  PotentialDerivatives& out) const {
+void ElasticityTerm::add_derivatives(const PotentialPoint& at, double scale,
+                                     PotentialDerivatives& out) const {
   for (std::size_t b = 0; b < model_.bodies().size(); ++b) {
     const BodyModel& body = model_.bodies()[b];
     if (damped(body)) {
-      fem::add_damping_derivatives(body, at.q, q_start_, stiffness_[b], h_, scale, out.gradient,
-                                   out.hessian);
+      const fem::StepDamping damping{q_start_, stiffness_[b], h_};
+      fem::add_elastic_derivatives(body, at.q, scale, &damping, out.gradient, out.hessian);
+    } else {
+      add_elastic_derivatives(body, at.q, scale, out.gradient, out.hessian);
     }
   }
 }

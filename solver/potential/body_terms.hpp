@@ -1,7 +1,8 @@
 #pragma once
 // The incremental potential's per-body terms: inertia, 1/2 |x - x_tilde|_M^2 about the step's
 // inertia target, elasticity (stable Neo-Hookean for FEM bodies, the orthogonality energy
-// of affine ones) and the drives of driven bodies. Kinematic bodies have none.
+// of affine ones) with FEM bodies' Rayleigh damping, and the drives of driven bodies. Kinematic
+// bodies have none.
 #include "solver/model.hpp"
 #include "solver/potential/potential_term.hpp"
 
@@ -39,25 +40,15 @@ class DriveTerm : public PotentialTerm {
   Eigen::VectorXd q_target_;
 };
 
+// Elasticity, and the Rayleigh damping of the FEM bodies whose material damps
+// (Material::damping > 0): beta / (2 h) |x - x_start|_K^2 per body, K its elastic Hessian at the
+// step's start. K is lagged like friction's normal forces, so damping is a convex quadratic
+// within the step; a rigid motion of an unstressed body lies in K's null space and is not
+// damped. One term for both, so that a tet's elastic and damping Hessians are summed before
+// they are scattered (fem::add_elastic_derivatives).
 class ElasticityTerm : public PotentialTerm {
  public:
   explicit ElasticityTerm(const Model& model) : model_(model) {}
-
-  void add_energy(const PotentialPoint& at, double& sum) const override;
-  void add_derivatives(const PotentialPoint& at, double scale,
-                       PotentialDerivatives& out) const override;
-
- private:
-  const Model& model_;
-};
-
-// Rayleigh damping of the FEM bodies whose material damps (Material::damping > 0): beta / (2 h)
-// |x - x_start|_K^2 per body, K its elastic Hessian at the step's start. K is lagged like
-// friction's normal forces, so the term is a convex quadratic within the step; a rigid motion of
-// an unstressed body lies in K's null space and is not damped. Undamped bodies add nothing.
-class DampingTerm : public PotentialTerm {
- public:
-  explicit DampingTerm(const Model& model) : model_(model) {}
   // Evaluates each damped body's K at the step's start q_start.
   void begin_step(const Eigen::VectorXd& q_start, double h);
 

@@ -6,7 +6,6 @@ IncrementalPotential::IncrementalPotential(const Model& model)
     : model_(model),
       inertia_(model),
       elasticity_(model),
-      damping_(model),
       drive_(model),
       barrier_(model),
       friction_(model) {}
@@ -15,7 +14,7 @@ void IncrementalPotential::begin_step(const Eigen::VectorXd& q_start, Eigen::Vec
                                       Eigen::VectorXd q_drive, Vertices start_positions,
                                       double kappa, double h) {
   h_ = h;
-  damping_.begin_step(q_start, h);
+  elasticity_.begin_step(q_start, h);
   inertia_.set_target(std::move(q_tilde));
   drive_.set_target(std::move(q_drive));
   barrier_.set_kappa(kappa);

@@ -2,10 +2,10 @@
 // The incremental potential of one implicit Euler step (IPC):
 //   E(x) = 1/2 |x - x_tilde|_M^2 + h^2 [ elasticity + damping + drives + kappa sum_k b(d_k)
 //                                        + sum_k mu lambda_k f0(|u_k|) ]
-// the sum of an inertia term and five potential-energy terms (potential/*_term.hpp). kappa is a
-// stiffness (N/m) and lambda_k a force (N): at equilibrium M (x - x_tilde) / h^2 balances the
-// physical forces. Derivatives are per element, projected to positive semi-definite before they
-// are summed (projected Newton).
+// the sum of an inertia term and four potential-energy terms (potential/*_term.hpp; elasticity
+// and damping are one). kappa is a stiffness (N/m) and lambda_k a force (N): at equilibrium
+// M (x - x_tilde) / h^2 balances the physical forces. Derivatives are per element, projected to
+// positive semi-definite before they are summed (projected Newton).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
@@ -50,15 +50,14 @@ class IncrementalPotential {
 
  private:
   // The terms multiplied by h^2, in the order they are summed.
-  std::array<const PotentialTerm*, 5> potential_energies() const {
-    return {&elasticity_, &damping_, &drive_, &barrier_, &friction_};
+  std::array<const PotentialTerm*, 4> potential_energies() const {
+    return {&elasticity_, &drive_, &barrier_, &friction_};
   }
 
   const Model& model_;
   double h_ = 0.0;
   InertiaTerm inertia_;
   ElasticityTerm elasticity_;
-  DampingTerm damping_;
   DriveTerm drive_;
   BarrierTerm barrier_;
   FrictionTerm friction_;

@@ -17,55 +17,121 @@ namespace {
 using testing::run_checked;
 using testing::soft_box;
 
-TEST(Damping, DerivativesMatchFiniteDifferences) {
-  SceneDescription scene;
-  BodyDescription jelly = soft_box("jelly", {0.04, 0.03, 0.02}, 0.01, {0, 0, 0}, 1e5);
-  jelly.material.damping = 0.02;
-  scene.bodies.push_back(jelly);
-  const std::shared_ptr<const Model> model = Model::build(scene);
-  const BodyModel& body = model->bodies()[0];
-  std::mt19937 random(5);
-  std::uniform_real_distribution<double> jitter(-2e-3, 2e-3);
-  Eigen::VectorXd q_start(model->dof_count()), q(model->dof_count());
-  for (Eigen::Index i = 0; i < body.rest.rows(); ++i) {
-    for (int k = 0; k < 3; ++k) {
-      q_start[3 * i + k] = body.rest(i, k) + jitter(random);
-      q[3 * i + k] = q_start[3 * i + k] + jitter(random);
-    }
+// A damped soft box (beta 20 ms, E 0.1 MPa) and a random perturbation of its rest shape.
+struct DampedJelly {
+  std::shared_ptr<const Model> model;
+  std::mt19937 random;
+  std::uniform_real_distribution<double> jitter{-2e-3, 2e-3};
+
+  explicit DampedJelly(unsigned seed) : random(seed) {
+    SceneDescription scene;
+    BodyDescription jelly = soft_box("jelly", {0.04, 0.03, 0.02}, 0.01, {0, 0, 0}, 1e5);
+    jelly.material.damping = 0.02;
+    scene.bodies.push_back(jelly);
+    model = Model::build(scene);
   }
+  const BodyModel& body() const { return model->bodies()[0]; }
+  // `from` (the rest shape if empty) with every DOF moved by up to 2 mm.
+  Eigen::VectorXd jittered(const Eigen::VectorXd& from = {}) {
+    Eigen::VectorXd q(model->dof_count());
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      q[i] = (from.size() > 0 ? from[i] : body().rest(i / 3, i % 3)) + jitter(random);
+    }
+    return q;
+  }
+};
+
+TEST(Damping, DerivativesMatchFiniteDifferences) {
+  DampedJelly jelly(5);
+  const BodyModel& body = jelly.body();
+  const Eigen::VectorXd q_start = jelly.jittered();
+  const Eigen::VectorXd q = jelly.jittered(q_start);
   std::vector<Matrix12d> stiffness;
   fem::tet_stiffness(body, q_start, stiffness);
   const double h = 0.01;
+  const fem::StepDamping damping{q_start, stiffness, h};
+  // Elasticity and damping, as the elasticity term sums them per tet.
   const auto energy = [&](const Eigen::VectorXd& at) {
     double sum = 0.0;
+    fem::add_elastic_energy(body, at, sum);
     fem::add_damping_energy(body, at, q_start, stiffness, h, sum);
     return sum;
   };
-  Eigen::VectorXd gradient = Eigen::VectorXd::Zero(q.size());
+  const auto derivatives = [&](const Eigen::VectorXd& at, Eigen::VectorXd& gradient,
+                               std::vector<Eigen::Triplet<double>>& triplets) {
+    gradient = Eigen::VectorXd::Zero(at.size());
+    fem::add_elastic_derivatives(body, at, 1.0, &damping, gradient, triplets);
+  };
+  Eigen::VectorXd gradient;
   std::vector<Eigen::Triplet<double>> triplets;
-  fem::add_damping_derivatives(body, q, q_start, stiffness, h, 1.0, gradient, triplets);
+  derivatives(q, gradient, triplets);
   Eigen::SparseMatrix<double> lower(q.size(), q.size());
   lower.setFromTriplets(triplets.begin(), triplets.end());
   const Eigen::MatrixXd lower_dense(lower);
   const Eigen::MatrixXd hessian = lower_dense.selfadjointView<Eigen::Lower>();
+  // The damping alone: its energy, and the elastic Hessian subtracted from the sum.
+  std::vector<Eigen::Triplet<double>> elastic_triplets;
+  Eigen::VectorXd elastic_gradient = Eigen::VectorXd::Zero(q.size());
+  fem::add_elastic_derivatives(body, q, 1.0, nullptr, elastic_gradient, elastic_triplets);
+  Eigen::SparseMatrix<double> elastic_lower(q.size(), q.size());
+  elastic_lower.setFromTriplets(elastic_triplets.begin(), elastic_triplets.end());
+  const Eigen::MatrixXd elastic_dense(elastic_lower);
+  const Eigen::MatrixXd damping_hessian =
+      hessian - Eigen::MatrixXd(elastic_dense.selfadjointView<Eigen::Lower>());
+  const auto damping_energy = [&](const Eigen::VectorXd& at) {
+    double sum = 0.0;
+    fem::add_damping_energy(body, at, q_start, stiffness, h, sum);
+    return sum;
+  };
   const double step = 1e-6;
-  const Eigen::VectorXd zero_gradient = Eigen::VectorXd::Zero(q.size());
   for (Eigen::Index i = 0; i < q.size(); i += 7) {
     Eigen::VectorXd plus = q, minus = q;
     plus[i] += step;
     minus[i] -= step;
     const double fd = (energy(plus) - energy(minus)) / (2 * step);
     EXPECT_NEAR(gradient[i], fd, 1e-6 * std::max(1.0, std::abs(fd))) << "dof " << i;
-    // The energy is quadratic in q: the gradient is linear, its difference is the Hessian.
-    Eigen::VectorXd g_plus = zero_gradient, g_minus = zero_gradient;
+    // The damping energy is quadratic in q: its gradient is linear, its difference is the
+    // damping's Hessian.
+    const double damping_fd = (damping_energy(plus) - damping_energy(minus)) / (2 * step);
+    EXPECT_NEAR(gradient[i] - elastic_gradient[i], damping_fd,
+                1e-6 * std::max(1.0, std::abs(damping_fd)))
+        << "dof " << i;
+    Eigen::VectorXd g_plus, g_minus, e_plus = Eigen::VectorXd::Zero(q.size()),
+                                     e_minus = Eigen::VectorXd::Zero(q.size());
     std::vector<Eigen::Triplet<double>> unused;
-    fem::add_damping_derivatives(body, plus, q_start, stiffness, h, 1.0, g_plus, unused);
-    fem::add_damping_derivatives(body, minus, q_start, stiffness, h, 1.0, g_minus, unused);
-    const Eigen::VectorXd column = (g_plus - g_minus) / (2 * step);
-    EXPECT_LT((hessian.col(i) - column).norm(), 1e-6 * std::max(1.0, column.norm())) << i;
+    derivatives(plus, g_plus, unused);
+    derivatives(minus, g_minus, unused);
+    fem::add_elastic_derivatives(body, plus, 1.0, nullptr, e_plus, unused);
+    fem::add_elastic_derivatives(body, minus, 1.0, nullptr, e_minus, unused);
+    const Eigen::VectorXd column = ((g_plus - e_plus) - (g_minus - e_minus)) / (2 * step);
+    EXPECT_LT((damping_hessian.col(i) - column).norm(), 1e-6 * std::max(1.0, column.norm())) << i;
   }
-  EXPECT_GT(energy(q), 0.0);
-  EXPECT_EQ(energy(q_start), 0.0);  // no motion, no dissipation
+  EXPECT_GT(damping_energy(q), 0.0);
+  EXPECT_EQ(damping_energy(q_start), 0.0);  // no motion, no dissipation
+}
+
+// At the step's start the elastic Hessian is K itself, taken from the damping, and the damping
+// adds no force: the derivatives are the undamped ones plus beta / h K, exactly.
+TEST(Damping, AtTheStepsStartTheElasticHessianIsTheDampingsStiffness) {
+  DampedJelly jelly(7);
+  const BodyModel& body = jelly.body();
+  const Eigen::VectorXd q_start = jelly.jittered();
+  std::vector<Matrix12d> stiffness;
+  fem::tet_stiffness(body, q_start, stiffness);
+  const double h = 0.01;
+  const fem::StepDamping damping{q_start, stiffness, h};
+  Eigen::VectorXd damped = Eigen::VectorXd::Zero(q_start.size());
+  Eigen::VectorXd undamped = Eigen::VectorXd::Zero(q_start.size());
+  std::vector<Eigen::Triplet<double>> damped_triplets, undamped_triplets;
+  fem::add_elastic_derivatives(body, q_start, 1.0, &damping, damped, damped_triplets);
+  fem::add_elastic_derivatives(body, q_start, 1.0, nullptr, undamped, undamped_triplets);
+  EXPECT_EQ(damped, undamped);
+  ASSERT_EQ(damped_triplets.size(), undamped_triplets.size());
+  const double c = body.material.damping / h;
+  for (std::size_t i = 0; i < damped_triplets.size(); ++i) {
+    const double elastic = undamped_triplets[i].value();
+    EXPECT_NEAR(damped_triplets[i].value(), (1.0 + c) * elastic, 1e-12 * std::abs(elastic)) << i;
+  }
 }
 
 TEST(Damping, ARigidTranslationIsNotDamped) {
