@@ -121,10 +121,66 @@ void edge_boxes(const CollisionMesh& mesh, const std::vector<Aabb>& vertex_boxes
   }
 }
 
+// The squared distance of a pair's primitives at x.
+double pair_distance_sq(const ContactCandidate& c, const Vertices& x) {
+  const auto at = [&](int k) -> Eigen::Vector3d { return x.row(c.vertex[k]).transpose(); };
+  return c.edge_edge ? kernels::edge_edge_distance_sq(at(0), at(1), at(2), at(3))
+                     : kernels::point_triangle_distance_sq(at(0), at(1), at(2), at(3));
+}
+
+// The largest of `values` over each side of a pair: its point or first edge, its triangle or
+// second edge (every point of a primitive moves at most as far as its farthest vertex).
+std::array<double, 2> largest_per_side(const ContactCandidate& c, const Eigen::VectorXd& values) {
+  const auto& v = c.vertex;
+  if (c.edge_edge)
+    return {std::max(values[v[0]], values[v[1]]), std::max(values[v[2]], values[v[3]])};
+  return {values[v[0]], std::max({values[v[1]], values[v[2]], values[v[3]]})};
+}
+
+bool on_one_body(const std::vector<int>& vertex_body, const ContactCandidate& c) {
+  return vertex_body[c.vertex[0]] == vertex_body[c.vertex[2]];
+}
+
 }  // namespace
 
 std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const Vertices& start,
                                                       const Vertices& end, double d_hat) {
+  prepare(model, start, end, d_hat);
+  return overlapping([](std::size_t) { return false; });
+}
+
+std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const Vertices& start,
+                                                      const Vertices& end, double d_hat,
+                                                      std::vector<ContactCandidate>* ccd,
+                                                      double ccd_rescaling) {
+  prepare(model, start, end, d_hat);
+  if (kept_distance_.size() != kept_.size()) measure_kept(model);
+  const std::vector<int>& vertex_body = model.collision().vertex_body;
+  const Eigen::VectorXd since_kept = displacements_in_body(vertex_body, kept_start_, start);
+  const Eigen::VectorXd on_path = displacements_in_body(vertex_body, start, end);
+  // within_reach's tests with a relative margin wider than theirs, so that no rounding can pass
+  // over a pair they would keep.
+  constexpr double kMargin = 1e-5;
+  const double ccd_stop = ccd ? d_hat * (1.0 - 1e-6) / ccd_rescaling : 0.0;
+  const std::vector<ContactCandidate> boxed = overlapping([&](std::size_t i) {
+    const double kept_distance = kept_distance_[i];
+    if (kept_distance < 0.0) return false;
+    const auto [moved_a, moved_b] = largest_per_side(kept_[i], since_kept);
+    const auto [path_a, path_b] = largest_per_side(kept_[i], on_path);
+    // The pair's distance at the start lies within moved_a + moved_b of its kept distance.
+    const bool beyond_reach =
+        kept_distance - moved_a - moved_b > (d_hat + path_a + path_b) * (1.0 + kMargin);
+    const bool short_of_ccd =
+        !ccd || (kept_distance + moved_a + moved_b) * (1.0 + kMargin) < ccd_stop;
+    const bool skip = beyond_reach && short_of_ccd;
+    screened_ += skip;
+    return skip;
+  });
+  return within_reach(vertex_body, boxed, start, end, d_hat, ccd, ccd_rescaling);
+}
+
+void ContactBroadPhase::prepare(const Model& model, const Vertices& start, const Vertices& end,
+                                double d_hat) {
   const CollisionMesh& mesh = model.collision();
   // Two boxes each inflated by half of d_hat overlap whenever their contents come within d_hat.
   const double margin = 0.5 * d_hat * (1.0 + 1e-9);
@@ -140,13 +196,18 @@ std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const 
     box.inflate(margin);
     kept_covers = kept_covers && kept_vertex_boxes_[v].contains(box);
   }
-  if (!kept_covers) keep(model, d_hat);
-  // The kept pairs whose boxes overlap now: every pair that overlaps now, since each of its
-  // boxes lies in its kept box, in the kept pairs' order.
+  if (!kept_covers) keep(model, start, d_hat);
   face_boxes(mesh, vertex_boxes_, face_boxes_);
   edge_boxes(mesh, vertex_boxes_, edge_boxes_);
+}
+
+template <typename Skip>
+std::vector<ContactCandidate> ContactBroadPhase::overlapping(Skip&& skip) {
+  // The kept pairs whose boxes overlap now: every pair that overlaps now, since each of its
+  // boxes lies in its kept box, in the kept pairs' order.
   std::vector<ContactCandidate> candidates;
   for (std::size_t i = 0; i < kept_.size(); ++i) {
+    if (skip(i)) continue;
     const auto [a, b] = kept_primitives_[i];
     const bool overlap = kept_[i].edge_edge ? edge_boxes_[a].overlaps(edge_boxes_[b])
                                             : vertex_boxes_[a].overlaps(face_boxes_[b]);
@@ -155,12 +216,23 @@ std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const 
   return candidates;
 }
 
+void ContactBroadPhase::measure_kept(const Model& model) {
+  kept_distance_.resize(kept_.size());
+  for (std::size_t i = 0; i < kept_.size(); ++i) {
+    kept_distance_[i] = on_one_body(model.collision().vertex_body, kept_[i])
+                            ? std::sqrt(pair_distance_sq(kept_[i], kept_start_))
+                            : -1.0;
+  }
+}
+
 // The pairs whose boxes overlap once each vertex's box is grown by the skin: they hold every pair
 // of later calls whose vertex boxes stay inside these.
-void ContactBroadPhase::keep(const Model& model, double d_hat) {
+void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d_hat) {
   const CollisionMesh& mesh = model.collision();
   ++keeps_;
   kept_model_ = &model;
+  kept_start_ = start;
+  kept_distance_.clear();
   kept_vertex_boxes_ = vertex_boxes_;
   body_boxes_.assign(model.bodies().size(), Aabb{});
   for (int v = 0; v < mesh.size(); ++v) {
@@ -191,34 +263,41 @@ void ContactBroadPhase::keep(const Model& model, double d_hat) {
   add_edge_edge_candidates(model, reaches_, edges_, hits_, kept_, kept_primitives_);
 }
 
-std::vector<ContactCandidate> within_reach(const std::vector<ContactCandidate>& candidates,
+std::vector<ContactCandidate> within_reach(const std::vector<int>& vertex_body,
+                                           const std::vector<ContactCandidate>& candidates,
                                            const Vertices& start, const Vertices& end, double d_hat,
                                            std::vector<ContactCandidate>* ccd,
                                            double ccd_rescaling) {
   // Each vertex's displacement once: most vertices are in many pairs.
   const Eigen::VectorXd moved = (end - start).rowwise().norm();
-  const auto displacement = [&](int v) { return moved[v]; };
+  const Eigen::VectorXd moved_in_body = displacements_in_body(vertex_body, start, end);
   // Relative margins far above round-off keep every pair the rounding could bring in.
   const double ccd_stops_sq = ccd ? std::pow(d_hat * (1.0 - 1e-6) / ccd_rescaling, 2) : 0.0;
   std::vector<ContactCandidate> reachable;
   if (ccd) ccd->clear();
   for (const ContactCandidate& c : candidates) {
-    const auto& v = c.vertex;
-    // Every point of a triangle (an edge) moves at most as far as its farthest vertex, so the
-    // distance shrinks at most by the two sides' largest displacements.
-    const double reach =
-        d_hat +
-        (c.edge_edge ? std::max(displacement(v[0]), displacement(v[1])) : displacement(v[0])) +
-        (c.edge_edge ? std::max(displacement(v[2]), displacement(v[3]))
-                     : std::max({displacement(v[1]), displacement(v[2]), displacement(v[3])}));
-    const auto x = [&](int k) -> Eigen::Vector3d { return start.row(v[k]).transpose(); };
-    const double d_sq = c.edge_edge ? kernels::edge_edge_distance_sq(x(0), x(1), x(2), x(3))
-                                    : kernels::point_triangle_distance_sq(x(0), x(1), x(2), x(3));
+    const auto [a, b] = largest_per_side(c, on_one_body(vertex_body, c) ? moved_in_body : moved);
+    const double reach = d_hat + a + b;
+    const double d_sq = pair_distance_sq(c, start);
     const bool within = d_sq <= reach * reach * (1.0 + 1e-6);
     if (within) reachable.push_back(c);
     if (ccd && (within || d_sq >= ccd_stops_sq)) ccd->push_back(c);
   }
   return reachable;
+}
+
+Eigen::VectorXd displacements_in_body(const std::vector<int>& vertex_body, const Vertices& from,
+                                      const Vertices& to) {
+  const std::vector<int>& body = vertex_body;
+  std::vector<Aabb> shared(body.empty() ? 0 : *std::max_element(body.begin(), body.end()) + 1);
+  for (Eigen::Index v = 0; v < from.rows(); ++v) {
+    shared[body[v]].expand(Eigen::Vector3d((to.row(v) - from.row(v)).transpose()));
+  }
+  Eigen::VectorXd moved(from.rows());
+  for (Eigen::Index v = 0; v < from.rows(); ++v) {
+    moved[v] = (to.row(v) - from.row(v) - shared[body[v]].center().transpose()).norm();
+  }
+  return moved;
 }
 
 std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
@@ -242,10 +321,8 @@ std::pair<std::vector<std::array<int, 4>>, std::vector<std::array<int, 4>>> self
                     [&](int v) { return mesh.vertex_body[v] != body; })) {
       continue;
     }
-    const auto x = [&](int k) -> Eigen::Vector3d { return rest.row(c.vertex[k]).transpose(); };
-    const double d_sq = c.edge_edge ? kernels::edge_edge_distance_sq(x(0), x(1), x(2), x(3))
-                                    : kernels::point_triangle_distance_sq(x(0), x(1), x(2), x(3));
-    if (d_sq < d_hat * d_hat) (c.edge_edge ? edge_edge : point_triangle).push_back(c.vertex);
+    if (pair_distance_sq(c, rest) < d_hat * d_hat)
+      (c.edge_edge ? edge_edge : point_triangle).push_back(c.vertex);
   }
   std::sort(point_triangle.begin(), point_triangle.end());
   std::sort(edge_edge.begin(), edge_edge.end());

@@ -30,22 +30,32 @@ struct ContactCandidate {
 std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
                                                       const Vertices& end, double d_hat);
 
-// The candidates of the path start -> end that can come within d_hat on it, in their order. A
+// The candidates of the path start -> end that can come within d_hat on it, in their order
+// (vertex_body: each collision vertex's body, CollisionMesh::vertex_body). A
 // pair is left out when its distance at the start exceeds d_hat plus its vertices' largest
 // displacements (a point's and its triangle's farthest-moving vertex, or each edge's): no point of
 // the path brings it within d_hat, so its barrier is zero all along. Most pairs of a finely meshed
 // soft finger are neighbours on its surface, a few millimetres apart: their boxes overlap, their
-// barrier never acts.
+// barrier never acts. A pair of one body keeps its distance under any motion its vertices share,
+// so for it the displacements are taken less its body's (displacements_in_body): a finger that
+// moves by half a millimetre as a whole brings none of its own pairs nearer.
 //
 // With `ccd`, also the pairs continuous collision detection must watch, in order: those within
 // reach, and those that start farther than d_hat / ccd_rescaling. Additive CCD stops a pair only
 // once its distance falls below ccd_rescaling times its start distance; a pair that stays beyond
 // d_hat and starts nearer than d_hat / ccd_rescaling never gets there, so leaving it out leaves
 // the step's collision-free fraction as it was.
-std::vector<ContactCandidate> within_reach(const std::vector<ContactCandidate>& candidates,
+std::vector<ContactCandidate> within_reach(const std::vector<int>& vertex_body,
+                                           const std::vector<ContactCandidate>& candidates,
                                            const Vertices& start, const Vertices& end, double d_hat,
                                            std::vector<ContactCandidate>* ccd = nullptr,
                                            double ccd_rescaling = 0.0);
+
+// Each collision vertex's displacement from -> to, less its body's common motion (the centre of
+// the box of its body's displacements), as a length. vertex_body: each collision vertex's body
+// (CollisionMesh::vertex_body), as within_reach takes it.
+Eigen::VectorXd displacements_in_body(const std::vector<int>& vertex_body, const Vertices& from,
+                                      const Vertices& to);
 
 // The broad phase kept from call to call (one per environment); it finds exactly what
 // find_contact_candidates finds, in the same order. It keeps the pairs whose boxes overlap once
@@ -58,13 +68,34 @@ class ContactBroadPhase {
   std::vector<ContactCandidate> find(const Model& model, const Vertices& start, const Vertices& end,
                                      double d_hat);
 
+  // within_reach(model, find(model, start, end, d_hat), start, end, d_hat, ccd, ccd_rescaling),
+  // the same pairs in the same order, without testing most pairs of one body. Each such kept pair
+  // remembers its distance where it was kept; its vertices have since moved, and move on the
+  // path, by at most their displacements in their body, so a pair that distance keeps beyond
+  // reach (and, with `ccd`, short of d_hat / ccd_rescaling) is passed over without a box or a
+  // distance. Most of a soft finger's kept pairs are the two faces of a wall or rib 1.5-2.5 mm
+  // apart, which only deformation, never the finger's motion, can bring within d_hat.
+  std::vector<ContactCandidate> near(const Model& model, const Vertices& start, const Vertices& end,
+                                     double d_hat, std::vector<ContactCandidate>* ccd = nullptr,
+                                     double ccd_rescaling = 0.0);
+
   // How many calls queried the trees (the others reused the kept pairs).
   long keeps() const { return keeps_; }
+  // How many kept pairs near() passed over by their kept distance.
+  long screened() const { return screened_; }
 
  private:
   // The skin, as a multiple of d_hat: each vertex's box is grown by half of it on every side.
   static constexpr double kSkin = 1.0;
-  void keep(const Model& model, double d_hat);
+  // Each vertex's swept box, and the face and edge boxes; keeps the pairs again when the kept
+  // ones no longer cover the call.
+  void prepare(const Model& model, const Vertices& start, const Vertices& end, double d_hat);
+  // The kept pairs whose boxes overlap now, in order, but those skip(i) passes over.
+  template <typename Skip>
+  std::vector<ContactCandidate> overlapping(Skip&& skip);
+  void keep(const Model& model, const Vertices& start, double d_hat);
+  // The kept pairs' distances at kept_start_ (pairs of one body only; -1 for the others).
+  void measure_kept(const Model& model);
 
   PrimitiveTrees faces_;
   PrimitiveTrees edges_;
@@ -73,7 +104,10 @@ class ContactBroadPhase {
   std::vector<ContactCandidate> kept_;
   std::vector<std::array<int, 2>> kept_primitives_;
   std::vector<Aabb> kept_vertex_boxes_;
+  Vertices kept_start_;                // the start of the call that kept them
+  std::vector<double> kept_distance_;  // by measure_kept; empty until near() needs it
   long keeps_ = 0;
+  long screened_ = 0;
   // Scratch of one call.
   std::vector<Aabb> vertex_boxes_;
   std::vector<Aabb> face_boxes_;

@@ -67,8 +67,7 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
 const std::vector<ContactCandidate>& NewtonSolver::near(NewtonStep& step, const Vertices& x) {
   if (!step.near) {
     const StageTimer timer(stages_.broad_phase);
-    step.near =
-        within_reach(broad_phase_.find(model_, x, x, model_.sim().d_hat), x, x, model_.sim().d_hat);
+    step.near = broad_phase_.near(model_, x, x, model_.sim().d_hat);
   }
   return *step.near;
 }
@@ -265,8 +264,7 @@ bool NewtonSolver::filter_step(const State& state, NewtonStep& step, const Syste
   std::vector<ContactCandidate> reachable, watched;
   {
     const StageTimer timer(stages_.broad_phase);
-    reachable = within_reach(broad_phase_.find(model_, system.x, x_end, sim.d_hat), system.x, x_end,
-                             sim.d_hat, &watched, sim.ccd_rescaling);
+    reachable = broad_phase_.near(model_, system.x, x_end, sim.d_hat, &watched, sim.ccd_rescaling);
   }
   {
     const StageTimer timer(stages_.ccd);
