@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "src/config/config.hpp"
+#include "src/grippers/number_text.hpp"
 #include "src/objects/object_library.hpp"
 #include "src/scene/sim_parameters.hpp"
 
@@ -96,8 +97,9 @@ ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_d
   group.tet_edge = positive(t, "tet_edge", group.tet_edge);
   group.tet_edge_at = t.location("tet_edge");
   group.tet_growth = t.number_or("tet_growth", group.tet_growth);
-  if (!(group.tet_growth >= 0 && group.tet_growth <= 4)) {
-    t.fail("tet_growth", "must lie in [0, 4] (0: tets of tet_edge throughout)");
+  if (!(group.tet_growth >= 0 && group.tet_growth <= geometry::kMaxInteriorGrowth)) {
+    t.fail("tet_growth", "must lie in [0, " + grippers::number_text(geometry::kMaxInteriorGrowth) +
+                             "] (0: tets of tet_edge throughout)");
   }
   group.randomize = t.boolean_or("randomize", true);
   for (const char* key : {"density", "youngs", "poisson", "friction"}) {

@@ -85,7 +85,7 @@ LabelsResult run_labels(const LabelsOptions& options) {
   LabelsResult result;
   result.defaults = options.defaults;
   result.reference = reference_parameters(result.defaults, options.refinement);
-  result.uniform_mesh_reference = options.refinement.mesh;
+  result.refinement = options.refinement;
   result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   const auto start = std::chrono::steady_clock::now();
   for (const LabelsArm& arm : arms_of(options)) {

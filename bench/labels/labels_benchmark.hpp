@@ -74,7 +74,7 @@ struct LabelsResult {
   std::vector<LabelsArmResult> arms;
   trial::TrialParameters defaults;
   trial::TrialParameters reference;
-  bool uniform_mesh_reference = false;  // LabelsRefinement::mesh
+  LabelsRefinement refinement;  // how the reference differs from the defaults
   int threads = 0;
   double wall_seconds = 0.0;
 };

@@ -146,7 +146,7 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
      << r.sim.newton_tol << ", " << r.sim.friction_lag_iterations
      << " friction lag iterations, the same threshold (" << r.displacement_threshold() * 1e3
      << " mm)"
-     << (result.uniform_mesh_reference
+     << (result.refinement.mesh
              ? ", soft objects meshed uniformly inside (the defaults' tets grow with depth)"
              : "")
      << ". Grip force " << d.grip_force << " N, tolerance " << d.force_tolerance * 100 << " %. "

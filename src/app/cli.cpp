@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
                    "Soft object: how fast tets grow with depth below the surface (m per m; 0: "
                    "uniform)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 4.0));
+      ->check(CLI::Range(0.0, grip::geometry::kMaxInteriorGrowth));
   trial->add_option("--density", trial_args.density, "Object density (kg/m^3)")
       ->capture_default_str()
       ->check(kPositive);
@@ -566,7 +566,7 @@ int main(int argc, char** argv) {
       ->add_option("--tet-growth", bench_labels_args.tet_growth,
                    "Production soft objects: tets grow with depth (grip trial --tet-growth)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 4.0));
+      ->check(CLI::Range(0.0, grip::geometry::kMaxInteriorGrowth));
   bench_labels->add_option("--out", bench_labels_args.out, "Folder for labels.md and labels.csv")
       ->capture_default_str()
       ->check(kOutputFolder);

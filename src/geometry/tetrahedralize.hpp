@@ -41,6 +41,8 @@ struct TetOptions {
 // benchmarks' production models: on the LEAP hand's box 2.4 times fewer tets and 4.8 times
 // less CPU than a uniform mesh, with the same verdicts (docs/results.md, "Graded soft meshes").
 inline constexpr double kSoftObjectInteriorGrowth = 1.0;
+// The largest interior growth the command line and a job accept.
+inline constexpr double kMaxInteriorGrowth = 4.0;
 
 // The most tets grip builds a mesh of (`grip asset prepare --edge`, a scene's FEM `resolution`,
 // `grip trial --soft --tet-edge`), checked on an estimate before meshing: more would take hours
