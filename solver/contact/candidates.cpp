@@ -141,6 +141,31 @@ bool on_one_body(const std::vector<int>& vertex_body, const ContactCandidate& c)
   return vertex_body[c.vertex[0]] == vertex_body[c.vertex[2]];
 }
 
+// within_reach with the displacements in each body on the path already at hand (near() has
+// them for its screen).
+std::vector<ContactCandidate> pairs_within_reach(const std::vector<int>& vertex_body,
+                                                 const std::vector<ContactCandidate>& candidates,
+                                                 const Vertices& start, const Vertices& end,
+                                                 const Eigen::VectorXd& moved_in_body, double d_hat,
+                                                 std::vector<ContactCandidate>* ccd,
+                                                 double ccd_rescaling) {
+  // Each vertex's displacement once: most vertices are in many pairs.
+  const Eigen::VectorXd moved = (end - start).rowwise().norm();
+  // Relative margins far above round-off keep every pair the rounding could bring in.
+  const double ccd_stops_sq = ccd ? std::pow(d_hat * (1.0 - 1e-6) / ccd_rescaling, 2) : 0.0;
+  std::vector<ContactCandidate> reachable;
+  if (ccd) ccd->clear();
+  for (const ContactCandidate& c : candidates) {
+    const auto [a, b] = largest_per_side(c, on_one_body(vertex_body, c) ? moved_in_body : moved);
+    const double reach = d_hat + a + b;
+    const double d_sq = pair_distance_sq(c, start);
+    const bool within = d_sq <= reach * reach * (1.0 + 1e-6);
+    if (within) reachable.push_back(c);
+    if (ccd && (within || d_sq >= ccd_stops_sq)) ccd->push_back(c);
+  }
+  return reachable;
+}
+
 }  // namespace
 
 std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const Vertices& start,
@@ -176,7 +201,7 @@ std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const 
     screened_ += skip;
     return skip;
   });
-  return within_reach(vertex_body, boxed, start, end, d_hat, ccd, ccd_rescaling);
+  return pairs_within_reach(vertex_body, boxed, start, end, on_path, d_hat, ccd, ccd_rescaling);
 }
 
 void ContactBroadPhase::prepare(const Model& model, const Vertices& start, const Vertices& end,
@@ -268,34 +293,21 @@ std::vector<ContactCandidate> within_reach(const std::vector<int>& vertex_body,
                                            const Vertices& start, const Vertices& end, double d_hat,
                                            std::vector<ContactCandidate>* ccd,
                                            double ccd_rescaling) {
-  // Each vertex's displacement once: most vertices are in many pairs.
-  const Eigen::VectorXd moved = (end - start).rowwise().norm();
-  const Eigen::VectorXd moved_in_body = displacements_in_body(vertex_body, start, end);
-  // Relative margins far above round-off keep every pair the rounding could bring in.
-  const double ccd_stops_sq = ccd ? std::pow(d_hat * (1.0 - 1e-6) / ccd_rescaling, 2) : 0.0;
-  std::vector<ContactCandidate> reachable;
-  if (ccd) ccd->clear();
-  for (const ContactCandidate& c : candidates) {
-    const auto [a, b] = largest_per_side(c, on_one_body(vertex_body, c) ? moved_in_body : moved);
-    const double reach = d_hat + a + b;
-    const double d_sq = pair_distance_sq(c, start);
-    const bool within = d_sq <= reach * reach * (1.0 + 1e-6);
-    if (within) reachable.push_back(c);
-    if (ccd && (within || d_sq >= ccd_stops_sq)) ccd->push_back(c);
-  }
-  return reachable;
+  return pairs_within_reach(vertex_body, candidates, start, end,
+                            displacements_in_body(vertex_body, start, end), d_hat, ccd,
+                            ccd_rescaling);
 }
 
 Eigen::VectorXd displacements_in_body(const std::vector<int>& vertex_body, const Vertices& from,
                                       const Vertices& to) {
-  const std::vector<int>& body = vertex_body;
-  std::vector<Aabb> shared(body.empty() ? 0 : *std::max_element(body.begin(), body.end()) + 1);
+  std::vector<Aabb> shared(
+      vertex_body.empty() ? 0 : *std::max_element(vertex_body.begin(), vertex_body.end()) + 1);
   for (Eigen::Index v = 0; v < from.rows(); ++v) {
-    shared[body[v]].expand(Eigen::Vector3d((to.row(v) - from.row(v)).transpose()));
+    shared[vertex_body[v]].expand(Eigen::Vector3d((to.row(v) - from.row(v)).transpose()));
   }
   Eigen::VectorXd moved(from.rows());
   for (Eigen::Index v = 0; v < from.rows(); ++v) {
-    moved[v] = (to.row(v) - from.row(v) - shared[body[v]].center().transpose()).norm();
+    moved[v] = (to.row(v) - from.row(v) - shared[vertex_body[v]].center().transpose()).norm();
   }
   return moved;
 }
