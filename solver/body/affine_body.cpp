@@ -135,12 +135,14 @@ void add_inertia_energy(const BodyModel& body, const Eigen::VectorXd& q,
 void add_inertia_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
                              const Eigen::VectorXd& q_tilde, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian) {
+                             std::vector<Eigen::Triplet<double>>* hessian) {
   const int o = body.dof_offset;
   const Vector12d qb = q.segment<12>(o);
   gradient.segment<12>(o) += scale * (body.mass_matrix * (qb - q_tilde.segment<12>(o)));
+  if (!hessian) return;
   for (int i = 0; i < 12; ++i) {
-    for (int j = 0; j <= i; ++j) hessian.emplace_back(o + i, o + j, scale * body.mass_matrix(i, j));
+    for (int j = 0; j <= i; ++j)
+      hessian->emplace_back(o + i, o + j, scale * body.mass_matrix(i, j));
   }
 }
 
@@ -151,15 +153,16 @@ void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double&
 
 void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian) {
+                             std::vector<Eigen::Triplet<double>>* hessian) {
   const int o = body.dof_offset;
   const Vector12d qb = q.segment<12>(o);
   gradient.segment<12>(o) += scale * kernels::affine_body_orthogonality_gradient(
                                          qb, body.orthogonality_stiffness, body.volume);
+  if (!hessian) return;
   const Matrix12d h = scale * kernels::affine_body_orthogonality_hessian(
                                   qb, body.orthogonality_stiffness, body.volume, true);
   for (int i = 0; i < 12; ++i) {
-    for (int j = 0; j <= i; ++j) hessian.emplace_back(o + i, o + j, h(i, j));
+    for (int j = 0; j <= i; ++j) hessian->emplace_back(o + i, o + j, h(i, j));
   }
 }
 

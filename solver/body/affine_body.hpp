@@ -39,18 +39,18 @@ inline Eigen::Vector3d center_of_mass(const BodyModel& body, const Eigen::Vector
 Eigen::Matrix3d rotation(const BodyModel& body, const Eigen::VectorXd& q);
 
 // 1/2 (q - q_tilde)^T M (q - q_tilde) added to `sum`; `scale` times its gradient and Hessian
-// added.
+// added (here and below, a null `hessian`: the gradient alone).
 void add_inertia_energy(const BodyModel& body, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& q_tilde, double& sum);
 void add_inertia_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
                              const Eigen::VectorXd& q_tilde, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian);
+                             std::vector<Eigen::Triplet<double>>* hessian);
 // The orthogonality energy (ABD's stiff elasticity) added to `sum`; `scale` times its gradient
 // and PSD-projected Hessian added.
 void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double& sum);
 void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian);
+                             std::vector<Eigen::Triplet<double>>* hessian);
 
 }  // namespace grip::solver::affine

@@ -144,13 +144,14 @@ void add_drive_energy(const BodyModel& body, const Eigen::VectorXd& q,
 
 void add_drive_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
                            const Eigen::VectorXd& target, double scale, Eigen::VectorXd& gradient,
-                           std::vector<Eigen::Triplet<double>>& hessian) {
+                           std::vector<Eigen::Triplet<double>>* hessian) {
   if (!is_driven(body)) return;
   const int o = body.dof_offset;
   const double s = scale * body.drive_stiffness / body_mass(body);
   gradient.segment<12>(o) += s * (body.mass_matrix * (q.segment<12>(o) - target.segment<12>(o)));
+  if (!hessian) return;
   for (int i = 0; i < 12; ++i) {
-    for (int j = 0; j <= i; ++j) hessian.emplace_back(o + i, o + j, s * body.mass_matrix(i, j));
+    for (int j = 0; j <= i; ++j) hessian->emplace_back(o + i, o + j, s * body.mass_matrix(i, j));
   }
 }
 
@@ -223,7 +224,7 @@ void add_inertia_energy(const BodyModel& body, const Eigen::VectorXd& q,
 void add_inertia_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
                              const Eigen::VectorXd& q_tilde, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian) {
+                             std::vector<Eigen::Triplet<double>>* hessian) {
   if (body.type == BodyType::kFem) {
     fem::add_inertia_derivatives(body, q, q_tilde, scale, gradient, hessian);
   }
@@ -239,7 +240,7 @@ void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double&
 
 void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian) {
+                             std::vector<Eigen::Triplet<double>>* hessian) {
   if (body.type == BodyType::kFem) {
     fem::add_elastic_derivatives(body, q, scale, nullptr, gradient, hessian);
   }

@@ -61,7 +61,7 @@ void add_drive_energy(const BodyModel& body, const Eigen::VectorXd& q,
                       const Eigen::VectorXd& target, double& sum);
 void add_drive_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
                            const Eigen::VectorXd& target, double scale, Eigen::VectorXd& gradient,
-                           std::vector<Eigen::Triplet<double>>& hessian);
+                           std::vector<Eigen::Triplet<double>>* hessian);
 // The DOFs a driven body has at `pose` (its script's frame), written into `dofs`.
 void set_drive_target(const BodyModel& body, const Pose& pose, Eigen::VectorXd& dofs);
 
@@ -72,16 +72,17 @@ Eigen::Matrix3d body_rotation(const BodyModel& body, int index, const State& sta
 double min_volume_ratio(const Model& model, const Eigen::VectorXd& q);
 
 // Inertia and elasticity of one body (nothing for a kinematic one): energies added to `sum`,
-// `scale` times their derivatives added to the gradient and lower-triangle triplets.
+// `scale` times their derivatives added to the gradient and lower-triangle triplets (here and
+// below, a null `hessian` asks for the gradient alone).
 void add_inertia_energy(const BodyModel& body, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& q_tilde, double& sum);
 void add_inertia_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
                              const Eigen::VectorXd& q_tilde, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian);
+                             std::vector<Eigen::Triplet<double>>* hessian);
 void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double& sum);
 void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian);
+                             std::vector<Eigen::Triplet<double>>* hessian);
 
 }  // namespace grip::solver

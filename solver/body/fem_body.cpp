@@ -19,14 +19,19 @@ Vector12 tet_positions(const Eigen::VectorXd& q, int dof_offset, const FemTet& t
   return x;
 }
 
-// Scatters one tet's 12-vector gradient and 12x12 Hessian into the DOF-space gradient and the
-// lower-triangle triplets.
-void add_tet_derivatives(const BodyModel& body, const FemTet& tet, const Vector12& g,
-                         const Matrix12& h, Eigen::VectorXd& gradient,
-                         std::vector<Eigen::Triplet<double>>& hessian) {
+// Scatters one tet's 12-vector gradient into the DOF-space gradient, and its 12x12 Hessian
+// into the lower-triangle triplets.
+void add_tet_gradient(const BodyModel& body, const FemTet& tet, const Vector12& g,
+                      Eigen::VectorXd& gradient) {
+  for (int a = 0; a < 4; ++a) {
+    gradient.segment<3>(body.dof_offset + 3 * tet.vertices[a]) += g.segment<3>(3 * a);
+  }
+}
+
+void add_tet_hessian(const BodyModel& body, const FemTet& tet, const Matrix12& h,
+                     std::vector<Eigen::Triplet<double>>& hessian) {
   for (int a = 0; a < 4; ++a) {
     const int row = body.dof_offset + 3 * tet.vertices[a];
-    gradient.segment<3>(row) += g.segment<3>(3 * a);
     for (int b = 0; b < 4; ++b) {
       const int col = body.dof_offset + 3 * tet.vertices[b];
       for (int i = 0; i < 3; ++i) {
@@ -178,13 +183,14 @@ void add_inertia_energy(const BodyModel& body, const Eigen::VectorXd& q,
 void add_inertia_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
                              const Eigen::VectorXd& q_tilde, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian) {
+                             std::vector<Eigen::Triplet<double>>* hessian) {
   const int n = static_cast<int>(body.rest.rows());
   for (int i = 0; i < n; ++i) {
     const int o = body.dof_offset + 3 * i;
     const double mass = scale * body.vertex_mass[i];
     gradient.segment<3>(o) += mass * (q.segment<3>(o) - q_tilde.segment<3>(o));
-    for (int k = 0; k < 3; ++k) hessian.emplace_back(o + k, o + k, mass);
+    if (!hessian) continue;
+    for (int k = 0; k < 3; ++k) hessian->emplace_back(o + k, o + k, mass);
   }
 }
 
@@ -221,7 +227,7 @@ void add_damping_energy(const BodyModel& body, const Eigen::VectorXd& q,
 
 void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
                              const StepDamping* damping, Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian) {
+                             std::vector<Eigen::Triplet<double>>* hessian) {
   const Eigen::Index dofs = 3 * body.rest.rows();
   const bool at_start = damping != nullptr && q.segment(body.dof_offset, dofs) ==
                                                   damping->q_start.segment(body.dof_offset, dofs);
@@ -231,15 +237,17 @@ void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, do
     const Vector12 x = tet_positions(q, body.dof_offset, tet);
     Vector12 g = kernels::tet_stable_neo_hookean_gradient(x, tet.rest_shape_inverse,
                                                           tet.rest_volume, body.elasticity);
+    if (damping) {
+      g +=
+          c * (damping->stiffness[t] * (x - tet_positions(damping->q_start, body.dof_offset, tet)));
+    }
+    add_tet_gradient(body, tet, scale * g, gradient);
+    if (!hessian) continue;
     Matrix12 h = at_start ? damping->stiffness[t]
                           : kernels::tet_stable_neo_hookean_hessian(
                                 x, tet.rest_shape_inverse, tet.rest_volume, body.elasticity, true);
-    if (damping) {
-      const Matrix12d& k = damping->stiffness[t];
-      g += c * (k * (x - tet_positions(damping->q_start, body.dof_offset, tet)));
-      h += c * k;
-    }
-    add_tet_derivatives(body, tet, scale * g, scale * h, gradient, hessian);
+    if (damping) h += c * damping->stiffness[t];
+    add_tet_hessian(body, tet, scale * h, *hessian);
   }
 }
 

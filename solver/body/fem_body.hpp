@@ -41,13 +41,13 @@ Eigen::Matrix3d rotation(const BodyModel& body, const Eigen::VectorXd& q);
 double min_volume_ratio(const BodyModel& body, const Eigen::VectorXd& q);
 
 // 1/2 |x - x_tilde|_M^2 added to `sum`; `scale` times its gradient and (diagonal) Hessian
-// added to the gradient and the lower-triangle triplets.
+// added to the gradient and the lower-triangle triplets (a null `hessian`: the gradient alone).
 void add_inertia_energy(const BodyModel& body, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& q_tilde, double& sum);
 void add_inertia_derivatives(const BodyModel& body, const Eigen::VectorXd& q,
                              const Eigen::VectorXd& q_tilde, double scale,
                              Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian);
+                             std::vector<Eigen::Triplet<double>>* hessian);
 // The elastic energy added to `sum`.
 void add_elastic_energy(const BodyModel& body, const Eigen::VectorXd& q, double& sum);
 
@@ -70,12 +70,13 @@ struct StepDamping {
 };
 
 // `scale` times the gradient and PSD-projected Hessian of the elastic energy and, with
-// `damping`, of the damping potential, added to the gradient and the lower-triangle triplets.
+// `damping`, of the damping potential, added to the gradient and the lower-triangle triplets
+// (a null `hessian`: the gradient alone).
 // The two are summed per tet before they are scattered, so a damped tet costs one 12x12 block of
 // triplets, not two; where q is still the step's start (a step's first Newton iteration) the
 // elastic Hessian is K itself and is not evaluated again.
 void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, double scale,
                              const StepDamping* damping, Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian);
+                             std::vector<Eigen::Triplet<double>>* hessian);
 
 }  // namespace grip::solver::fem

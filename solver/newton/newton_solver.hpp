@@ -36,6 +36,9 @@ struct NewtonStep {
   // The residual's scale: the first residual of the current solve (negative until it is taken),
   // never less than the standard weight.
   double first_residual = -1.0;
+  // The last Newton step was full and started from a residual within sqrt(newton_tol) of the
+  // scale: quadratic convergence expects this iteration to converge (NewtonSolver::iterate).
+  bool convergence_expected = false;
   // N: the dynamic bodies' weight under standard gravity (9.81 m/s^2), whatever the scene's
   // gravity, so that the convergence test asks the same force accuracy with gravity on or off.
   double standard_weight = 0.0;
@@ -113,6 +116,8 @@ class NewtonSolver {
   bool solve_by_earlier_factorization(const Eigen::SparseMatrix<double>& matrix,
                                       const Eigen::VectorXd& rhs, Eigen::VectorXd& p);
   bool residual_converged(const NewtonStep& step, const System& system) const;
+  bool converged_by_gradient(const State& state, NewtonStep& step, StepDiagnostics& diagnostics);
+  double free_residual(const NewtonStep& step) const;
   bool step_converged(const NewtonStep& step, const System& system, const Eigen::VectorXd& p) const;
   bool filter_step(const State& state, NewtonStep& step, const System& system,
                    const Eigen::VectorXd& p, double& alpha, StepDiagnostics& diagnostics,

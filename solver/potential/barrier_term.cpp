@@ -104,13 +104,17 @@ void BarrierTerm::add_derivatives(const PotentialPoint& at, double scale,
   Eigen::Vector3d x[4];
   for (const ContactCandidate& c : at.candidates) {
     gather(at.positions, c.vertex, x);
-    const Barrier b = barrier_of(c, x, model_.sim().d_hat, kappa_, true);
+    const Barrier b = barrier_of(c, x, model_.sim().d_hat, kappa_, out.hessian != nullptr);
     if (b.value == 0.0 && b.gradient.isZero()) continue;
     const Stencil stencil(model_, c.vertex);
+    if (!out.hessian) {
+      stencil.scatter_gradient(scale * b.gradient, out.gradient);
+      continue;
+    }
     const Matrix12 h = out.project_contacts
                            ? Matrix12(scale * kernels::project_to_psd<12>(b.hessian))
                            : Matrix12(scale * b.hessian);
-    stencil.scatter(scale * b.gradient, h, out.gradient, out.hessian);
+    stencil.scatter(scale * b.gradient, h, out.gradient, *out.hessian);
     if (out.kinematic_motion) {
       stencil.add_kinematic_force(h, *out.kinematic_motion, c.vertex, *out.kinematic_force);
     }

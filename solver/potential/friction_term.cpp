@@ -36,11 +36,15 @@ void FrictionTerm::add_derivatives(const PotentialPoint& at, double scale,
   for (const FrictionContact& c : contacts_) {
     const Vector12 dx = displacement(c, at.positions);
     const Stencil stencil(model_, c.vertex);
+    const Vector12 g =
+        scale * kernels::friction_potential_gradient<4>(dx, c.tangent_operator, c.mu_lambda, eps_);
+    if (!out.hessian) {
+      stencil.scatter_gradient(g, out.gradient);
+      continue;
+    }
     const Matrix12 h =
         scale * kernels::friction_potential_hessian<4>(dx, c.tangent_operator, c.mu_lambda, eps_);
-    stencil.scatter(
-        scale * kernels::friction_potential_gradient<4>(dx, c.tangent_operator, c.mu_lambda, eps_),
-        h, out.gradient, out.hessian);
+    stencil.scatter(g, h, out.gradient, *out.hessian);
     if (out.kinematic_motion) {
       stencil.add_kinematic_force(h, *out.kinematic_motion, c.vertex, *out.kinematic_force);
     }

@@ -41,8 +41,20 @@ void IncrementalPotential::derivatives(const Eigen::VectorXd& q, const Vertices&
   gradient.setZero(model_.dof_count());
   hessian.clear();
   if (kinematic_force) kinematic_force->setZero(model_.dof_count());
-  const PotentialPoint at{q, positions, candidates};
-  PotentialDerivatives out{gradient, hessian, kinematic_motion, kinematic_force, project_contacts};
+  PotentialDerivatives out{gradient, &hessian, kinematic_motion, kinematic_force, project_contacts};
+  add_derivatives({q, positions, candidates}, out);
+}
+
+void IncrementalPotential::gradient(const Eigen::VectorXd& q, const Vertices& positions,
+                                    const std::vector<ContactCandidate>& candidates,
+                                    Eigen::VectorXd& gradient) const {
+  gradient.setZero(model_.dof_count());
+  PotentialDerivatives out{gradient, nullptr};
+  add_derivatives({q, positions, candidates}, out);
+}
+
+void IncrementalPotential::add_derivatives(const PotentialPoint& at,
+                                           PotentialDerivatives& out) const {
   inertia_.add_derivatives(at, 1.0, out);
   const double h2 = h_ * h_;
   for (const PotentialTerm* term : potential_energies()) term->add_derivatives(at, h2, out);

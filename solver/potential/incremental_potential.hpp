@@ -44,11 +44,16 @@ class IncrementalPotential {
                    std::vector<Eigen::Triplet<double>>& hessian,
                    const Vertices* kinematic_motion = nullptr,
                    Eigen::VectorXd* kinematic_force = nullptr, bool project_contacts = true) const;
+  // The gradient alone: bit for bit the one derivatives() computes at the same point.
+  void gradient(const Eigen::VectorXd& q, const Vertices& positions,
+                const std::vector<ContactCandidate>& candidates, Eigen::VectorXd& gradient) const;
 
   const BarrierTerm& barrier() const { return barrier_; }
   const FrictionTerm& friction() const { return friction_; }
 
  private:
+  // Every term's derivatives at `at`, in the order they are summed.
+  void add_derivatives(const PotentialPoint& at, PotentialDerivatives& out) const;
   // The terms multiplied by h^2, in the order they are summed.
   std::array<const PotentialTerm*, 4> potential_energies() const {
     return {&elasticity_, &drive_, &barrier_, &friction_};

@@ -27,7 +27,8 @@ struct PotentialPoint {
 // kinematic body before it arrives.
 struct PotentialDerivatives {
   Eigen::VectorXd& gradient;
-  std::vector<Eigen::Triplet<double>>& hessian;  // lower triangle
+  // Lower triangle; null: the gradient alone (a convergence test needs no Hessian).
+  std::vector<Eigen::Triplet<double>>* hessian;
   const Vertices* kinematic_motion = nullptr;
   Eigen::VectorXd* kinematic_force = nullptr;
   // Contact Hessians projected to PSD one by one (else added as they are).
@@ -39,7 +40,8 @@ class PotentialTerm {
   virtual ~PotentialTerm() = default;
   // Adds the term's value to `sum`.
   virtual void add_energy(const PotentialPoint& at, double& sum) const = 0;
-  // Adds `scale` times the term's gradient and PSD-projected Hessian.
+  // Adds `scale` times the term's gradient and (unless out.hessian is null) PSD-projected
+  // Hessian.
   virtual void add_derivatives(const PotentialPoint& at, double scale,
                                PotentialDerivatives& out) const = 0;
 };

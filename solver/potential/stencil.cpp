@@ -65,6 +65,13 @@ void Stencil::scatter(const Vector12& g, const Matrix12& h, Eigen::VectorXd& gra
   }
 }
 
+void Stencil::scatter_gradient(const Vector12& g, Eigen::VectorXd& gradient) const {
+  const int n = static_cast<int>(jacobian_.cols());
+  if (n == 0) return;
+  const StencilVector local_g = jacobian_.transpose() * g;
+  for (int i = 0; i < n; ++i) gradient[global_dof(i)] += local_g[i];
+}
+
 void Stencil::add_kinematic_force(const Matrix12& h, const Vertices& motion,
                                   const std::array<int, 4>& vertex, Eigen::VectorXd& force) const {
   Vector12 dk;

@@ -21,6 +21,8 @@ class Stencil {
   // Adds a position-space gradient and (PSD) Hessian to the global gradient and triplets.
   void scatter(const Vector12& g, const Matrix12& h, Eigen::VectorXd& gradient,
                std::vector<Eigen::Triplet<double>>& hessian) const;
+  // The gradient alone, as scatter() adds it.
+  void scatter_gradient(const Vector12& g, Eigen::VectorXd& gradient) const;
   // Adds J^T h dk for the motion dk of the stencil's kinematic vertices (zero rows elsewhere).
   void add_kinematic_force(const Matrix12& h, const Vertices& motion,
                            const std::array<int, 4>& vertex, Eigen::VectorXd& force) const;

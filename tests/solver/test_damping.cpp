@@ -60,7 +60,7 @@ TEST(Damping, DerivativesMatchFiniteDifferences) {
   const auto derivatives = [&](const Eigen::VectorXd& at, Eigen::VectorXd& gradient,
                                std::vector<Eigen::Triplet<double>>& triplets) {
     gradient = Eigen::VectorXd::Zero(at.size());
-    fem::add_elastic_derivatives(body, at, 1.0, &damping, gradient, triplets);
+    fem::add_elastic_derivatives(body, at, 1.0, &damping, gradient, &triplets);
   };
   Eigen::VectorXd gradient;
   std::vector<Eigen::Triplet<double>> triplets;
@@ -72,7 +72,7 @@ TEST(Damping, DerivativesMatchFiniteDifferences) {
   // The damping alone: its energy, and the elastic Hessian subtracted from the sum.
   std::vector<Eigen::Triplet<double>> elastic_triplets;
   Eigen::VectorXd elastic_gradient = Eigen::VectorXd::Zero(q.size());
-  fem::add_elastic_derivatives(body, q, 1.0, nullptr, elastic_gradient, elastic_triplets);
+  fem::add_elastic_derivatives(body, q, 1.0, nullptr, elastic_gradient, &elastic_triplets);
   Eigen::SparseMatrix<double> elastic_lower(q.size(), q.size());
   elastic_lower.setFromTriplets(elastic_triplets.begin(), elastic_triplets.end());
   const Eigen::MatrixXd elastic_dense(elastic_lower);
@@ -101,8 +101,8 @@ TEST(Damping, DerivativesMatchFiniteDifferences) {
     std::vector<Eigen::Triplet<double>> unused;
     derivatives(plus, g_plus, unused);
     derivatives(minus, g_minus, unused);
-    fem::add_elastic_derivatives(body, plus, 1.0, nullptr, e_plus, unused);
-    fem::add_elastic_derivatives(body, minus, 1.0, nullptr, e_minus, unused);
+    fem::add_elastic_derivatives(body, plus, 1.0, nullptr, e_plus, nullptr);
+    fem::add_elastic_derivatives(body, minus, 1.0, nullptr, e_minus, nullptr);
     const Eigen::VectorXd column = ((g_plus - e_plus) - (g_minus - e_minus)) / (2 * step);
     EXPECT_LT((damping_hessian.col(i) - column).norm(), 1e-6 * std::max(1.0, column.norm())) << i;
   }
@@ -123,8 +123,8 @@ TEST(Damping, AtTheStepsStartTheElasticHessianIsTheDampingsStiffness) {
   Eigen::VectorXd damped = Eigen::VectorXd::Zero(q_start.size());
   Eigen::VectorXd undamped = Eigen::VectorXd::Zero(q_start.size());
   std::vector<Eigen::Triplet<double>> damped_triplets, undamped_triplets;
-  fem::add_elastic_derivatives(body, q_start, 1.0, &damping, damped, damped_triplets);
-  fem::add_elastic_derivatives(body, q_start, 1.0, nullptr, undamped, undamped_triplets);
+  fem::add_elastic_derivatives(body, q_start, 1.0, &damping, damped, &damped_triplets);
+  fem::add_elastic_derivatives(body, q_start, 1.0, nullptr, undamped, &undamped_triplets);
   EXPECT_EQ(damped, undamped);
   ASSERT_EQ(damped_triplets.size(), undamped_triplets.size());
   const double c = body.material.damping / h;
