@@ -202,6 +202,15 @@ int main(int argc, char** argv) {
       ->check(kPositive);
   trial->add_flag("--compare-solo", trial_args.compare_solo,
                   "Also run each candidate alone: batch speedup and bit-identity");
+  trial
+      ->add_option("--finger-layers", trial_args.finger_layers,
+                   "Fin-ray: tet layers across the finger's depth (default 4)")
+      ->check(CLI::Range(1, grip::grippers::kMaxFinRayLayers));
+  trial
+      ->add_option(
+          "--finger-edge", trial_args.finger_edge,
+          "Fin-ray: largest triangle edge of the finger's profile mesh (m; default 0.0036)")
+      ->check(CLI::Range(grip::grippers::kMinFinRayEdge, grip::grippers::kMaxFinRayEdge));
   trial->callback([&] {
     for (const char* soft_only : {"--tet-edge", "--tet-growth", "--youngs", "--poisson"}) {
       if (trial->count(soft_only) > 0 && !trial_args.soft) {

@@ -108,6 +108,10 @@ struct TrialArgs {
   double squeeze_speed = 0.01;         // m/s per finger, closing and servoing
   double grip_force = 50.0;            // N per finger
   bool compare_solo = false;           // also run each candidate alone: speedup and identity
+  // The fin-ray finger's mesh (grippers::FinRayOptions layers and edge_length); unset: its
+  // defaults. Refused for other grippers.
+  std::optional<int> finger_layers;
+  std::optional<double> finger_edge;  // m
 };
 int trial(const TrialArgs& args);
 

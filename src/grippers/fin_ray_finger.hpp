@@ -44,6 +44,12 @@ struct FinRayMaterial {
   double damping = 5e-3;  // s
 };
 
+// The mesh resolutions the command line accepts (grip trial --finger-layers, --finger-edge):
+// beyond them the mesh takes minutes to build or no longer resolves the 1.6 mm ribs.
+inline constexpr int kMaxFinRayLayers = 32;
+inline constexpr double kMinFinRayEdge = 0.001;  // m
+inline constexpr double kMaxFinRayEdge = 0.01;   // m
+
 struct FinRayFinger {
   geometry::TetMesh mesh;           // finger frame, positively oriented tets
   std::vector<int> mount_vertices;  // increasing; the vertices with z <= base_thickness

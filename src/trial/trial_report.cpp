@@ -46,6 +46,10 @@ void write_report(std::ostream& out, const TrialReport& report,
       {"object", report.object},       {"gripper", report.gripper},
       {"soft", report.soft},           {"threads", report.threads},
       {"candidates", outcomes.size()}, {"wall_seconds", report.wall_seconds}};
+  if (report.fin_ray) {
+    root["finger_mesh"] = {{"layers", report.fin_ray->layers},
+                           {"edge_length", report.fin_ray->edge_length}};
+  }
   if (report.grippers > 1) root["bimanual"] = true;
   if (report.compared_solo) {
     root["solo_wall_seconds"] = report.solo_wall_seconds;

@@ -4,10 +4,12 @@
 // solver's reason, D1/D2, displacements, closing forces, Newton statistics and wall time; for a
 // bimanual trial also each gripper's closing forces and D1/D2.
 #include <cstddef>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "src/grippers/fin_ray_finger.hpp"
 #include "src/trial/trial_outcome.hpp"
 
 namespace grip::trial {
@@ -15,6 +17,8 @@ namespace grip::trial {
 struct TrialReport {
   std::string object;  // the object's spec, as given
   std::string gripper;
+  // A fin-ray gripper's finger, whose mesh (layers, edge_length) the report records.
+  std::optional<grippers::FinRayOptions> fin_ray;
   bool soft = false;
   int grippers = 1;  // 2: a bimanual trial, reported per gripper too
   int threads = 1;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "tests/app/run_grip.hpp"
 
@@ -105,6 +106,31 @@ TEST(GripCli, CheckArgsStopsAfterParsingAndValidation) {
   EXPECT_EQ(petsc.exit_code, 2);
   EXPECT_NE(petsc.err.find("'inspect' uses no PETSc"), std::string::npos) << petsc.err;
   EXPECT_EQ(run_grip_checking_args("bench linear --repeats 1 -- -ksp_type cg").exit_code, 0);
+}
+
+// grip trial --finger-layers and --finger-edge mesh the fin-ray finger as asked, and the report
+// says how it was meshed: a coarse finger (1 layer, 6 mm edges) on a box.
+TEST(GripCli, TrialMeshesTheFinRayFingerAsAskedAndRecordsIt) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("grip_cli_finger_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string candidates = (dir / "c.txt").string();
+  const std::string report = (dir / "r.json").string();
+  ASSERT_EQ(run_grip("synth --object box --seed 4 --gripper fin-ray --count 1 --out " + candidates)
+                .exit_code,
+            0);
+  const GripRun run =
+      run_grip("trial --candidates " + candidates +
+               " --finger-layers 1 --finger-edge 0.006 --threads 1 --report " + report);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("fin-ray finger: 1 tet layers, profile edges up to 0.006 m"),
+            std::string::npos)
+      << run.err;
+  const nlohmann::json json = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_EQ(json["finger_mesh"]["layers"], 1);
+  EXPECT_EQ(json["finger_mesh"]["edge_length"], 0.006);
+  EXPECT_EQ(json["trials"].size(), 1u);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

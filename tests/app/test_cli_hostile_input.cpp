@@ -373,6 +373,8 @@ TEST(HostileInput, TrialOptionsOutOfTheirRangeAreUsageErrors) {
       {"--youngs 2e5", "--youngs: applies to soft objects only: add --soft"},
       {"--poisson 0.3", "--poisson: applies to soft objects only: add --soft"},
       {"--tet-edge 0.01", "--tet-edge: applies to soft objects only: add --soft"},
+      {"--finger-layers 0", "--finger-layers: Value 0 not in range 1 to 32"},
+      {"--finger-edge 0.05", "--finger-edge: Value 0.05 not in range 0.001000 to 0.010000"},
   };
   for (const auto& k : cases) {
     const GripRun run = run_grip("trial --candidates " + quoted(c.file) + " " + k.options +
@@ -392,6 +394,16 @@ TEST(HostileInput, TrialOptionsOutOfTheirRangeAreUsageErrors) {
   EXPECT_NE(fine.err.find("more than the 5000000 allowed; use a larger --tet-edge"),
             std::string::npos)
       << fine.err;
+  // The plate's candidates are the rigid jaws': they have no finger mesh to set.
+  const GripRun jaws =
+      run_grip("trial --candidates " + quoted(c.file) + " --finger-layers 2 --threads 1 --report " +
+               quoted(dir / "r.json"));
+  EXPECT_EQ(jaws.exit_code, 1) << jaws.err;
+  EXPECT_NE(jaws.err.find("--finger-layers: only the fin-ray gripper has a meshed finger, not "
+                          "'parallel-jaw'; leave it out"),
+            std::string::npos)
+      << jaws.err;
+  EXPECT_FALSE(fs::exists(dir / "r.json"));
   // --max-tets moves that limit: the plate at the default edge needs more than 10.
   const GripRun few =
       run_grip("trial --candidates " + quoted(c.file) +

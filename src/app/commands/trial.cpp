@@ -55,6 +55,14 @@ std::vector<std::size_t> parse_indices(const std::string& text, std::size_t coun
   return indices;
 }
 
+// The fin-ray finger as --finger-layers and --finger-edge mesh it.
+grippers::FinRayOptions fin_ray_options(const TrialArgs& args) {
+  grippers::FinRayOptions options;
+  if (args.finger_layers) options.layers = *args.finger_layers;
+  if (args.finger_edge) options.edge_length = *args.finger_edge;
+  return options;
+}
+
 // Runs the candidates as one batch with `run(scene, grasps, options)`, optionally one by one
 // too, writes the VTK series and the report; 1 when a solo run differs from the batch.
 template <class Scene, class Grasp, class Run>
@@ -112,6 +120,9 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
   }
   report.object = *args.object;
   report.gripper = *args.gripper;
+  if (grippers::gripper_type(*args.gripper).kind == grippers::GripperKind::kFinRay) {
+    report.fin_ray = fin_ray_options(args);
+  }
   report.soft = args.soft;
   report.grippers = args.bimanual ? 2 : 1;
   report.threads = solver::Batch(args.threads).threads();
@@ -161,6 +172,17 @@ TrialArgs with_file_object(const TrialArgs& given, const synth::CandidateFile& f
   return args;
 }
 
+grippers::ParallelGripper parallel_gripper(const TrialArgs& args,
+                                           const grippers::GripperType& type) {
+  if (type.kind != grippers::GripperKind::kFinRay) {
+    return grippers::make_parallel_gripper(type.kind);
+  }
+  const grippers::FinRayOptions options = fin_ray_options(args);
+  spdlog::info("fin-ray finger: {} tet layers, profile edges up to {:g} m", options.layers,
+               options.edge_length);
+  return grippers::make_umi_soft_gripper(options);
+}
+
 }  // namespace
 
 int trial(const TrialArgs& given) {
@@ -169,6 +191,12 @@ int trial(const TrialArgs& given) {
   if (candidates.empty()) throw std::invalid_argument(given.candidates + ": no candidates");
   const TrialArgs args = with_file_object(given, file);
   const grippers::GripperType& type = grippers::gripper_type(*args.gripper);
+  if ((args.finger_layers || args.finger_edge) && type.kind != grippers::GripperKind::kFinRay) {
+    throw std::invalid_argument(
+        std::string(args.finger_layers ? "--finger-layers" : "--finger-edge") +
+        ": only the fin-ray gripper has a meshed finger, not '" + *args.gripper +
+        "'; leave it out");
+  }
   // A candidate file holds one kind of candidate (write_candidates refuses a mix): the first
   // says whether the file is bimanual.
   const bool file_bimanual = candidates.front().hands.size() == 2;
@@ -262,7 +290,7 @@ int trial(const TrialArgs& given) {
                             return trial::run_hand_trials(s, g, o);
                           });
   }
-  const trial::TrialScene scene(object, grippers::make_parallel_gripper(type.kind), parameters,
+  const trial::TrialScene scene(object, parallel_gripper(args, type), parameters,
                                 static_cast<int>(hands));
   if (args.bimanual) {
     std::vector<std::array<trial::ParallelGrasp, 2>> grasps;
