@@ -123,7 +123,7 @@ TEST(GripCli, TrialMeshesTheFinRayFingerAsAskedAndRecordsIt) {
       run_grip("trial --candidates " + candidates +
                " --finger-layers 1 --finger-edge 0.006 --threads 1 --report " + report);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.err.find("fin-ray finger: 1 tet layers, profile edges up to 0.006 m"),
+  EXPECT_NE(run.err.find("fin-ray finger: 1 tet layers, profile edges up to 0.006 m: "),
             std::string::npos)
       << run.err;
   const nlohmann::json json = nlohmann::json::parse(std::ifstream(report));

@@ -178,9 +178,11 @@ grippers::ParallelGripper parallel_gripper(const TrialArgs& args,
     return grippers::make_parallel_gripper(type.kind);
   }
   const grippers::FinRayOptions options = fin_ray_options(args);
-  spdlog::info("fin-ray finger: {} tet layers, profile edges up to {:g} m", options.layers,
-               options.edge_length);
-  return grippers::make_umi_soft_gripper(options);
+  grippers::ParallelGripper gripper = grippers::make_umi_soft_gripper(options);
+  const geometry::TetMesh& finger = gripper.soft_finger->mesh;
+  spdlog::info("fin-ray finger: {} tet layers, profile edges up to {:g} m: {} vertices, {} tets",
+               options.layers, options.edge_length, finger.vertices.rows(), finger.tets.rows());
+  return gripper;
 }
 
 }  // namespace
