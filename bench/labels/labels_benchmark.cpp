@@ -40,7 +40,8 @@ trial::TrialParameters reference_parameters(const trial::TrialParameters& defaul
 namespace {
 
 RobustnessOptions arm_options(const LabelsOptions& options, const LabelsArm& arm,
-                              const trial::TrialParameters& parameters, bool uniform_mesh) {
+                              const trial::TrialParameters& parameters, bool reference) {
+  const bool uniform_mesh = reference && options.refinement.mesh;
   RobustnessOptions o;
   o.grippers = {arm.gripper};
   o.categories = options.categories.empty() ? kLabelsCategories : options.categories;
@@ -52,6 +53,7 @@ RobustnessOptions arm_options(const LabelsOptions& options, const LabelsArm& arm
   o.threads = options.threads;
   o.production_models = options.production_models;
   o.soft_interior_growth = uniform_mesh ? 0.0 : options.soft_interior_growth;
+  o.fine_fin_ray = reference && options.refinement.finger;
   return o;
 }
 
@@ -67,6 +69,11 @@ void check_labels_options(const LabelsOptions& options) {
     throw std::invalid_argument(
         "grip bench labels: --refine mesh compares a graded soft mesh with a uniform one; give "
         "--models production and a --tet-growth above 0");
+  }
+  if (options.refinement.finger && !options.production_models) {
+    throw std::invalid_argument(
+        "grip bench labels: --refine finger compares the production fin-ray finger with a finer "
+        "one; give --models production");
   }
   if (options.seeds < 1 || options.candidates < 1) {
     throw std::invalid_argument("grip bench labels: --seeds and --candidates must be at least 1");
@@ -95,8 +102,7 @@ LabelsResult run_labels(const LabelsOptions& options) {
     run.defaults = run_robustness(arm_options(options, arm, result.defaults, false));
     spdlog::info("labels: {} x {} objects at the reference", arm.gripper,
                  arm.soft ? "soft" : "rigid");
-    run.reference =
-        run_robustness(arm_options(options, arm, result.reference, options.refinement.mesh));
+    run.reference = run_robustness(arm_options(options, arm, result.reference, true));
     result.arms.push_back(std::move(run));
   }
   result.wall_seconds =

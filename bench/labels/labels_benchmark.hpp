@@ -23,6 +23,9 @@ struct LabelsRefinement {
   // Soft objects meshed uniformly (no interior growth) at the same surface edge; not by
   // default: it asks whether the mesh, not the numerics, sets a verdict.
   bool mesh = false;
+  // The fin-ray finger meshed finer (kFineFinRayLayers, kFineFinRayEdge); not by default: it
+  // asks whether the finger's mesh sets a verdict. Production models only.
+  bool finger = false;
 };
 
 // A gripper and an object model: one column of the benchmark.

@@ -191,7 +191,7 @@ std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options) {
                                : soft                 ? d.soft_candidates
                                                       : d.rigid_candidates;
         sets.push_back({gripper, category, soft, seeds, candidates, options.production_models,
-                        options.soft_interior_growth});
+                        options.soft_interior_growth, options.fine_fin_ray});
       }
     }
   }

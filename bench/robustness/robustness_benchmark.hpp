@@ -26,6 +26,9 @@ struct RobustnessOptions {
   // The production soft objects' interior growth (geometry::TetOptions::interior_growth), as
   // `grip trial --soft` meshes them by default.
   double soft_interior_growth = geometry::kSoftObjectInteriorGrowth;
+  // The fin-ray finger meshed finer than production's (kFineFinRay: grip bench labels
+  // --refine finger); with production models only.
+  bool fine_fin_ray = false;
   trial::TrialParameters parameters;  // the protocol and the solver's settings
   int threads = 0;                    // 0: all cores
   std::filesystem::path out = "out/robustness";
@@ -42,6 +45,7 @@ struct RobustnessSet {
   int candidates = 0;
   bool production_models = false;  // RobustnessOptions::production_models
   double soft_interior_growth = geometry::kSoftObjectInteriorGrowth;  // RobustnessOptions's
+  bool fine_fin_ray = false;                                          // RobustnessOptions's
 };
 
 // At most this many seeds are tried per shape asked for.
@@ -55,6 +59,12 @@ struct RobustnessBatch {
   bool soft = false;
   int candidates = 0;  // synthesized and run (at most the set's)
 };
+
+// The finer fin-ray finger's mesh: 8 tet layers, profile edges up to 2.5 mm (production: 4 and
+// 3.6 mm), 3.9x production's tets; the finest mesh affordable over a labels run
+// (docs/results.md, "The finger's profile, not its layers").
+inline constexpr int kFineFinRayLayers = 8;
+inline constexpr double kFineFinRayEdge = 0.0025;  // m
 
 // The gripper each registry name is simulated with in this benchmark, in words.
 std::string robustness_gripper_model(const std::string& gripper, bool production_models);

@@ -58,6 +58,16 @@ const grippers::ParallelGripper& production_fin_ray() {
   return gripper;
 }
 
+const grippers::ParallelGripper& fine_fin_ray() {
+  static const grippers::ParallelGripper gripper = [] {
+    grippers::FinRayOptions options;
+    options.layers = kFineFinRayLayers;
+    options.edge_length = kFineFinRayEdge;
+    return grippers::make_umi_soft_gripper(options);
+  }();
+  return gripper;
+}
+
 const grippers::HandModel& production_hand() {
   static const grippers::HandModel hand =
       grippers::make_hand(grippers::GripperKind::kLeap, grippers::HandSide::kRight);
@@ -135,8 +145,9 @@ RobustnessScene::RobustnessScene(const RobustnessSet& set, const trial::TrialObj
     hand_ = std::make_unique<trial::HandTrialScene>(
         object, set.production_models ? production_hand() : coarse_hand(), "leap", parameters);
   } else {
-    const grippers::ParallelGripper& fin_ray =
-        set.production_models ? production_fin_ray() : coarse_fin_ray();
+    const grippers::ParallelGripper& fin_ray = set.fine_fin_ray        ? fine_fin_ray()
+                                               : set.production_models ? production_fin_ray()
+                                                                       : coarse_fin_ray();
     parallel_ = std::make_unique<trial::TrialScene>(
         object, set.gripper == "fin-ray" ? fin_ray : rigid_jaws(), parameters);
   }

@@ -555,9 +555,10 @@ int main(int argc, char** argv) {
       ->add_option("--refine", bench_labels_args.refine,
                    "What the reference refines (default: the first three): dt (halved), "
                    "newton_tol (/10), friction_lag (one more iteration), mesh (soft objects "
-                   "meshed uniformly inside)")
+                   "meshed uniformly inside), finger (the fin-ray finger at 8 layers and 2.5 mm "
+                   "profile edges)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"dt", "newton_tol", "friction_lag", "mesh"}));
+      ->check(CLI::IsMember({"dt", "newton_tol", "friction_lag", "mesh", "finger"}));
   bench_labels
       ->add_option("--dt-divisor", bench_labels_args.dt_divisor,
                    "What the reference divides dt by (a convergence study's 4, 8, ...)")

@@ -83,6 +83,19 @@ TEST(LabelsBench, RefusesBadOptions) {
   EXPECT_NO_THROW(check_labels_options(options));
   options.production_models = false;
   EXPECT_THROW(check_labels_options(options), std::invalid_argument);
+  // A finer finger is compared with the production one only.
+  options.refinement.mesh = false;
+  options.refinement.finger = true;
+  try {
+    check_labels_options(options);
+    FAIL() << "--refine finger was accepted with the coarse models";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--refine finger compares the production fin-ray finger"),
+              std::string::npos)
+        << e.what();
+  }
+  options.production_models = true;
+  EXPECT_NO_THROW(check_labels_options(options));
 }
 
 TEST(LabelsBench, ForceSummaryCountsFingersInContactOfClosedTrials) {

@@ -73,6 +73,10 @@ TEST(RobustnessBench, ProductionModelsAreTheTrialsOwn) {
   const std::vector<RobustnessSet> sets = plan_robustness(options);
   ASSERT_EQ(sets.size(), 1u);
   EXPECT_TRUE(sets[0].production_models);
+  EXPECT_FALSE(sets[0].fine_fin_ray);
+  // The finer finger of grip bench labels --refine finger is carried the same way.
+  options.fine_fin_ray = true;
+  EXPECT_TRUE(plan_robustness(options).at(0).fine_fin_ray);
   RobustnessSet coarse = sets[0];
   coarse.production_models = false;
   const trial::TrialObject fine = make_object(sets[0], 1);

@@ -28,6 +28,7 @@ int bench_labels(const BenchLabelsArgs& args) {
     options.refinement.newton_tol = options.refinement.newton_tol || r == "newton_tol";
     options.refinement.friction_lag = options.refinement.friction_lag || r == "friction_lag";
     options.refinement.mesh = options.refinement.mesh || r == "mesh";
+    options.refinement.finger = options.refinement.finger || r == "finger";
   }
   options.refinement.dt_divisor = args.dt_divisor;
   if (args.newton_tol > 0.0) options.defaults.sim.newton_tol = args.newton_tol;
