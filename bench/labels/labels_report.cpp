@@ -149,11 +149,8 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
      << (result.refinement.mesh
              ? ", soft objects meshed uniformly inside (the defaults' tets grow with depth)"
              : "")
-     << (result.refinement.finger
-             ? fmt::format(", the fin-ray finger at {} tet layers and {:g} mm profile edges "
-                           "(production: 4 and 3.6 mm)",
-                           kFineFinRayLayers, kFineFinRayEdge * 1e3)
-             : "")
+     << (result.refinement.finger ? ", the fin-ray finger at " + fine_fin_ray_model()
+                                  : std::string())
      << ". Grip force " << d.grip_force << " N, tolerance " << d.force_tolerance * 100 << " %. "
      << result.threads << " thread(s), " << fixed_or_dash(result.wall_seconds / 60, 1)
      << " min.\n\n";

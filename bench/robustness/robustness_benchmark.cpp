@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "bench/robustness/robustness_trials.hpp"
+#include "src/grippers/fin_ray_finger.hpp"
 #include "src/objects/object_library.hpp"
 
 namespace grip::bench {
@@ -160,6 +161,13 @@ std::string robustness_gripper_model(const std::string& gripper, bool production
     return "fin-ray fingers with 1 tet layer across the depth (4 in production)";
   if (gripper == "leap") return "LEAP hand with 8-sided capsule links (coarse_leap_hand)";
   return gripper;
+}
+
+std::string fine_fin_ray_model() {
+  const grippers::FinRayOptions production;
+  return fmt::format("{} tet layers and {:g} mm profile edges (production: {} and {:g} mm)",
+                     kFineFinRayLayers, kFineFinRayEdge * 1e3, production.layers,
+                     production.edge_length * 1e3);
 }
 
 std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options) {

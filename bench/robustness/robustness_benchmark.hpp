@@ -66,6 +66,10 @@ struct RobustnessBatch {
 inline constexpr int kFineFinRayLayers = 8;
 inline constexpr double kFineFinRayEdge = 0.0025;  // m
 
+// The finer fin-ray finger, in words, against production's: "8 tet layers and 2.5 mm profile
+// edges (production: 4 and 3.6 mm)".
+std::string fine_fin_ray_model();
+
 // The gripper each registry name is simulated with in this benchmark, in words.
 std::string robustness_gripper_model(const std::string& gripper, bool production_models);
 

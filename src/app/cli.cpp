@@ -204,12 +204,15 @@ int main(int argc, char** argv) {
                   "Also run each candidate alone: batch speedup and bit-identity");
   trial
       ->add_option("--finger-layers", trial_args.finger_layers,
-                   "Fin-ray: tet layers across the finger's depth (default 4)")
+                   "Fin-ray: tet layers across the finger's depth (default " +
+                       std::to_string(grip::grippers::FinRayOptions{}.layers) + ")")
       ->check(CLI::Range(1, grip::grippers::kMaxFinRayLayers));
   trial
       ->add_option(
           "--finger-edge", trial_args.finger_edge,
-          "Fin-ray: largest triangle edge of the finger's profile mesh (m; default 0.0036)")
+          fmt::format(
+              "Fin-ray: largest triangle edge of the finger's profile mesh (m; default {:g})",
+              grip::grippers::FinRayOptions{}.edge_length))
       ->check(CLI::Range(grip::grippers::kMinFinRayEdge, grip::grippers::kMaxFinRayEdge));
   trial->callback([&] {
     for (const char* soft_only : {"--tet-edge", "--tet-growth", "--youngs", "--poisson"}) {
@@ -555,8 +558,7 @@ int main(int argc, char** argv) {
       ->add_option("--refine", bench_labels_args.refine,
                    "What the reference refines (default: the first three): dt (halved), "
                    "newton_tol (/10), friction_lag (one more iteration), mesh (soft objects "
-                   "meshed uniformly inside), finger (the fin-ray finger at 8 layers and 2.5 mm "
-                   "profile edges)")
+                   "meshed uniformly inside), finger (the fin-ray finger meshed finer)")
       ->delimiter(',')
       ->check(CLI::IsMember({"dt", "newton_tol", "friction_lag", "mesh", "finger"}));
   bench_labels

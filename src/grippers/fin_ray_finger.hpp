@@ -44,8 +44,9 @@ struct FinRayMaterial {
   double damping = 5e-3;  // s
 };
 
-// The mesh resolutions the command line accepts (grip trial --finger-layers, --finger-edge):
-// beyond them the mesh takes minutes to build or no longer resolves the 1.6 mm ribs.
+// The mesh resolutions the command line accepts (grip trial --finger-layers, --finger-edge).
+// Their ends are far past any mesh worth a trial: 1 mm edges give 3,047 profile triangles
+// (about 292,000 tets at 32 layers), 10 mm edges 147.
 inline constexpr int kMaxFinRayLayers = 32;
 inline constexpr double kMinFinRayEdge = 0.001;  // m
 inline constexpr double kMaxFinRayEdge = 0.01;   // m
