@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "solver/body/body.hpp"
 #include "solver/kernels/edge_edge_distance.hpp"
@@ -17,85 +18,88 @@ Eigen::Vector3d rest_position(const Model& model, int collision_vertex) {
       mesh.vertex_local[collision_vertex]);
 }
 
-bool on_untouching_body(const Model& model, int collision_vertex) {
-  return model.among_untouching(model.collision().vertex_body[collision_vertex]);
+// The bodies whose primitives a body's look among for `kind`: itself, if it may touch itself,
+// or the others it may touch.
+std::vector<int> partner_bodies(const Model& model, int body, PairKind kind) {
+  std::vector<int> partners;
+  if (kind == PairKind::kOneBody) {
+    if (model.may_touch(body, body)) partners.push_back(body);
+    return partners;
+  }
+  for (int other = 0; other < static_cast<int>(model.bodies().size()); ++other) {
+    if (other != body && model.may_touch(body, other)) partners.push_back(other);
+  }
+  return partners;
 }
 
-// Only untouching bodies (Model::among_untouching) whose box reaches the other primitives' look
-// among them. Each vertex's triangles are listed by face index: the order of the tree's answers
-// depends on its shape, which depends on the boxes it was built over.
-void add_point_triangle_candidates(const Model& model, const std::vector<Aabb>& vertex_boxes,
-                                   const std::vector<char>& reaches, PrimitiveTrees& faces,
-                                   std::vector<int>& hits,
-                                   std::vector<ContactCandidate>& candidates,
-                                   std::vector<std::array<int, 2>>& primitives) {
+// Each vertex's triangles are listed by face index: the order of the trees' answers depends on
+// their shape, which depends on the boxes they were built over.
+void add_point_triangle_candidates(const Model& model, PairKind kind,
+                                   const std::vector<Aabb>& vertex_boxes, PrimitiveTrees& faces,
+                                   std::vector<int>& hits, KeptPairs& kept) {
   const CollisionMesh& mesh = model.collision();
+  std::vector<std::vector<int>> partners(model.bodies().size());
+  for (int b = 0; b < static_cast<int>(partners.size()); ++b) {
+    partners[b] = partner_bodies(model, b, kind);
+  }
   for (int v = 0; v < mesh.size(); ++v) {
     const int body_v = mesh.vertex_body[v];
-    const bool untouching = on_untouching_body(model, v);
-    if (untouching && !reaches[body_v]) continue;
+    if (partners[body_v].empty()) continue;
     hits.clear();
-    faces.query(untouching, vertex_boxes[v], [&](int f) { hits.push_back(f); });
+    for (const int body : partners[body_v]) {
+      faces.query(body, vertex_boxes[v], [&](int f) { hits.push_back(f); });
+    }
     std::sort(hits.begin(), hits.end());
     for (const int f : hits) {
       const auto& t = mesh.faces[f];
       if (t[0] == v || t[1] == v || t[2] == v) continue;
-      const double mu = model.pair_friction(body_v, mesh.vertex_body[t[0]]);
-      if (mu < 0) continue;
       const std::array<int, 4> pair{v, t[0], t[1], t[2]};
-      const bool self = body_v == mesh.vertex_body[t[0]];
-      candidates.push_back({false, pair, mu, 0.0, self && mesh.near_at_rest(false, pair)});
-      primitives.push_back({v, f});
+      const bool one_body = kind == PairKind::kOneBody;
+      kept.pairs.push_back({false, pair, model.pair_friction(body_v, mesh.vertex_body[t[0]]), 0.0,
+                            one_body && mesh.near_at_rest(false, pair)});
+      kept.primitives.push_back({v, f});
     }
   }
 }
 
-// A free edge keeps only free partners (its untouching ones are found from their side): one
-// whose body touches no free body's edges (a rigid object's among a hand's links) skips its query.
-// Each edge's partners are listed by edge index.
-void add_edge_edge_candidates(const Model& model, const std::vector<char>& reaches,
-                              PrimitiveTrees& edges, std::vector<int>& hits,
-                              std::vector<ContactCandidate>& candidates,
-                              std::vector<std::array<int, 2>>& primitives) {
+// Each unordered pair of edges once: from its lower index when both or neither are on untouching
+// bodies (Model::among_untouching), else from the untouching edge's side. Each edge's partners are
+// listed by edge index.
+void add_edge_edge_candidates(const Model& model, PairKind kind, PrimitiveTrees& edges,
+                              std::vector<int>& hits, KeptPairs& kept) {
   const CollisionMesh& mesh = model.collision();
-  auto untouching = [&](int edge) { return on_untouching_body(model, mesh.edges[edge][0]); };
-  const int body_count = static_cast<int>(model.bodies().size());
-  std::vector<char> has_free_edges(body_count, 0);
-  for (const auto& e : mesh.edges) {
-    if (!on_untouching_body(model, e[0])) has_free_edges[mesh.vertex_body[e[0]]] = 1;
-  }
-  std::vector<char> touches_free_edges(body_count, 0);
-  for (int b = 0; b < body_count; ++b) {
-    for (int c = 0; c < body_count; ++c) {
-      if (has_free_edges[c] && model.may_touch(b, c)) touches_free_edges[b] = 1;
-    }
+  auto untouching = [&](int edge) {
+    return model.among_untouching(mesh.vertex_body[mesh.edges[edge][0]]);
+  };
+  std::vector<std::vector<int>> partners(model.bodies().size());
+  for (int b = 0; b < static_cast<int>(partners.size()); ++b) {
+    partners[b] = partner_bodies(model, b, kind);
   }
   for (int a = 0; a < static_cast<int>(mesh.edges.size()); ++a) {
     const auto& ea = mesh.edges[a];
     const int body_a = mesh.vertex_body[ea[0]];
-    if (!(untouching(a) ? reaches[body_a] : touches_free_edges[body_a])) continue;
-    // Each unordered pair once: found from its lower index when both trees hold the other
-    // edge, from the untouching edge's side otherwise (only it looks in the smaller tree).
+    if (partners[body_a].empty()) continue;
     hits.clear();
-    edges.query(untouching(a), edges.box(a), [&](int b) {
-      if (b == a) return;
-      if (untouching(a) == untouching(b) ? b < a : untouching(b)) return;
-      hits.push_back(b);
-    });
+    for (const int body : partners[body_a]) {
+      edges.query(body, edges.box(a), [&](int b) {
+        if (b == a) return;
+        if (untouching(a) == untouching(b) ? b < a : untouching(b)) return;
+        hits.push_back(b);
+      });
+    }
     std::sort(hits.begin(), hits.end());
     for (const int b : hits) {
       const auto& eb = mesh.edges[b];
       if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
-      const double mu = model.pair_friction(body_a, mesh.vertex_body[eb[0]]);
-      if (mu < 0) continue;
       // The threshold depends on rest lengths only, so each edge may be in its own body frame.
       const double eps = kernels::edge_edge_mollifier_threshold(
           rest_position(model, ea[0]), rest_position(model, ea[1]), rest_position(model, eb[0]),
           rest_position(model, eb[1]));
       const std::array<int, 4> pair{ea[0], ea[1], eb[0], eb[1]};
-      const bool self = body_a == mesh.vertex_body[eb[0]];
-      candidates.push_back({true, pair, mu, eps, self && mesh.near_at_rest(true, pair)});
-      primitives.push_back({a, b});
+      const bool one_body = kind == PairKind::kOneBody;
+      kept.pairs.push_back({true, pair, model.pair_friction(body_a, mesh.vertex_body[eb[0]]), eps,
+                            one_body && mesh.near_at_rest(true, pair)});
+      kept.primitives.push_back({a, b});
     }
   }
 }
@@ -179,19 +183,19 @@ std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const 
                                                       std::vector<ContactCandidate>* ccd,
                                                       double ccd_rescaling) {
   prepare(model, start, end, d_hat);
-  if (kept_distance_.size() != kept_.size()) measure_kept(model);
+  if (kept_distance_.size() != one_body_.pairs.size()) measure_kept();
   const std::vector<int>& vertex_body = model.collision().vertex_body;
-  const Eigen::VectorXd since_kept = displacements_in_body(vertex_body, kept_start_, start);
+  const Eigen::VectorXd since_kept = displacements_in_body(vertex_body, one_body_start_, start);
   const Eigen::VectorXd on_path = displacements_in_body(vertex_body, start, end);
   // within_reach's tests with a relative margin wider than theirs, so that no rounding can pass
   // over a pair they would keep.
   constexpr double kMargin = 1e-5;
   const double ccd_stop = ccd ? d_hat * (1.0 - 1e-6) / ccd_rescaling : 0.0;
   const std::vector<ContactCandidate> boxed = overlapping([&](std::size_t i) {
+    const ContactCandidate& pair = one_body_.pairs[i];
     const double kept_distance = kept_distance_[i];
-    if (kept_distance < 0.0) return false;
-    const auto [moved_a, moved_b] = largest_per_side(kept_[i], since_kept);
-    const auto [path_a, path_b] = largest_per_side(kept_[i], on_path);
+    const auto [moved_a, moved_b] = largest_per_side(pair, since_kept);
+    const auto [path_a, path_b] = largest_per_side(pair, on_path);
     // The pair's distance at the start lies within moved_a + moved_b of its kept distance.
     const bool beyond_reach =
         kept_distance - moved_a - moved_b > (d_hat + path_a + path_b) * (1.0 + kMargin);
@@ -212,7 +216,8 @@ void ContactBroadPhase::prepare(const Model& model, const Vertices& start, const
   // Each vertex's swept box. A primitive's box is the union of its vertices' (inflating after
   // the union or before gives the same bits: rounding is monotonic).
   vertex_boxes_.resize(static_cast<std::size_t>(mesh.size()));
-  bool kept_covers = kept_model_ == &model && kept_vertex_boxes_.size() == vertex_boxes_.size();
+  const bool kept = kept_model_ == &model && kept_vertex_boxes_.size() == vertex_boxes_.size();
+  bool kept_covers = kept;
   for (int v = 0; v < mesh.size(); ++v) {
     Aabb& box = vertex_boxes_[v];
     box = Aabb{};
@@ -221,71 +226,106 @@ void ContactBroadPhase::prepare(const Model& model, const Vertices& start, const
     box.inflate(margin);
     kept_covers = kept_covers && kept_vertex_boxes_[v].contains(box);
   }
-  if (!kept_covers) keep(model, start, d_hat);
+  // Both kinds are kept again when the one-body pairs no longer cover the call.
+  const bool one_body_covers = kept && one_body_pairs_cover(model, start, end, d_hat);
+  if (!kept_covers || !one_body_covers) keep(model, start, d_hat, !one_body_covers);
   face_boxes(mesh, vertex_boxes_, face_boxes_);
   edge_boxes(mesh, vertex_boxes_, edge_boxes_);
+}
+
+bool ContactBroadPhase::one_body_pairs_cover(const Model& model, const Vertices& start,
+                                             const Vertices& end, double d_hat) {
+  const CollisionMesh& mesh = model.collision();
+  const int body_count = static_cast<int>(model.bodies().size());
+  // Each body's common motion since: the centre of the box of its vertices' displacements.
+  body_motion_.assign(static_cast<std::size_t>(body_count), Aabb{});
+  for (int v = 0; v < mesh.size(); ++v) {
+    body_motion_[mesh.vertex_body[v]].expand(
+        Eigen::Vector3d((start.row(v) - one_body_start_.row(v)).transpose()));
+  }
+  // The moved-back boxes are rounded differently from the boxes the pairs are tested with: a
+  // margin far above round-off and far below the skin covers that.
+  const double margin = 0.5 * d_hat * (1.0 + 1e-6);
+  for (int v = 0; v < mesh.size(); ++v) {
+    const int body = mesh.vertex_body[v];
+    if (!model.may_touch(body, body)) continue;
+    const Eigen::Vector3d back = body_motion_[body].center();
+    Aabb box;
+    box.expand(Eigen::Vector3d(start.row(v).transpose() - back));
+    box.expand(Eigen::Vector3d(end.row(v).transpose() - back));
+    box.inflate(margin);
+    if (!one_body_vertex_boxes_[v].contains(box)) return false;
+  }
+  return true;
 }
 
 template <typename Skip>
 std::vector<ContactCandidate> ContactBroadPhase::overlapping(Skip&& skip) {
   // The kept pairs whose boxes overlap now: every pair that overlaps now, since each of its
-  // boxes lies in its kept box, in the kept pairs' order.
+  // boxes lies in its kept box. The two lists are merged into the candidates' order.
   std::vector<ContactCandidate> candidates;
-  for (std::size_t i = 0; i < kept_.size(); ++i) {
-    if (skip(i)) continue;
-    const auto [a, b] = kept_primitives_[i];
-    const bool overlap = kept_[i].edge_edge ? edge_boxes_[a].overlaps(edge_boxes_[b])
-                                            : vertex_boxes_[a].overlaps(face_boxes_[b]);
-    if (overlap) candidates.push_back(kept_[i]);
+  const auto overlap = [&](const KeptPairs& kept, std::size_t i) {
+    const auto [a, b] = kept.primitives[i];
+    return kept.pairs[i].edge_edge ? edge_boxes_[a].overlaps(edge_boxes_[b])
+                                   : vertex_boxes_[a].overlaps(face_boxes_[b]);
+  };
+  const auto order = [](const KeptPairs& kept, std::size_t i) {
+    return std::tuple(kept.pairs[i].edge_edge, kept.primitives[i][0], kept.primitives[i][1]);
+  };
+  std::size_t i = 0, j = 0;
+  while (i < one_body_.pairs.size() || j < two_bodies_.pairs.size()) {
+    const bool one_body =
+        j == two_bodies_.pairs.size() ||
+        (i < one_body_.pairs.size() && order(one_body_, i) < order(two_bodies_, j));
+    if (one_body) {
+      if (!skip(i) && overlap(one_body_, i)) candidates.push_back(one_body_.pairs[i]);
+      ++i;
+    } else {
+      if (overlap(two_bodies_, j)) candidates.push_back(two_bodies_.pairs[j]);
+      ++j;
+    }
   }
   return candidates;
 }
 
-void ContactBroadPhase::measure_kept(const Model& model) {
-  kept_distance_.resize(kept_.size());
-  for (std::size_t i = 0; i < kept_.size(); ++i) {
-    kept_distance_[i] = on_one_body(model.collision().vertex_body, kept_[i])
-                            ? std::sqrt(pair_distance_sq(kept_[i], kept_start_))
-                            : -1.0;
+void ContactBroadPhase::measure_kept() {
+  kept_distance_.resize(one_body_.pairs.size());
+  for (std::size_t i = 0; i < one_body_.pairs.size(); ++i) {
+    kept_distance_[i] = std::sqrt(pair_distance_sq(one_body_.pairs[i], one_body_start_));
   }
 }
 
 // The pairs whose boxes overlap once each vertex's box is grown by the skin: they hold every pair
-// of later calls whose vertex boxes stay inside these.
-void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d_hat) {
+// of later calls whose vertex boxes stay inside these. The pairs of two bodies are kept again
+// every time; those of one body only `one_body_too`.
+void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d_hat,
+                             bool one_body_too) {
   const CollisionMesh& mesh = model.collision();
   ++keeps_;
   kept_model_ = &model;
-  kept_start_ = start;
-  kept_distance_.clear();
   kept_vertex_boxes_ = vertex_boxes_;
-  body_boxes_.assign(model.bodies().size(), Aabb{});
-  for (int v = 0; v < mesh.size(); ++v) {
-    kept_vertex_boxes_[v].inflate(0.5 * kSkin * d_hat);
-    body_boxes_[mesh.vertex_body[v]].expand(kept_vertex_boxes_[v]);
-  }
-  // Whether each body's box reaches the free primitives' boxes (it matters for untouching ones).
-  const auto reaching = [&](const PrimitiveTrees& trees, std::vector<char>& reaches) {
-    reaches.resize(body_boxes_.size());
-    for (std::size_t b = 0; b < body_boxes_.size(); ++b) {
-      reaches[b] = body_boxes_[b].overlaps(trees.free_bounds());
-    }
-  };
+  for (Aabb& box : kept_vertex_boxes_) box.inflate(0.5 * kSkin * d_hat);
   face_boxes(mesh, kept_vertex_boxes_, boxes_);
   first_vertex_.resize(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) first_vertex_[f] = mesh.faces[f][0];
   faces_.update(model, boxes_, first_vertex_);
-  reaching(faces_, reaches_);
-  kept_.clear();
-  kept_primitives_.clear();
-  add_point_triangle_candidates(model, kept_vertex_boxes_, reaches_, faces_, hits_, kept_,
-                                kept_primitives_);
   edge_boxes(mesh, kept_vertex_boxes_, boxes_);
   first_vertex_.resize(mesh.edges.size());
   for (std::size_t e = 0; e < mesh.edges.size(); ++e) first_vertex_[e] = mesh.edges[e][0];
   edges_.update(model, boxes_, first_vertex_);
-  reaching(edges_, reaches_);
-  add_edge_edge_candidates(model, reaches_, edges_, hits_, kept_, kept_primitives_);
+  const auto add_pairs = [&](PairKind kind, KeptPairs& kept) {
+    kept.pairs.clear();
+    kept.primitives.clear();
+    add_point_triangle_candidates(model, kind, kept_vertex_boxes_, faces_, hits_, kept);
+    add_edge_edge_candidates(model, kind, edges_, hits_, kept);
+  };
+  add_pairs(PairKind::kTwoBodies, two_bodies_);
+  if (!one_body_too) return;
+  ++one_body_keeps_;
+  one_body_start_ = start;
+  one_body_vertex_boxes_ = kept_vertex_boxes_;
+  kept_distance_.clear();
+  add_pairs(PairKind::kOneBody, one_body_);
 }
 
 std::vector<ContactCandidate> within_reach(const std::vector<int>& vertex_body,

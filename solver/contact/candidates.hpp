@@ -57,12 +57,28 @@ std::vector<ContactCandidate> within_reach(const std::vector<int>& vertex_body,
 Eigen::VectorXd displacements_in_body(const std::vector<int>& vertex_body, const Vertices& from,
                                       const Vertices& to);
 
+// The pairs of one body with itself (a soft finger's), or of two bodies.
+enum class PairKind { kOneBody, kTwoBodies };
+
+// Broad-phase pairs in the candidates' order, with their primitives: (vertex, face) or
+// (edge, edge), collision mesh indices.
+struct KeptPairs {
+  std::vector<ContactCandidate> pairs;
+  std::vector<std::array<int, 2>> primitives;
+};
+
 // The broad phase kept from call to call (one per environment); it finds exactly what
 // find_contact_candidates finds, in the same order. It keeps the pairs whose boxes overlap once
 // every vertex's box is grown by a skin (a Verlet list): while each later call's vertex boxes
 // lie inside those grown boxes, that call's pairs are among the kept ones, and it only tests the
 // kept pairs' boxes instead of querying the trees. A Newton iteration moves vertices by far less
 // than the skin, so the trees are queried about once per step rather than twice per iteration.
+//
+// The pairs of one body are kept apart from the pairs of two, and kept again only when their
+// body deforms past the skin: whether two boxes of one body overlap does not change when the
+// body moves as a whole, so their cover is tested with each body's boxes moved back by its
+// common motion. A soft finger's own pairs, most of all pairs, are then kept again only while
+// it bends, not whenever it or the object moves.
 class ContactBroadPhase {
  public:
   std::vector<ContactCandidate> find(const Model& model, const Vertices& start, const Vertices& end,
@@ -79,8 +95,10 @@ class ContactBroadPhase {
                                      double d_hat, std::vector<ContactCandidate>* ccd = nullptr,
                                      double ccd_rescaling = 0.0);
 
-  // How many calls queried the trees (the others reused the kept pairs).
+  // How many calls queried the trees for the pairs of two bodies (the others reused the kept
+  // pairs), and how many of those for the pairs of one body too.
   long keeps() const { return keeps_; }
+  long one_body_keeps() const { return one_body_keeps_; }
   // How many kept pairs near() passed over by their kept distance.
   long screened() const { return screened_; }
 
@@ -90,33 +108,38 @@ class ContactBroadPhase {
   // Each vertex's swept box, and the face and edge boxes; keeps the pairs again when the kept
   // ones no longer cover the call.
   void prepare(const Model& model, const Vertices& start, const Vertices& end, double d_hat);
-  // The kept pairs whose boxes overlap now, in order, but those skip(i) passes over.
+  // Whether the one-body pairs kept cover the call: each vertex's box, moved back by its body's
+  // common motion since they were kept, lies inside its box kept for them.
+  bool one_body_pairs_cover(const Model& model, const Vertices& start, const Vertices& end,
+                            double d_hat);
+  // The kept pairs whose boxes overlap now, in order, but the one-body pairs skip(i) passes over.
   template <typename Skip>
   std::vector<ContactCandidate> overlapping(Skip&& skip);
-  void keep(const Model& model, const Vertices& start, double d_hat);
-  // The kept pairs' distances at kept_start_ (pairs of one body only; -1 for the others).
-  void measure_kept(const Model& model);
+  void keep(const Model& model, const Vertices& start, double d_hat, bool one_body_too);
+  // The one-body pairs' distances where they were kept.
+  void measure_kept();
 
   PrimitiveTrees faces_;
   PrimitiveTrees edges_;
-  // The kept pairs, their primitives ((vertex, face) or (edge, edge)) and vertex boxes.
   const Model* kept_model_ = nullptr;
-  std::vector<ContactCandidate> kept_;
-  std::vector<std::array<int, 2>> kept_primitives_;
-  std::vector<Aabb> kept_vertex_boxes_;
-  Vertices kept_start_;                // the start of the call that kept them
-  std::vector<double> kept_distance_;  // by measure_kept; empty until near() needs it
+  KeptPairs one_body_;
+  KeptPairs two_bodies_;
+  std::vector<Aabb> kept_vertex_boxes_;      // grown boxes of the last keep
+  std::vector<Aabb> one_body_vertex_boxes_;  // and of the last keep of one-body pairs
+  Vertices one_body_start_;                  // the start of that call
+  std::vector<double> kept_distance_;  // of the one-body pairs, by measure_kept(); empty until
+                                       // near() needs them
   long keeps_ = 0;
+  long one_body_keeps_ = 0;
   long screened_ = 0;
   // Scratch of one call.
   std::vector<Aabb> vertex_boxes_;
   std::vector<Aabb> face_boxes_;
   std::vector<Aabb> edge_boxes_;
-  std::vector<Aabb> body_boxes_;
-  std::vector<char> reaches_;
   std::vector<Aabb> boxes_;
   std::vector<int> first_vertex_;
   std::vector<int> hits_;
+  std::vector<Aabb> body_motion_;
 };
 
 // The FEM bodies' own pairs within d_hat at rest, point-triangle then edge-edge, each sorted:

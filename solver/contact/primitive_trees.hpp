@@ -1,8 +1,9 @@
 #pragma once
-// One kind of primitive of a collision mesh (faces or edges) in two trees, for the broad phase.
-// Untouching bodies never touch each other (Model::among_untouching: kinematic jaws, a hand's
-// links), and they can hold most of the primitives: theirs look only among the other bodies'
-// primitives, in a second, smaller tree over those (the free tree).
+// One kind of primitive of a collision mesh (faces or edges) in a tree per body, for the broad
+// phase. A primitive looks only in the trees of the bodies it may touch: its own body's for the
+// pairs of one body (a soft finger's), the others' for the pairs of two. The pairs of one body
+// and of two are kept at different times (ContactBroadPhase), and a query for one kind never
+// walks the other's primitives: most of a soft finger's neighbours are its own.
 #include <span>
 #include <vector>
 
@@ -19,26 +20,26 @@ class PrimitiveTrees {
               const std::vector<int>& first_vertex);
 
   const Aabb& box(int i) const { return boxes_[static_cast<std::size_t>(i)]; }
-  // The union of the free (not untouching) primitives' boxes.
-  const Aabb& free_bounds() const { return free_bounds_; }
+  // The union of one body's primitives' boxes.
+  const Aabb& bounds(int body) const { return trees_[static_cast<std::size_t>(body)].bounds; }
 
-  // Calls visit(primitive index) for each box of the right tree that overlaps `box`.
+  // Calls visit(primitive index) for each of `body`'s primitives whose box overlaps `box`.
   template <typename Visit>
-  void query(bool from_untouching, const Aabb& box, Visit&& visit) {
-    if (from_untouching) {
-      free_.query(box, [&](int k) { visit(free_index_[static_cast<std::size_t>(k)]); });
-    } else {
-      all_.query(box, visit);
-    }
+  void query(int body, const Aabb& box, Visit&& visit) {
+    Tree& tree = trees_[static_cast<std::size_t>(body)];
+    if (!tree.bounds.overlaps(box)) return;
+    tree.bvh.query(box, [&](int k) { visit(tree.index[static_cast<std::size_t>(k)]); });
   }
 
  private:
+  struct Tree {
+    Bvh bvh;
+    std::vector<int> index;  // the tree's boxes as primitive indices
+    std::vector<Aabb> boxes;
+    Aabb bounds;
+  };
   std::vector<Aabb> boxes_;
-  Bvh all_;
-  Bvh free_;
-  std::vector<int> free_index_;  // the free tree's boxes as primitive indices
-  std::vector<Aabb> free_boxes_;
-  Aabb free_bounds_;
+  std::vector<Tree> trees_;
 };
 
 }  // namespace grip::solver

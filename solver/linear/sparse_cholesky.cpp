@@ -54,11 +54,31 @@ std::size_t entries_of(const cholmod_factor& factor) {
   return entries;
 }
 
+// x = A^-1 rhs by CHOLMOD's solve with `factor`.
+Eigen::VectorXd solve_with(cholmod_factor* factor, const Eigen::VectorXd& rhs,
+                           cholmod_common& common) {
+  cholmod_dense b{};
+  b.nrow = static_cast<std::size_t>(rhs.size());
+  b.ncol = 1;
+  b.nzmax = b.nrow;
+  b.d = b.nrow;
+  b.x = const_cast<double*>(rhs.data());
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor, &b, &common);
+  if (x == nullptr) throw std::runtime_error("CHOLMOD solve failed");
+  Eigen::VectorXd result =
+      Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(x->x), rhs.size());
+  cholmod_free_dense(&x, &common);
+  return result;
+}
+
 }  // namespace
 
 struct SparseCholesky::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
+  cholmod_factor* simplicial = nullptr;  // solve_simplicial()'s copy of `factor`, once made
   std::shared_ptr<const std::vector<int>> permutation;  // empty: CHOLMOD orders
   std::vector<int> outer;                               // the analysed pattern, to detect a change
   std::vector<int> inner;
@@ -68,6 +88,7 @@ struct SparseCholesky::Impl {
   Impl() { cholmod_start(&common); }
   ~Impl() {
     if (factor != nullptr) cholmod_free_factor(&factor, &common);
+    if (simplicial != nullptr) cholmod_free_factor(&simplicial, &common);
     cholmod_finish(&common);
   }
 
@@ -119,25 +140,26 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
   use_single_threaded_openmp();
   cholmod_factorize(&a, impl.factor, &impl.common);
   impl.factorized = impl.common.status == CHOLMOD_OK && impl.factor->minor == impl.factor->n;
+  if (impl.simplicial != nullptr) cholmod_free_factor(&impl.simplicial, &impl.common);
   return impl.factorized;
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
+  return solve_with(impl_->factor, rhs, impl_->common);
+}
+
+Eigen::VectorXd SparseCholesky::solve_simplicial(const Eigen::VectorXd& rhs) const {
   Impl& impl = *impl_;
-  cholmod_dense b{};
-  b.nrow = static_cast<std::size_t>(rhs.size());
-  b.ncol = 1;
-  b.nzmax = b.nrow;
-  b.d = b.nrow;
-  b.x = const_cast<double*>(rhs.data());
-  b.xtype = CHOLMOD_REAL;
-  b.dtype = CHOLMOD_DOUBLE;
-  cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl.factor, &b, &impl.common);
-  if (x == nullptr) throw std::runtime_error("CHOLMOD solve failed");
-  Eigen::VectorXd result =
-      Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(x->x), rhs.size());
-  cholmod_free_dense(&x, &impl.common);
-  return result;
+  if (!impl.factor->is_super) return solve(rhs);
+  if (impl.simplicial == nullptr) {
+    impl.simplicial = cholmod_copy_factor(impl.factor, &impl.common);
+    // LL', simplicial, packed, monotonic: as the supernodal factor's numbers are.
+    if (impl.simplicial == nullptr ||
+        !cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, impl.simplicial, &impl.common)) {
+      throw std::runtime_error("CHOLMOD could not copy the factor to simplicial form");
+    }
+  }
+  return solve_with(impl.simplicial, rhs, impl.common);
 }
 
 bool SparseCholesky::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
@@ -164,7 +186,7 @@ class FactorPreconditioner {
   FactorPreconditioner& compute(const Matrix&) {
     return *this;
   }
-  Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return factor_->solve(r); }
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return factor_->solve_simplicial(r); }
   Eigen::ComputationInfo info() const { return Eigen::Success; }
 
  private:
@@ -205,6 +227,10 @@ std::size_t SparseCholesky::factor_entries() const {
 std::size_t SparseCholesky::factor_bytes() const { return factor_entries() * sizeof(double); }
 
 double SparseCholesky::factor_flops() const { return impl_->common.fl; }
+
+bool SparseCholesky::supernodal() const {
+  return impl_->factor != nullptr && impl_->factor->is_super;
+}
 
 std::size_t symbolic_factor_bytes(int n, const std::vector<int>& outer,
                                   const std::vector<int>& inner,

@@ -35,6 +35,13 @@ class SparseCholesky : public LinearSystemSolver {
   bool factorize(const Eigen::SparseMatrix<double>& lower) override;
 
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  // solve() on a copy of the factor in simplicial form, made at the first call after a
+  // factorization and kept until the next. CG's preconditioner applies the factor several times
+  // per factorization, and a supernodal solve calls BLAS twice per supernode, most of them small,
+  // where OpenBLAS takes and releases a lock on every call: the simplicial solve is the same
+  // arithmetic without BLAS, and agrees with solve() to round-off. The copy costs the factor's
+  // size again.
+  Eigen::VectorXd solve_simplicial(const Eigen::VectorXd& rhs) const;
   // The LinearSystemSolver form of solve(): never fails after a successful factorize().
   bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) override;
   // Solves lower x = rhs (symmetric positive definite, lower triangle as for factorize()) by
@@ -58,6 +65,8 @@ class SparseCholesky : public LinearSystemSolver {
   std::size_t factor_bytes() const;
   // The floating-point operations of one numeric factorization, by the last analysis.
   double factor_flops() const;
+  // Whether the last analysis chose a supernodal factor (CHOLMOD does by its flops per entry).
+  bool supernodal() const;
 
  private:
   struct Impl;
