@@ -185,7 +185,7 @@ std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const 
   prepare(model, start, end, d_hat);
   if (kept_distance_.size() != one_body_.pairs.size()) measure_kept();
   const std::vector<int>& vertex_body = model.collision().vertex_body;
-  const Eigen::VectorXd since_kept = displacements_in_body(vertex_body, one_body_start_, start);
+  const Eigen::VectorXd since_kept = displacements_in_body(vertex_body, kept_start_, start);
   const Eigen::VectorXd on_path = displacements_in_body(vertex_body, start, end);
   // within_reach's tests with a relative margin wider than theirs, so that no rounding can pass
   // over a pair they would keep.
@@ -291,7 +291,7 @@ std::vector<ContactCandidate> ContactBroadPhase::overlapping(Skip&& skip) {
 void ContactBroadPhase::measure_kept() {
   kept_distance_.resize(one_body_.pairs.size());
   for (std::size_t i = 0; i < one_body_.pairs.size(); ++i) {
-    kept_distance_[i] = std::sqrt(pair_distance_sq(one_body_.pairs[i], one_body_start_));
+    kept_distance_[i] = std::sqrt(pair_distance_sq(one_body_.pairs[i], kept_start_));
   }
 }
 
@@ -303,6 +303,8 @@ void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d
   const CollisionMesh& mesh = model.collision();
   ++keeps_;
   kept_model_ = &model;
+  kept_start_ = start;
+  kept_distance_.clear();
   kept_vertex_boxes_ = vertex_boxes_;
   for (Aabb& box : kept_vertex_boxes_) box.inflate(0.5 * kSkin * d_hat);
   face_boxes(mesh, kept_vertex_boxes_, boxes_);
@@ -324,7 +326,6 @@ void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d
   ++one_body_keeps_;
   one_body_start_ = start;
   one_body_vertex_boxes_ = kept_vertex_boxes_;
-  kept_distance_.clear();
   add_pairs(PairKind::kOneBody, one_body_);
 }
 

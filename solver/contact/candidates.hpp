@@ -116,7 +116,7 @@ class ContactBroadPhase {
   template <typename Skip>
   std::vector<ContactCandidate> overlapping(Skip&& skip);
   void keep(const Model& model, const Vertices& start, double d_hat, bool one_body_too);
-  // The one-body pairs' distances where they were kept.
+  // The one-body pairs' distances at the last keep's start.
   void measure_kept();
 
   PrimitiveTrees faces_;
@@ -125,10 +125,12 @@ class ContactBroadPhase {
   KeptPairs one_body_;
   KeptPairs two_bodies_;
   std::vector<Aabb> kept_vertex_boxes_;      // grown boxes of the last keep
+  Vertices kept_start_;                      // the start of its call
   std::vector<Aabb> one_body_vertex_boxes_;  // and of the last keep of one-body pairs
   Vertices one_body_start_;                  // the start of that call
-  std::vector<double> kept_distance_;  // of the one-body pairs, by measure_kept(); empty until
-                                       // near() needs them
+  // The one-body pairs' distances at kept_start_, by measure_kept(); empty until near() needs
+  // them after a keep (measured again at every keep, so that the displacements since are short).
+  std::vector<double> kept_distance_;
   long keeps_ = 0;
   long one_body_keeps_ = 0;
   long screened_ = 0;

@@ -78,7 +78,7 @@ Eigen::VectorXd solve_with(cholmod_factor* factor, const Eigen::VectorXd& rhs,
 struct SparseCholesky::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
-  cholmod_factor* simplicial = nullptr;  // solve_simplicial()'s copy of `factor`, once made
+  cholmod_factor* simplicial = nullptr;  // precondition()'s copy of `factor`, once made
   std::shared_ptr<const std::vector<int>> permutation;  // empty: CHOLMOD orders
   std::vector<int> outer;                               // the analysed pattern, to detect a change
   std::vector<int> inner;
@@ -148,12 +148,18 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
   return solve_with(impl_->factor, rhs, impl_->common);
 }
 
-Eigen::VectorXd SparseCholesky::solve_simplicial(const Eigen::VectorXd& rhs) const {
+bool SparseCholesky::preconditions_on_simplicial_copy() const {
+  const cholmod_factor* factor = impl_->factor;
+  return factor != nullptr && factor->is_super &&
+         factor->xsize < kSmallSupernodeEntries * factor->nsuper;
+}
+
+Eigen::VectorXd SparseCholesky::precondition(const Eigen::VectorXd& rhs) const {
   Impl& impl = *impl_;
-  if (!impl.factor->is_super) return solve(rhs);
+  if (!preconditions_on_simplicial_copy()) return solve(rhs);
   if (impl.simplicial == nullptr) {
     impl.simplicial = cholmod_copy_factor(impl.factor, &impl.common);
-    // LL', simplicial, packed, monotonic: as the supernodal factor's numbers are.
+    // LL', simplicial, packed, monotonic: the supernodal factor's numbers, column by column.
     if (impl.simplicial == nullptr ||
         !cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, impl.simplicial, &impl.common)) {
       throw std::runtime_error("CHOLMOD could not copy the factor to simplicial form");
@@ -186,7 +192,7 @@ class FactorPreconditioner {
   FactorPreconditioner& compute(const Matrix&) {
     return *this;
   }
-  Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return factor_->solve_simplicial(r); }
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const { return factor_->precondition(r); }
   Eigen::ComputationInfo info() const { return Eigen::Success; }
 
  private:
@@ -227,10 +233,6 @@ std::size_t SparseCholesky::factor_entries() const {
 std::size_t SparseCholesky::factor_bytes() const { return factor_entries() * sizeof(double); }
 
 double SparseCholesky::factor_flops() const { return impl_->common.fl; }
-
-bool SparseCholesky::supernodal() const {
-  return impl_->factor != nullptr && impl_->factor->is_super;
-}
 
 std::size_t symbolic_factor_bytes(int n, const std::vector<int>& outer,
                                   const std::vector<int>& inner,

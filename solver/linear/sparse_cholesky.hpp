@@ -35,13 +35,20 @@ class SparseCholesky : public LinearSystemSolver {
   bool factorize(const Eigen::SparseMatrix<double>& lower) override;
 
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
-  // solve() on a copy of the factor in simplicial form, made at the first call after a
-  // factorization and kept until the next. CG's preconditioner applies the factor several times
-  // per factorization, and a supernodal solve calls BLAS twice per supernode, most of them small,
-  // where OpenBLAS takes and releases a lock on every call: the simplicial solve is the same
-  // arithmetic without BLAS, and agrees with solve() to round-off. The copy costs the factor's
-  // size again.
-  Eigen::VectorXd solve_simplicial(const Eigen::VectorXd& rhs) const;
+  // solve() as CG's preconditioner applies it, several times per factorization. Where the
+  // factor's supernodes are small (preconditions_on_simplicial_copy()), on a copy of the factor
+  // in simplicial form, made at the first call after a factorization and kept until the next: a
+  // supernodal solve calls BLAS twice per supernode, and OpenBLAS takes and releases a lock on
+  // every call, which small supernodes do not repay; the simplicial solve is the same arithmetic
+  // without BLAS, and agrees with solve() to round-off. Large supernodes are solved faster by
+  // BLAS, so there the supernodal factor is used. The copy costs the factor's size again.
+  Eigen::VectorXd precondition(const Eigen::VectorXd& rhs) const;
+  // Whether precondition() uses the simplicial copy: a supernodal factor whose supernodes hold
+  // fewer than kSmallSupernodeEntries entries on average. Measured (docs/simulation.md, item 3):
+  // a fin-ray finger's, about 300, solves about 20 % faster on the copy; with a soft object's
+  // tets, 800-2,900, 1.5-2.4x slower.
+  bool preconditions_on_simplicial_copy() const;
+  static constexpr std::size_t kSmallSupernodeEntries = 512;
   // The LinearSystemSolver form of solve(): never fails after a successful factorize().
   bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) override;
   // Solves lower x = rhs (symmetric positive definite, lower triangle as for factorize()) by
@@ -65,8 +72,6 @@ class SparseCholesky : public LinearSystemSolver {
   std::size_t factor_bytes() const;
   // The floating-point operations of one numeric factorization, by the last analysis.
   double factor_flops() const;
-  // Whether the last analysis chose a supernodal factor (CHOLMOD does by its flops per entry).
-  bool supernodal() const;
 
  private:
   struct Impl;

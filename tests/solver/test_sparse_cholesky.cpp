@@ -16,25 +16,30 @@
 namespace grip::solver {
 namespace {
 
-// Lower triangle of a 3D grid Laplacian (7-point stencil) times `scale` plus `shift` * I:
-// symmetric positive definite for shift > 0, with the fill pattern of a tet-mesh system.
-Eigen::SparseMatrix<double> grid_system(int n, double scale, double shift) {
-  const int size = n * n * n;
-  auto id = [n](int i, int j, int k) { return (i * n + j) * n + k; };
+// Lower triangle of an nx x ny x nz grid Laplacian (7-point stencil) times `scale` plus
+// `shift` * I: symmetric positive definite for shift > 0, with the fill pattern of a tet-mesh
+// system.
+Eigen::SparseMatrix<double> grid_system(int nx, int ny, int nz, double scale, double shift) {
+  const int size = nx * ny * nz;
+  auto id = [ny, nz](int i, int j, int k) { return (i * ny + j) * nz + k; };
   std::vector<Eigen::Triplet<double>> entries;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k) {
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j)
+      for (int k = 0; k < nz; ++k) {
         const int row = id(i, j, k);
         entries.emplace_back(row, row, 6.0 * scale + shift);
-        if (i + 1 < n) entries.emplace_back(id(i + 1, j, k), row, -scale);
-        if (j + 1 < n) entries.emplace_back(id(i, j + 1, k), row, -scale);
-        if (k + 1 < n) entries.emplace_back(id(i, j, k + 1), row, -scale);
+        if (i + 1 < nx) entries.emplace_back(id(i + 1, j, k), row, -scale);
+        if (j + 1 < ny) entries.emplace_back(id(i, j + 1, k), row, -scale);
+        if (k + 1 < nz) entries.emplace_back(id(i, j, k + 1), row, -scale);
       }
   Eigen::SparseMatrix<double> lower(size, size);
   lower.setFromTriplets(entries.begin(), entries.end());
   lower.makeCompressed();
   return lower;
+}
+
+Eigen::SparseMatrix<double> grid_system(int n, double scale, double shift) {
+  return grid_system(n, n, n, scale, shift);
 }
 
 Eigen::VectorXd random_vector(Eigen::Index size, unsigned seed) {
@@ -127,28 +132,35 @@ TEST(SparseCholesky, SolvesANearbyMatrixByConjugateGradientsOnAnEarlierFactoriza
       << "a failed factorization preconditions nothing";
 }
 
-// A 3D grid large enough for a supernodal factor: the simplicial copy CG's preconditioner solves
-// with agrees with the supernodal solve to round-off, and is made afresh after each
-// factorization (a second matrix of the same pattern is solved as itself, not as the first).
-TEST(SparseCholesky, TheSimplicialCopySolvesAsTheSupernodalFactor) {
+// CG's preconditioner solves a thin slab's factor (small supernodes, as a fin-ray finger's) on
+// its simplicial copy, and agrees with the supernodal solve to round-off; the copy is made
+// afresh after each factorization (a second matrix of the same pattern is solved as itself, not
+// as the first). A cube's factor (large supernodes, as with a soft object's tets) is solved as
+// it is, and so is a small simplicial one.
+TEST(SparseCholesky, PreconditionsOnASimplicialCopyWhereTheSupernodesAreSmall) {
   SparseCholesky cholesky;
-  const Eigen::VectorXd b = random_vector(20 * 20 * 20, 6);
+  const Eigen::VectorXd b = random_vector(60 * 60 * 2, 6);
   for (const double shift : {1e-3, 2.0}) {
-    const auto lower = grid_system(20, 1.0, shift);
-    ASSERT_TRUE(cholesky.factorize(lower));
-    ASSERT_TRUE(cholesky.supernodal());
+    const auto slab = grid_system(60, 60, 2, 1.0, shift);
+    ASSERT_TRUE(cholesky.factorize(slab));
+    ASSERT_TRUE(cholesky.preconditions_on_simplicial_copy());
     const Eigen::VectorXd supernodal = cholesky.solve(b);
-    const Eigen::VectorXd simplicial = cholesky.solve_simplicial(b);
-    EXPECT_LT(relative_residual(lower, simplicial, b), 1e-10) << shift;
-    EXPECT_LT((simplicial - supernodal).norm(), 1e-12 * supernodal.norm()) << shift;
-    EXPECT_EQ(cholesky.solve_simplicial(b), simplicial) << "the kept copy solves the same";
+    const Eigen::VectorXd copy = cholesky.precondition(b);
+    EXPECT_LT(relative_residual(slab, copy, b), 1e-10) << shift;
+    EXPECT_LT((copy - supernodal).norm(), 1e-12 * supernodal.norm()) << shift;
+    EXPECT_EQ(cholesky.precondition(b), copy) << "the kept copy solves the same";
   }
   EXPECT_EQ(cholesky.analyses(), 1);
+  const auto cube = grid_system(24, 1.0, 0.1);
+  ASSERT_TRUE(cholesky.factorize(cube));
+  EXPECT_FALSE(cholesky.preconditions_on_simplicial_copy());
+  const Eigen::VectorXd c = random_vector(cube.rows(), 7);
+  EXPECT_EQ(cholesky.precondition(c), cholesky.solve(c));
   const auto small = grid_system(4, 1.0, 0.1);
   ASSERT_TRUE(cholesky.factorize(small));
-  const Eigen::VectorXd c = random_vector(small.rows(), 7);
-  EXPECT_LT(relative_residual(small, cholesky.solve_simplicial(c), c), 1e-12)
-      << "a simplicial factor solves as it is";
+  EXPECT_FALSE(cholesky.preconditions_on_simplicial_copy());
+  const Eigen::VectorXd d = random_vector(small.rows(), 8);
+  EXPECT_LT(relative_residual(small, cholesky.precondition(d), d), 1e-12);
 }
 
 TEST(SparseCholesky, OrderingsAgree) {
