@@ -18,30 +18,29 @@ Eigen::Vector3d rest_position(const Model& model, int collision_vertex) {
       mesh.vertex_local[collision_vertex]);
 }
 
-// The bodies whose primitives a body's look among for `kind`: itself, if it may touch itself,
-// or the others it may touch.
-std::vector<int> partner_bodies(const Model& model, int body, PairKind kind) {
-  std::vector<int> partners;
-  if (kind == PairKind::kOneBody) {
-    if (model.may_touch(body, body)) partners.push_back(body);
+// For each body, the bodies whose primitives its own look among: for the pairs of one body
+// (own_body >= 0), that body alone, itself; for the pairs of two, the others each may touch.
+std::vector<std::vector<int>> partner_bodies(const Model& model, int own_body) {
+  std::vector<std::vector<int>> partners(model.bodies().size());
+  if (own_body >= 0) {
+    partners[own_body] = {own_body};
     return partners;
   }
-  for (int other = 0; other < static_cast<int>(model.bodies().size()); ++other) {
-    if (other != body && model.may_touch(body, other)) partners.push_back(other);
+  for (int a = 0; a < static_cast<int>(partners.size()); ++a) {
+    for (int b = 0; b < static_cast<int>(partners.size()); ++b) {
+      if (b != a && model.may_touch(a, b)) partners[a].push_back(b);
+    }
   }
   return partners;
 }
 
 // Each vertex's triangles are listed by face index: the order of the trees' answers depends on
 // their shape, which depends on the boxes they were built over.
-void add_point_triangle_candidates(const Model& model, PairKind kind,
+void add_point_triangle_candidates(const Model& model, int own_body,
                                    const std::vector<Aabb>& vertex_boxes, PrimitiveTrees& faces,
                                    std::vector<int>& hits, KeptPairs& kept) {
   const CollisionMesh& mesh = model.collision();
-  std::vector<std::vector<int>> partners(model.bodies().size());
-  for (int b = 0; b < static_cast<int>(partners.size()); ++b) {
-    partners[b] = partner_bodies(model, b, kind);
-  }
+  const std::vector<std::vector<int>> partners = partner_bodies(model, own_body);
   for (int v = 0; v < mesh.size(); ++v) {
     const int body_v = mesh.vertex_body[v];
     if (partners[body_v].empty()) continue;
@@ -54,10 +53,9 @@ void add_point_triangle_candidates(const Model& model, PairKind kind,
       const auto& t = mesh.faces[f];
       if (t[0] == v || t[1] == v || t[2] == v) continue;
       const std::array<int, 4> pair{v, t[0], t[1], t[2]};
-      const bool one_body = kind == PairKind::kOneBody;
-      kept.pairs.push_back({false, pair, model.pair_friction(body_v, mesh.vertex_body[t[0]]), 0.0,
-                            one_body && mesh.near_at_rest(false, pair)});
-      kept.primitives.push_back({v, f});
+      kept.add({false, pair, model.pair_friction(body_v, mesh.vertex_body[t[0]]), 0.0,
+                own_body >= 0 && mesh.near_at_rest(false, pair)},
+               {v, f});
     }
   }
 }
@@ -65,16 +63,13 @@ void add_point_triangle_candidates(const Model& model, PairKind kind,
 // Each unordered pair of edges once: from its lower index when both or neither are on untouching
 // bodies (Model::among_untouching), else from the untouching edge's side. Each edge's partners are
 // listed by edge index.
-void add_edge_edge_candidates(const Model& model, PairKind kind, PrimitiveTrees& edges,
+void add_edge_edge_candidates(const Model& model, int own_body, PrimitiveTrees& edges,
                               std::vector<int>& hits, KeptPairs& kept) {
   const CollisionMesh& mesh = model.collision();
   auto untouching = [&](int edge) {
     return model.among_untouching(mesh.vertex_body[mesh.edges[edge][0]]);
   };
-  std::vector<std::vector<int>> partners(model.bodies().size());
-  for (int b = 0; b < static_cast<int>(partners.size()); ++b) {
-    partners[b] = partner_bodies(model, b, kind);
-  }
+  const std::vector<std::vector<int>> partners = partner_bodies(model, own_body);
   for (int a = 0; a < static_cast<int>(mesh.edges.size()); ++a) {
     const auto& ea = mesh.edges[a];
     const int body_a = mesh.vertex_body[ea[0]];
@@ -96,10 +91,9 @@ void add_edge_edge_candidates(const Model& model, PairKind kind, PrimitiveTrees&
           rest_position(model, ea[0]), rest_position(model, ea[1]), rest_position(model, eb[0]),
           rest_position(model, eb[1]));
       const std::array<int, 4> pair{ea[0], ea[1], eb[0], eb[1]};
-      const bool one_body = kind == PairKind::kOneBody;
-      kept.pairs.push_back({true, pair, model.pair_friction(body_a, mesh.vertex_body[eb[0]]), eps,
-                            one_body && mesh.near_at_rest(true, pair)});
-      kept.primitives.push_back({a, b});
+      kept.add({true, pair, model.pair_friction(body_a, mesh.vertex_body[eb[0]]), eps,
+                own_body >= 0 && mesh.near_at_rest(true, pair)},
+               {a, b});
     }
   }
 }
@@ -172,6 +166,20 @@ std::vector<ContactCandidate> pairs_within_reach(const std::vector<int>& vertex_
 
 }  // namespace
 
+void KeptPairs::clear() {
+  pairs.clear();
+  primitives.clear();
+  order.clear();
+}
+
+void KeptPairs::add(const ContactCandidate& pair, const std::array<int, 2>& primitive_pair) {
+  pairs.push_back(pair);
+  primitives.push_back(primitive_pair);
+  order.push_back(static_cast<std::uint64_t>(pair.edge_edge) << 62 |
+                  static_cast<std::uint64_t>(primitive_pair[0]) << 31 |
+                  static_cast<std::uint64_t>(primitive_pair[1]));
+}
+
 std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const Vertices& start,
                                                       const Vertices& end, double d_hat) {
   prepare(model, start, end, d_hat);
@@ -183,7 +191,7 @@ std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const 
                                                       std::vector<ContactCandidate>* ccd,
                                                       double ccd_rescaling) {
   prepare(model, start, end, d_hat);
-  if (kept_distance_.size() != one_body_.pairs.size()) measure_kept();
+  if (kept_distance_.size() != kept_.pairs.size()) measure_kept();
   const std::vector<int>& vertex_body = model.collision().vertex_body;
   const Eigen::VectorXd since_kept = displacements_in_body(vertex_body, kept_start_, start);
   const Eigen::VectorXd on_path = displacements_in_body(vertex_body, start, end);
@@ -192,10 +200,10 @@ std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const 
   constexpr double kMargin = 1e-5;
   const double ccd_stop = ccd ? d_hat * (1.0 - 1e-6) / ccd_rescaling : 0.0;
   const std::vector<ContactCandidate> boxed = overlapping([&](std::size_t i) {
-    const ContactCandidate& pair = one_body_.pairs[i];
     const double kept_distance = kept_distance_[i];
-    const auto [moved_a, moved_b] = largest_per_side(pair, since_kept);
-    const auto [path_a, path_b] = largest_per_side(pair, on_path);
+    if (kept_distance < 0.0) return false;
+    const auto [moved_a, moved_b] = largest_per_side(kept_.pairs[i], since_kept);
+    const auto [path_a, path_b] = largest_per_side(kept_.pairs[i], on_path);
     // The pair's distance at the start lies within moved_a + moved_b of its kept distance.
     const bool beyond_reach =
         kept_distance - moved_a - moved_b > (d_hat + path_a + path_b) * (1.0 + kMargin);
@@ -226,85 +234,101 @@ void ContactBroadPhase::prepare(const Model& model, const Vertices& start, const
     box.inflate(margin);
     kept_covers = kept_covers && kept_vertex_boxes_[v].contains(box);
   }
-  // Both kinds are kept again when the one-body pairs no longer cover the call.
-  const bool one_body_covers = kept && one_body_pairs_cover(model, start, end, d_hat);
-  if (!kept_covers || !one_body_covers) keep(model, start, d_hat, !one_body_covers);
+  if (!kept) {
+    deformed_.assign(model.bodies().size(), 1);
+    keep(model, start, d_hat);
+  } else if (!own_pairs_cover(model, start, end, d_hat) || !kept_covers) {
+    keep(model, start, d_hat);
+  }
   face_boxes(mesh, vertex_boxes_, face_boxes_);
   edge_boxes(mesh, vertex_boxes_, edge_boxes_);
 }
 
-bool ContactBroadPhase::one_body_pairs_cover(const Model& model, const Vertices& start,
-                                             const Vertices& end, double d_hat) {
+bool ContactBroadPhase::own_pairs_cover(const Model& model, const Vertices& start,
+                                        const Vertices& end, double d_hat) {
   const CollisionMesh& mesh = model.collision();
-  const int body_count = static_cast<int>(model.bodies().size());
-  // Each body's common motion since: the centre of the box of its vertices' displacements.
-  body_motion_.assign(static_cast<std::size_t>(body_count), Aabb{});
+  const std::size_t body_count = model.bodies().size();
+  // Each body's common motion since its own pairs were kept: the centre of the box of its
+  // vertices' displacements.
+  body_motion_.assign(body_count, Aabb{});
   for (int v = 0; v < mesh.size(); ++v) {
     body_motion_[mesh.vertex_body[v]].expand(
-        Eigen::Vector3d((start.row(v) - one_body_start_.row(v)).transpose()));
+        Eigen::Vector3d((start.row(v) - own_start_.row(v)).transpose()));
   }
   // The moved-back boxes are rounded differently from the boxes the pairs are tested with: a
   // margin far above round-off and far below the skin covers that.
   const double margin = 0.5 * d_hat * (1.0 + 1e-6);
+  deformed_.assign(body_count, 0);
+  bool covers = true;
   for (int v = 0; v < mesh.size(); ++v) {
     const int body = mesh.vertex_body[v];
-    if (!model.may_touch(body, body)) continue;
+    if (deformed_[body] || !model.may_touch(body, body)) continue;
     const Eigen::Vector3d back = body_motion_[body].center();
     Aabb box;
     box.expand(Eigen::Vector3d(start.row(v).transpose() - back));
     box.expand(Eigen::Vector3d(end.row(v).transpose() - back));
     box.inflate(margin);
-    if (!one_body_vertex_boxes_[v].contains(box)) return false;
+    if (!own_vertex_boxes_[v].contains(box)) deformed_[body] = 1, covers = false;
   }
-  return true;
+  return covers;
 }
 
 template <typename Skip>
 std::vector<ContactCandidate> ContactBroadPhase::overlapping(Skip&& skip) {
   // The kept pairs whose boxes overlap now: every pair that overlaps now, since each of its
-  // boxes lies in its kept box. The two lists are merged into the candidates' order.
+  // boxes lies in its kept box, in the kept pairs' order.
   std::vector<ContactCandidate> candidates;
-  const auto overlap = [&](const KeptPairs& kept, std::size_t i) {
-    const auto [a, b] = kept.primitives[i];
-    return kept.pairs[i].edge_edge ? edge_boxes_[a].overlaps(edge_boxes_[b])
-                                   : vertex_boxes_[a].overlaps(face_boxes_[b]);
-  };
-  const auto order = [](const KeptPairs& kept, std::size_t i) {
-    return std::tuple(kept.pairs[i].edge_edge, kept.primitives[i][0], kept.primitives[i][1]);
-  };
-  std::size_t i = 0, j = 0;
-  while (i < one_body_.pairs.size() || j < two_bodies_.pairs.size()) {
-    const bool one_body =
-        j == two_bodies_.pairs.size() ||
-        (i < one_body_.pairs.size() && order(one_body_, i) < order(two_bodies_, j));
-    if (one_body) {
-      if (!skip(i) && overlap(one_body_, i)) candidates.push_back(one_body_.pairs[i]);
-      ++i;
-    } else {
-      if (overlap(two_bodies_, j)) candidates.push_back(two_bodies_.pairs[j]);
-      ++j;
-    }
+  for (std::size_t i = 0; i < kept_.pairs.size(); ++i) {
+    if (skip(i)) continue;
+    const auto [a, b] = kept_.primitives[i];
+    const bool overlap = kept_.pairs[i].edge_edge ? edge_boxes_[a].overlaps(edge_boxes_[b])
+                                                  : vertex_boxes_[a].overlaps(face_boxes_[b]);
+    if (overlap) candidates.push_back(kept_.pairs[i]);
   }
   return candidates;
 }
 
+// The pairs of two bodies and each body's own, merged into the candidates' order.
+void ContactBroadPhase::merge_kept() {
+  std::vector<const KeptPairs*> lists{&two_bodies_};
+  for (const KeptPairs& own : own_) {
+    if (!own.pairs.empty()) lists.push_back(&own);
+  }
+  std::vector<std::size_t> next(lists.size(), 0);
+  kept_.clear();
+  kept_own_.clear();
+  for (;;) {
+    int first = -1;
+    for (int l = 0; l < static_cast<int>(lists.size()); ++l) {
+      if (next[l] < lists[l]->pairs.size() &&
+          (first < 0 || lists[l]->order[next[l]] < lists[first]->order[next[first]])) {
+        first = l;
+      }
+    }
+    if (first < 0) break;
+    const std::size_t i = next[first]++;
+    kept_.add(lists[first]->pairs[i], lists[first]->primitives[i]);
+    kept_own_.push_back(first > 0);
+  }
+  kept_distance_.clear();
+}
+
 void ContactBroadPhase::measure_kept() {
-  kept_distance_.resize(one_body_.pairs.size());
-  for (std::size_t i = 0; i < one_body_.pairs.size(); ++i) {
-    kept_distance_[i] = std::sqrt(pair_distance_sq(one_body_.pairs[i], kept_start_));
+  kept_distance_.resize(kept_.pairs.size());
+  for (std::size_t i = 0; i < kept_.pairs.size(); ++i) {
+    kept_distance_[i] =
+        kept_own_[i] ? std::sqrt(pair_distance_sq(kept_.pairs[i], kept_start_)) : -1.0;
   }
 }
 
 // The pairs whose boxes overlap once each vertex's box is grown by the skin: they hold every pair
 // of later calls whose vertex boxes stay inside these. The pairs of two bodies are kept again
-// every time; those of one body only `one_body_too`.
-void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d_hat,
-                             bool one_body_too) {
+// every time; a body's own only when it has deformed (deformed_).
+void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d_hat) {
   const CollisionMesh& mesh = model.collision();
   ++keeps_;
   kept_model_ = &model;
   kept_start_ = start;
-  kept_distance_.clear();
   kept_vertex_boxes_ = vertex_boxes_;
   for (Aabb& box : kept_vertex_boxes_) box.inflate(0.5 * kSkin * d_hat);
   face_boxes(mesh, kept_vertex_boxes_, boxes_);
@@ -315,18 +339,28 @@ void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d
   first_vertex_.resize(mesh.edges.size());
   for (std::size_t e = 0; e < mesh.edges.size(); ++e) first_vertex_[e] = mesh.edges[e][0];
   edges_.update(model, boxes_, first_vertex_);
-  const auto add_pairs = [&](PairKind kind, KeptPairs& kept) {
-    kept.pairs.clear();
-    kept.primitives.clear();
-    add_point_triangle_candidates(model, kind, kept_vertex_boxes_, faces_, hits_, kept);
-    add_edge_edge_candidates(model, kind, edges_, hits_, kept);
+  const auto add_pairs = [&](int own_body, KeptPairs& kept) {
+    kept.clear();
+    add_point_triangle_candidates(model, own_body, kept_vertex_boxes_, faces_, hits_, kept);
+    add_edge_edge_candidates(model, own_body, edges_, hits_, kept);
   };
-  add_pairs(PairKind::kTwoBodies, two_bodies_);
-  if (!one_body_too) return;
-  ++one_body_keeps_;
-  one_body_start_ = start;
-  one_body_vertex_boxes_ = kept_vertex_boxes_;
-  add_pairs(PairKind::kOneBody, one_body_);
+  add_pairs(-1, two_bodies_);
+  const int body_count = static_cast<int>(model.bodies().size());
+  own_.resize(body_count);
+  own_vertex_boxes_.resize(kept_vertex_boxes_.size());
+  own_start_.resize(start.rows(), 3);
+  for (int b = 0; b < body_count; ++b) {
+    if (!model.may_touch(b, b)) own_[b].clear();
+    if (!deformed_[b] || !model.may_touch(b, b)) continue;
+    ++one_body_keeps_;
+    for (int v = 0; v < mesh.size(); ++v) {
+      if (mesh.vertex_body[v] != b) continue;
+      own_vertex_boxes_[v] = kept_vertex_boxes_[v];
+      own_start_.row(v) = start.row(v);
+    }
+    add_pairs(b, own_[b]);
+  }
+  merge_kept();
 }
 
 std::vector<ContactCandidate> within_reach(const std::vector<int>& vertex_body,

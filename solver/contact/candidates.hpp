@@ -4,6 +4,7 @@
 // list holds every pair that can come within d_hat anywhere on the straight path between the
 // two configurations, so it serves CCD and every barrier evaluation along that path.
 #include <array>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -57,14 +58,14 @@ std::vector<ContactCandidate> within_reach(const std::vector<int>& vertex_body,
 Eigen::VectorXd displacements_in_body(const std::vector<int>& vertex_body, const Vertices& from,
                                       const Vertices& to);
 
-// The pairs of one body with itself (a soft finger's), or of two bodies.
-enum class PairKind { kOneBody, kTwoBodies };
-
 // Broad-phase pairs in the candidates' order, with their primitives: (vertex, face) or
-// (edge, edge), collision mesh indices.
+// (edge, edge), collision mesh indices, and each pair's place in that order as one number.
 struct KeptPairs {
   std::vector<ContactCandidate> pairs;
   std::vector<std::array<int, 2>> primitives;
+  std::vector<std::uint64_t> order;  // edge-edge after point-triangle, then by the primitives
+  void clear();
+  void add(const ContactCandidate& pair, const std::array<int, 2>& primitive_pair);
 };
 
 // The broad phase kept from call to call (one per environment); it finds exactly what
@@ -74,8 +75,8 @@ struct KeptPairs {
 // kept pairs' boxes instead of querying the trees. A Newton iteration moves vertices by far less
 // than the skin, so the trees are queried about once per step rather than twice per iteration.
 //
-// The pairs of one body are kept apart from the pairs of two, and kept again only when their
-// body deforms past the skin: whether two boxes of one body overlap does not change when the
+// Each body's own pairs are kept apart from the pairs of two bodies, and kept again only when it
+// deforms past the skin: whether two boxes of one body overlap does not change when the
 // body moves as a whole, so their cover is tested with each body's boxes moved back by its
 // common motion. A soft finger's own pairs, most of all pairs, are then kept again only while
 // it bends, not whenever it or the object moves.
@@ -96,7 +97,7 @@ class ContactBroadPhase {
                                      double ccd_rescaling = 0.0);
 
   // How many calls queried the trees for the pairs of two bodies (the others reused the kept
-  // pairs), and how many of those for the pairs of one body too.
+  // pairs), and how many times a body's own pairs were kept again (per body).
   long keeps() const { return keeps_; }
   long one_body_keeps() const { return one_body_keeps_; }
   // How many kept pairs near() passed over by their kept distance.
@@ -108,29 +109,33 @@ class ContactBroadPhase {
   // Each vertex's swept box, and the face and edge boxes; keeps the pairs again when the kept
   // ones no longer cover the call.
   void prepare(const Model& model, const Vertices& start, const Vertices& end, double d_hat);
-  // Whether the one-body pairs kept cover the call: each vertex's box, moved back by its body's
-  // common motion since they were kept, lies inside its box kept for them.
-  bool one_body_pairs_cover(const Model& model, const Vertices& start, const Vertices& end,
-                            double d_hat);
-  // The kept pairs whose boxes overlap now, in order, but the one-body pairs skip(i) passes over.
+  // Whether each body's own pairs cover the call: each of its vertices' boxes, moved back by the
+  // body's common motion since they were kept, lies inside its box kept for them. Marks the
+  // bodies whose own do not (deformed_).
+  bool own_pairs_cover(const Model& model, const Vertices& start, const Vertices& end,
+                       double d_hat);
+  // The kept pairs whose boxes overlap now, in order, but those skip(i) passes over.
   template <typename Skip>
   std::vector<ContactCandidate> overlapping(Skip&& skip);
-  void keep(const Model& model, const Vertices& start, double d_hat, bool one_body_too);
-  // The one-body pairs' distances at the last keep's start.
+  void keep(const Model& model, const Vertices& start, double d_hat);
+  // kept_ from the pairs of two bodies and each body's own.
+  void merge_kept();
+  // The kept own pairs' distances at the last keep's start (-1 for the others).
   void measure_kept();
 
   PrimitiveTrees faces_;
   PrimitiveTrees edges_;
   const Model* kept_model_ = nullptr;
-  KeptPairs one_body_;
   KeptPairs two_bodies_;
-  std::vector<Aabb> kept_vertex_boxes_;      // grown boxes of the last keep
-  Vertices kept_start_;                      // the start of its call
-  std::vector<Aabb> one_body_vertex_boxes_;  // and of the last keep of one-body pairs
-  Vertices one_body_start_;                  // the start of that call
-  // The one-body pairs' distances at kept_start_, by measure_kept(); empty until near() needs
-  // them after a keep (measured again at every keep, so that the displacements since are short).
-  std::vector<double> kept_distance_;
+  std::vector<KeptPairs> own_;           // per body, its own pairs (none for a rigid one)
+  KeptPairs kept_;                       // all of them, in order (merge_kept)
+  std::vector<char> kept_own_;           // whether each is a body's own pair
+  std::vector<double> kept_distance_;    // by measure_kept(); empty until near() needs them
+  std::vector<Aabb> kept_vertex_boxes_;  // grown boxes of the last keep
+  Vertices kept_start_;                  // the start of its call
+  std::vector<Aabb> own_vertex_boxes_;   // each vertex's as its body's own pairs were kept
+  Vertices own_start_;                   // and its start then
+  std::vector<char> deformed_;           // per body: its own pairs are to be kept again
   long keeps_ = 0;
   long one_body_keeps_ = 0;
   long screened_ = 0;
