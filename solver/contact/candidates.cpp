@@ -235,6 +235,8 @@ void ContactBroadPhase::prepare(const Model& model, const Vertices& start, const
     kept_covers = kept_covers && kept_vertex_boxes_[v].contains(box);
   }
   if (!kept) {
+    kept_.clear();  // another model's, or none
+    kept_own_.clear();
     deformed_.assign(model.bodies().size(), 1);
     keep(model, start, d_hat);
   } else if (!own_pairs_cover(model, start, end, d_hat) || !kept_covers) {
@@ -346,11 +348,16 @@ void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d
   };
   add_pairs(-1, two_bodies_);
   const int body_count = static_cast<int>(model.bodies().size());
-  own_.resize(body_count);
+  // The own pairs of the bodies that have not deformed, back from the merged list (only it is
+  // kept between keeps, to spare the memory of a second copy).
+  own_.assign(body_count, KeptPairs{});
+  for (std::size_t i = 0; i < kept_.pairs.size(); ++i) {
+    const int body = mesh.vertex_body[kept_.pairs[i].vertex[0]];
+    if (kept_own_[i] && !deformed_[body]) own_[body].add(kept_.pairs[i], kept_.primitives[i]);
+  }
   own_vertex_boxes_.resize(kept_vertex_boxes_.size());
   own_start_.resize(start.rows(), 3);
   for (int b = 0; b < body_count; ++b) {
-    if (!model.may_touch(b, b)) own_[b].clear();
     if (!deformed_[b] || !model.may_touch(b, b)) continue;
     ++one_body_keeps_;
     for (int v = 0; v < mesh.size(); ++v) {
@@ -361,6 +368,8 @@ void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d
     add_pairs(b, own_[b]);
   }
   merge_kept();
+  own_ = {};
+  two_bodies_ = {};
 }
 
 std::vector<ContactCandidate> within_reach(const std::vector<int>& vertex_body,

@@ -126,8 +126,9 @@ class ContactBroadPhase {
   PrimitiveTrees faces_;
   PrimitiveTrees edges_;
   const Model* kept_model_ = nullptr;
+  // Scratch of a keep: the pairs of two bodies, and per body its own (none for a rigid one).
   KeptPairs two_bodies_;
-  std::vector<KeptPairs> own_;           // per body, its own pairs (none for a rigid one)
+  std::vector<KeptPairs> own_;
   KeptPairs kept_;                       // all of them, in order (merge_kept)
   std::vector<char> kept_own_;           // whether each is a body's own pair
   std::vector<double> kept_distance_;    // by measure_kept(); empty until near() needs them
