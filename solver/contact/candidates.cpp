@@ -270,7 +270,10 @@ bool ContactBroadPhase::own_pairs_cover(const Model& model, const Vertices& star
     box.expand(Eigen::Vector3d(start.row(v).transpose() - back));
     box.expand(Eigen::Vector3d(end.row(v).transpose() - back));
     box.inflate(margin);
-    if (!own_vertex_boxes_[v].contains(box)) deformed_[body] = 1, covers = false;
+    if (!own_vertex_boxes_[v].contains(box)) {
+      deformed_[body] = 1;
+      covers = false;
+    }
   }
   return covers;
 }

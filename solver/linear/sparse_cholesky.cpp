@@ -162,6 +162,8 @@ Eigen::VectorXd SparseCholesky::precondition(const Eigen::VectorXd& rhs) const {
     // LL', simplicial, packed, monotonic: the supernodal factor's numbers, column by column.
     if (impl.simplicial == nullptr ||
         !cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, impl.simplicial, &impl.common)) {
+      // No half-made copy is left for a later call to solve with.
+      if (impl.simplicial != nullptr) cholmod_free_factor(&impl.simplicial, &impl.common);
       throw std::runtime_error("CHOLMOD could not copy the factor to simplicial form");
     }
   }
