@@ -28,15 +28,23 @@ void add_tet_gradient(const BodyModel& body, const FemTet& tet, const Vector12& 
   }
 }
 
+// The 78 lower-triangle entries of a tet's Hessian (its four vertices are distinct), written
+// through a pointer: emplace_back's capacity test and stored end for each entry cost as much as
+// the Hessian's evaluation.
 void add_tet_hessian(const BodyModel& body, const FemTet& tet, const Matrix12& h,
                      std::vector<Eigen::Triplet<double>>& hessian) {
+  constexpr std::size_t kLowerEntries = 4 * 6 + 6 * 9;
+  const std::size_t first = hessian.size();
+  hessian.resize(first + kLowerEntries);
+  Eigen::Triplet<double>* out = hessian.data() + first;
   for (int a = 0; a < 4; ++a) {
     const int row = body.dof_offset + 3 * tet.vertices[a];
     for (int b = 0; b < 4; ++b) {
       const int col = body.dof_offset + 3 * tet.vertices[b];
+      if (row < col) continue;
       for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) {
-          if (row + i >= col + j) hessian.emplace_back(row + i, col + j, h(3 * a + i, 3 * b + j));
+          if (row + i >= col + j) *out++ = {row + i, col + j, h(3 * a + i, 3 * b + j)};
         }
       }
     }
@@ -235,7 +243,8 @@ void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, do
   for (std::size_t t = 0; t < body.tets.size(); ++t) {
     const FemTet& tet = body.tets[t];
     const Vector12 x = tet_positions(q, body.dof_offset, tet);
-    Vector12 g = kernels::tet_stable_neo_hookean_gradient(x, tet.rest_shape_inverse,
+    const Eigen::Matrix3d f = kernels::deformation_gradient(x, tet.rest_shape_inverse);
+    Vector12 g = kernels::tet_stable_neo_hookean_gradient(f, tet.rest_shape_inverse,
                                                           tet.rest_volume, body.elasticity);
     if (damping) {
       g +=
@@ -245,7 +254,7 @@ void add_elastic_derivatives(const BodyModel& body, const Eigen::VectorXd& q, do
     if (!hessian) continue;
     Matrix12 h = at_start ? damping->stiffness[t]
                           : kernels::tet_stable_neo_hookean_hessian(
-                                x, tet.rest_shape_inverse, tet.rest_volume, body.elasticity, true);
+                                f, tet.rest_shape_inverse, tet.rest_volume, body.elasticity, true);
     if (damping) h += c * damping->stiffness[t];
     add_tet_hessian(body, tet, scale * h, *hessian);
   }

@@ -262,26 +262,42 @@ GRIP_HD inline double tet_stable_neo_hookean_energy(const Vector12d& x,
          stable_neo_hookean_energy_density(deformation_gradient(x, rest_shape_inverse), m);
 }
 
-// d energy / dx = V B^T vec(P), B = dvec(F)/dx.
+// D, the 4x3 matrix of the shape functions' gradients: row 0 minus the sum of Dm^{-1}'s rows,
+// then Dm^{-1}. F = sum_a x_a D(a, :), so B = dvec(F)/dx has 3x3 blocks B(3j + i, 3a + i) = D(a,
+// j).
+GRIP_HD inline Eigen::Matrix<double, 4, 3> shape_function_gradients(
+    const Eigen::Matrix3d& rest_shape_inverse) {
+  Eigen::Matrix<double, 4, 3> d;
+  d.row(0) = -rest_shape_inverse.colwise().sum();
+  d.bottomRows<3>() = rest_shape_inverse;
+  return d;
+}
+
+// d energy / dx = V B^T vec(P) at the deformation gradient f, summed by B's blocks: vertex a's
+// 3-vector is V P D(a, :)^T.
+GRIP_HD inline Vector12d tet_stable_neo_hookean_gradient(const Eigen::Matrix3d& f,
+                                                         const Eigen::Matrix3d& rest_shape_inverse,
+                                                         double rest_volume,
+                                                         const StableNeoHookeanParameters& m) {
+  const Eigen::Matrix<double, 3, 4> g = (rest_volume * stable_neo_hookean_first_piola(f, m)) *
+                                        shape_function_gradients(rest_shape_inverse).transpose();
+  return Eigen::Map<const Vector12d>(g.data());
+}
+
 GRIP_HD inline Vector12d tet_stable_neo_hookean_gradient(const Vector12d& x,
                                                          const Eigen::Matrix3d& rest_shape_inverse,
                                                          double rest_volume,
                                                          const StableNeoHookeanParameters& m) {
-  const Eigen::Matrix3d p =
-      stable_neo_hookean_first_piola(deformation_gradient(x, rest_shape_inverse), m);
-  const Eigen::Map<const Vector9d> vec_p(p.data());
-  return rest_volume * deformation_gradient_jacobian(rest_shape_inverse).transpose() * vec_p;
+  return tet_stable_neo_hookean_gradient(deformation_gradient(x, rest_shape_inverse),
+                                         rest_shape_inverse, rest_volume, m);
 }
 
 // B^T A B for a 9x9 A and B = dvec(F)/dx: B's 3x3 blocks are multiples of the identity,
-// B(3j + i, 3a + i) = D(a, j) with D the 4x3 matrix of the shape functions' gradients (rows
-// -sum of Dm^{-1}'s rows, then Dm^{-1}), so the product is summed block by block at about a
-// third of a dense product's multiplications.
+// B(3j + i, 3a + i) = D(a, j) (shape_function_gradients), so the product is summed block by block
+// at about a third of a dense product's multiplications.
 GRIP_HD inline Matrix12d deformation_gradient_congruence(const Eigen::Matrix3d& rest_shape_inverse,
                                                          const Matrix9d& a) {
-  Eigen::Matrix<double, 4, 3> d;
-  d.row(0) = -rest_shape_inverse.colwise().sum();
-  d.bottomRows<3>() = rest_shape_inverse;
+  const Eigen::Matrix<double, 4, 3> d = shape_function_gradients(rest_shape_inverse);
   // A B, one 9x3 block column per vertex.
   Eigen::Matrix<double, 9, 12> ab;
   for (int v = 0; v < 4; ++v) {
@@ -301,15 +317,23 @@ GRIP_HD inline Matrix12d deformation_gradient_congruence(const Eigen::Matrix3d& 
 // needs. B (9 x 12) has full rank 9, so the 12x12 Hessian is PSD exactly when the 9x9 dP/dF
 // is: projecting the smaller matrix gives a PSD Hessian, leaves a PSD one unchanged, and
 // costs less than half as much.
+GRIP_HD inline Matrix12d tet_stable_neo_hookean_hessian(const Eigen::Matrix3d& f,
+                                                        const Eigen::Matrix3d& rest_shape_inverse,
+                                                        double rest_volume,
+                                                        const StableNeoHookeanParameters& m,
+                                                        bool project_psd) {
+  const Matrix9d dpdf = project_psd ? stable_neo_hookean_stress_derivative_psd(f, m)
+                                    : stable_neo_hookean_stress_derivative(f, m);
+  return rest_volume * deformation_gradient_congruence(rest_shape_inverse, dpdf);
+}
+
 GRIP_HD inline Matrix12d tet_stable_neo_hookean_hessian(const Vector12d& x,
                                                         const Eigen::Matrix3d& rest_shape_inverse,
                                                         double rest_volume,
                                                         const StableNeoHookeanParameters& m,
                                                         bool project_psd) {
-  const Eigen::Matrix3d f = deformation_gradient(x, rest_shape_inverse);
-  const Matrix9d dpdf = project_psd ? stable_neo_hookean_stress_derivative_psd(f, m)
-                                    : stable_neo_hookean_stress_derivative(f, m);
-  return rest_volume * deformation_gradient_congruence(rest_shape_inverse, dpdf);
+  return tet_stable_neo_hookean_hessian(deformation_gradient(x, rest_shape_inverse),
+                                        rest_shape_inverse, rest_volume, m, project_psd);
 }
 
 // Cauchy stress sigma = P F^T / J = (mu F F^T + (lambda (J - 1) - mu) J I) / J (Pa, symmetric);

@@ -378,6 +378,25 @@ TEST(NeoHookean, BlockwiseCongruenceMatchesTheDenseProduct) {
   }
 }
 
+// The tet gradient summed by B's blocks (V P D^T) equals the dense V B^T vec(P) to rounding, at
+// rest-sized and at stretched, sheared and inverted deformations.
+TEST(NeoHookean, BlockwiseGradientMatchesTheDenseProduct) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const StableNeoHookeanParameters m = stable_neo_hookean_parameters(1e6, 0.45);
+  for (int trial = 0; trial < 200; ++trial) {
+    const RestTet tet = random_rest_tet(rng, trial % 2 ? 1e-2 : 1e-3);
+    Eigen::Matrix3d f;
+    for (int i = 0; i < 9; ++i) f(i) = unit(rng);
+    f += Eigen::Matrix3d::Identity() * (trial % 3 == 0 ? -0.5 : 1.0);
+    const Eigen::Matrix3d p = stable_neo_hookean_first_piola(f, m);
+    const Vector12d dense = tet.volume * deformation_gradient_jacobian(tet.dm_inv).transpose() *
+                            Eigen::Map<const Vector9d>(p.data());
+    EXPECT_LT((tet_stable_neo_hookean_gradient(f, tet.dm_inv, tet.volume, m) - dense).norm(),
+              1e-13 * dense.norm());
+  }
+}
+
 TEST(NeoHookean, VonMisesOfKnownStressStates) {
   // Uniaxial sigma: |sigma|; pure shear tau: sqrt(3) tau; hydrostatic: 0.
   const double s = 1.5e6;
