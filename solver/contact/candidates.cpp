@@ -191,7 +191,11 @@ std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const 
                                                       std::vector<ContactCandidate>* ccd,
                                                       double ccd_rescaling) {
   prepare(model, start, end, d_hat);
-  if (kept_distance_.size() != kept_.pairs.size()) measure_kept();
+  // Each kept pair of one body is measured the first time its box overlaps after a keep: most
+  // never do before the next keep.
+  if (kept_distance_.size() != kept_.pairs.size()) {
+    kept_distance_.assign(kept_.pairs.size(), kUnmeasured);
+  }
   const std::vector<int>& vertex_body = model.collision().vertex_body;
   const Eigen::VectorXd since_kept = displacements_in_body(vertex_body, kept_start_, start);
   const Eigen::VectorXd on_path = displacements_in_body(vertex_body, start, end);
@@ -200,8 +204,11 @@ std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const 
   constexpr double kMargin = 1e-5;
   const double ccd_stop = ccd ? d_hat * (1.0 - 1e-6) / ccd_rescaling : 0.0;
   const std::vector<ContactCandidate> boxed = overlapping([&](std::size_t i) {
+    if (!kept_own_[i]) return false;
+    if (kept_distance_[i] == kUnmeasured) {
+      kept_distance_[i] = std::sqrt(pair_distance_sq(kept_.pairs[i], kept_start_));
+    }
     const double kept_distance = kept_distance_[i];
-    if (kept_distance < 0.0) return false;
     const auto [moved_a, moved_b] = largest_per_side(kept_.pairs[i], since_kept);
     const auto [path_a, path_b] = largest_per_side(kept_.pairs[i], on_path);
     // The pair's distance at the start lies within moved_a + moved_b of its kept distance.
@@ -284,11 +291,10 @@ std::vector<ContactCandidate> ContactBroadPhase::overlapping(Skip&& skip) {
   // boxes lies in its kept box, in the kept pairs' order.
   std::vector<ContactCandidate> candidates;
   for (std::size_t i = 0; i < kept_.pairs.size(); ++i) {
-    if (skip(i)) continue;
     const auto [a, b] = kept_.primitives[i];
     const bool overlap = kept_.pairs[i].edge_edge ? edge_boxes_[a].overlaps(edge_boxes_[b])
                                                   : vertex_boxes_[a].overlaps(face_boxes_[b]);
-    if (overlap) candidates.push_back(kept_.pairs[i]);
+    if (overlap && !skip(i)) candidates.push_back(kept_.pairs[i]);
   }
   return candidates;
 }
@@ -316,14 +322,6 @@ void ContactBroadPhase::merge_kept() {
     kept_own_.push_back(first > 0);
   }
   kept_distance_.clear();
-}
-
-void ContactBroadPhase::measure_kept() {
-  kept_distance_.resize(kept_.pairs.size());
-  for (std::size_t i = 0; i < kept_.pairs.size(); ++i) {
-    kept_distance_[i] =
-        kept_own_[i] ? std::sqrt(pair_distance_sq(kept_.pairs[i], kept_start_)) : -1.0;
-  }
 }
 
 // The pairs whose boxes overlap once each vertex's box is grown by the skin: they hold every pair

@@ -87,11 +87,12 @@ class ContactBroadPhase {
 
   // within_reach(model, find(model, start, end, d_hat), start, end, d_hat, ccd, ccd_rescaling),
   // the same pairs in the same order, without testing most pairs of one body. Each such kept pair
-  // remembers its distance where it was kept; its vertices have since moved, and move on the
-  // path, by at most their displacements in their body, so a pair that distance keeps beyond
-  // reach (and, with `ccd`, short of d_hat / ccd_rescaling) is passed over without a box or a
-  // distance. Most of a soft finger's kept pairs are the two faces of a wall or rib 1.5-2.5 mm
-  // apart, which only deformation, never the finger's motion, can bring within d_hat.
+  // whose box overlaps is measured where it was kept, once per keep; its vertices have since
+  // moved, and move on the path, by at most their displacements in their body, so a pair that
+  // distance keeps beyond reach (and, with `ccd`, short of d_hat / ccd_rescaling) is passed over
+  // without a distance. Most of a soft finger's kept pairs are the two faces of a wall or
+  // rib 1.5-2.5 mm apart, which only deformation, never the finger's motion, can bring within
+  // d_hat.
   std::vector<ContactCandidate> near(const Model& model, const Vertices& start, const Vertices& end,
                                      double d_hat, std::vector<ContactCandidate>* ccd = nullptr,
                                      double ccd_rescaling = 0.0);
@@ -100,7 +101,7 @@ class ContactBroadPhase {
   // pairs), and how many times a body's own pairs were kept again (per body).
   long keeps() const { return keeps_; }
   long one_body_keeps() const { return one_body_keeps_; }
-  // How many kept pairs near() passed over by their kept distance.
+  // How many kept pairs whose boxes overlap near() passed over by their kept distance.
   long screened() const { return screened_; }
 
  private:
@@ -114,14 +115,13 @@ class ContactBroadPhase {
   // bodies whose own do not (deformed_).
   bool own_pairs_cover(const Model& model, const Vertices& start, const Vertices& end,
                        double d_hat);
-  // The kept pairs whose boxes overlap now, in order, but those skip(i) passes over.
+  // The kept pairs whose boxes overlap now, in order, but those skip(i) passes over (asked only
+  // of the overlapping ones).
   template <typename Skip>
   std::vector<ContactCandidate> overlapping(Skip&& skip);
   void keep(const Model& model, const Vertices& start, double d_hat);
   // kept_ from the pairs of two bodies and each body's own.
   void merge_kept();
-  // The kept own pairs' distances at the last keep's start (-1 for the others).
-  void measure_kept();
 
   PrimitiveTrees faces_;
   PrimitiveTrees edges_;
@@ -129,9 +129,12 @@ class ContactBroadPhase {
   // Scratch of a keep: the pairs of two bodies, and per body its own (none for a rigid one).
   KeptPairs two_bodies_;
   std::vector<KeptPairs> own_;
-  KeptPairs kept_;                       // all of them, in order (merge_kept)
-  std::vector<char> kept_own_;           // whether each is a body's own pair
-  std::vector<double> kept_distance_;    // by measure_kept(); empty until near() needs them
+  KeptPairs kept_;              // all of them, in order (merge_kept)
+  std::vector<char> kept_own_;  // whether each is a body's own pair
+  // The kept own pairs' distances at the last keep's start, measured when near() first needs
+  // them (kUnmeasured until then); empty until near() is called after a keep.
+  std::vector<double> kept_distance_;
+  static constexpr double kUnmeasured = -1.0;
   std::vector<Aabb> kept_vertex_boxes_;  // grown boxes of the last keep
   Vertices kept_start_;                  // the start of its call
   std::vector<Aabb> own_vertex_boxes_;   // each vertex's as its body's own pairs were kept
