@@ -29,8 +29,8 @@ void add_tet_gradient(const BodyModel& body, const FemTet& tet, const Vector12& 
 }
 
 // The 78 lower-triangle entries of a tet's Hessian (its four vertices are distinct), written
-// through a pointer: emplace_back's capacity test and stored end for each entry cost as much as
-// the Hessian's evaluation.
+// through a pointer: with emplace_back, the vector's capacity test and the store of its end after
+// every entry were the most sampled instructions of the FEM derivatives.
 void add_tet_hessian(const BodyModel& body, const FemTet& tet, const Matrix12& h,
                      std::vector<Eigen::Triplet<double>>& hessian) {
   constexpr std::size_t kLowerEntries = 4 * 6 + 6 * 9;

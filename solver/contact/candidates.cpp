@@ -191,7 +191,7 @@ std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const 
                                                       std::vector<ContactCandidate>* ccd,
                                                       double ccd_rescaling) {
   prepare(model, start, end, d_hat);
-  // Each kept pair of one body is measured the first time its box overlaps after a keep: most
+  // Each kept pair of one body is measured the first time its box overlaps after a keep: many
   // never do before the next keep.
   if (kept_distance_.size() != kept_.pairs.size()) {
     kept_distance_.assign(kept_.pairs.size(), kUnmeasured);

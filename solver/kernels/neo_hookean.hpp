@@ -263,8 +263,8 @@ GRIP_HD inline double tet_stable_neo_hookean_energy(const Vector12d& x,
 }
 
 // D, the 4x3 matrix of the shape functions' gradients: row 0 minus the sum of Dm^{-1}'s rows,
-// then Dm^{-1}. F = sum_a x_a D(a, :), so B = dvec(F)/dx has 3x3 blocks B(3j + i, 3a + i) = D(a,
-// j).
+// then Dm^{-1}. F = sum_a x_a D(a, :), so B = dvec(F)/dx has the 3x3 blocks
+// B(3j + i, 3a + i) = D(a, j).
 GRIP_HD inline Eigen::Matrix<double, 4, 3> shape_function_gradients(
     const Eigen::Matrix3d& rest_shape_inverse) {
   Eigen::Matrix<double, 4, 3> d;
