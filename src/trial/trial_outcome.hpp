@@ -40,6 +40,10 @@ struct TrialOutcome {
   // Closing ended with every finger within force_tolerance of grip_force or at the end of its
   // path (TrialParameters), and the object was released.
   bool closed = false;
+  // Per finger, in the record's closing_forces order: whether closing left it at the end of its
+  // path (a finger that closed on air, or ran out of travel before its force reached
+  // grip_force); empty where closing did not end. Not in the dataset.
+  std::vector<bool> closing_at_path_end;
   // How far the object's centre of mass moved from the candidate's start to the settled grasp
   // (m); NaN for a trial that did not settle.
   double settle_displacement = nan;

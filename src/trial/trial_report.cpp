@@ -21,19 +21,28 @@ nlohmann::ordered_json stage_json(const solver::StageSeconds& s) {
           {"diagnostics", s.diagnostics}};
 }
 
-// Per gripper: its fingers' closing forces (the record's, which lists the grippers' fingers one
-// gripper after the other) and its own D1/D2 at the settled grasp (NaN when not measured).
+// The `per` values of gripper g's fingers from a list of every finger's, one gripper after the
+// other (empty stays empty).
+template <typename T>
+std::vector<T> gripper_part(const std::vector<T>& all, std::size_t g, std::size_t per) {
+  if (all.empty()) return {};
+  const auto first = all.begin() + static_cast<std::ptrdiff_t>(g * per);
+  return std::vector<T>(first, first + static_cast<std::ptrdiff_t>(per));
+}
+
+// Per gripper: its fingers' closing forces and whether each ended closing at the end of its path
+// (the record's and the outcome's lists, which give the grippers' fingers one gripper after the
+// other) and its own D1/D2 at the settled grasp (NaN when not measured).
 nlohmann::ordered_json gripper_json(int grippers, const TrialOutcome& outcome) {
   const std::vector<double>& forces = outcome.result.record.closing_forces;
   const std::size_t per = forces.size() / static_cast<std::size_t>(grippers);
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (std::size_t g = 0; g < static_cast<std::size_t>(grippers); ++g) {
     const bool measured = g < outcome.gripper_distances.size();
-    const auto first = forces.begin() + static_cast<std::ptrdiff_t>(g * per);
-    list.push_back(
-        {{"closing_forces", std::vector<double>(first, first + static_cast<std::ptrdiff_t>(per))},
-         {"d1", measured ? outcome.gripper_distances[g].d1 : TrialOutcome::nan},
-         {"d2", measured ? outcome.gripper_distances[g].d2 : TrialOutcome::nan}});
+    list.push_back({{"closing_forces", gripper_part(forces, g, per)},
+                    {"closing_at_path_end", gripper_part(outcome.closing_at_path_end, g, per)},
+                    {"d1", measured ? outcome.gripper_distances[g].d1 : TrialOutcome::nan},
+                    {"d2", measured ? outcome.gripper_distances[g].d2 : TrialOutcome::nan}});
   }
   return list;
 }
@@ -73,6 +82,7 @@ void write_report(std::ostream& out, const TrialReport& report,
                                  {"d2", r.d2},
                                  {"displacement", r.displacement},
                                  {"closing_forces", r.closing_forces},
+                                 {"closing_at_path_end", outcome.closing_at_path_end},
                                  {"settle_displacement", outcome.settle_displacement},
                                  {"center_displacement", outcome.center_displacement},
                                  {"end_speed", outcome.end_speed},

@@ -89,6 +89,7 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   expect_grip_force(h.closing_forces, p);
   const io::TrajectoryRecord& t = *with.result.trajectory;
   EXPECT_GT(t.joints[static_cast<std::size_t>(p.closing_frames - 1)], p.final_opening + 0.002);
+  EXPECT_EQ(with.closing_at_path_end, (std::vector<bool>{false, false}));
   // The verdict measures slip, not the fingers' sag: under gravity across the fingers the box
   // sinks with them by more than it slips.
   EXPECT_GT(largest(with.center_displacement), largest(h.displacement));
@@ -275,7 +276,8 @@ TEST(GraspTrial, ClosingOnAirFindsNoContact) {
   EXPECT_EQ(r.failure, io::FailureKind::kNoContact);
   EXPECT_EQ(r.closing_forces, (std::vector<double>{0.0, 0.0}));
   // The jaws closed all the way: the last closing frame's opening is final_opening (within
-  // one step of travel per jaw).
+  // one step of travel per jaw), and the report says both ended at the end of their path.
+  EXPECT_EQ(outcome.closing_at_path_end, (std::vector<bool>{true, true}));
   const io::TrajectoryRecord& t = *outcome.result.trajectory;
   const double last_opening = t.joints[scene.parameters().closing_frames - 1];
   EXPECT_NEAR(last_opening, scene.parameters().final_opening,

@@ -172,6 +172,7 @@ TEST(HandTrial, ClosingOnAirFindsNoContact) {
   const io::CandidateRecord& r = outcome.result.record;
   EXPECT_EQ(r.failure, io::FailureKind::kNoContact) << outcome.failure_reason;
   EXPECT_EQ(r.closing_forces, std::vector<double>(4, 0.0));
+  EXPECT_EQ(outcome.closing_at_path_end, std::vector<bool>(4, true));
   // Nothing lies on any finger's closing path, so placement put every finger at the end of its
   // path before the first step: in the first frame one of each finger's joints is at a limit
   // and every finger flexed, and the closing never moved them on.

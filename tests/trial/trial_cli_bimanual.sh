@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # grip trial runs a bimanual candidate file with --bimanual and reports both grippers (closing
-# forces and D1/D2 per gripper); a bimanual file without --bimanual, or a unimanual one with it,
+# forces, path ends and D1/D2 per gripper); a bimanual file without --bimanual, or a unimanual one with it,
 # is refused in one line naming the file, and nothing is written.
 set -euo pipefail
 grip=$1
@@ -13,11 +13,12 @@ trap 'rm -rf "$dir"' EXIT
 "$grip" trial --candidates "$dir/two.txt" --bimanual --threads 1 --report "$dir/r.json" 2>/dev/null
 grep -q '"bimanual": true' "$dir/r.json" || { echo "FAIL: the report is not bimanual"; exit 1; }
 line=$(grep '"id": 0' "$dir/r.json")
-# Four closing forces over both grippers, then two per gripper with each gripper's D1/D2.
+# Four closing forces over both grippers, then two per gripper with each gripper's path ends and
+# D1/D2.
 forces=$(grep -o '"closing_forces": \[[^]]*\]' <<<"$line")
 [ "$(grep -c . <<<"$forces")" -eq 3 ] || { echo "FAIL: expected 3 closing_forces lists"; exit 1; }
 [ "$(head -1 <<<"$forces" | tr -cd , | wc -c)" -eq 3 ] || { echo "FAIL: not 4 forces"; exit 1; }
-grep -q '"grippers": \[{"closing_forces": \[[^],]*, [^],]*\], "d1": ' <<<"$line" ||
+grep -q '"grippers": \[{"closing_forces": \[[^],]*, [^],]*\], "closing_at_path_end": \[[a-z]*, [a-z]*\], "d1": ' <<<"$line" ||
   { echo "FAIL: no per-gripper fields"; exit 1; }
 "$grip" trial --candidates "$dir/one.txt" --threads 1 --report "$dir/u.json" 2>/dev/null
 if grep -q -e bimanual -e grippers "$dir/u.json"; then echo "FAIL: unimanual report has bimanual fields"; exit 1; fi
