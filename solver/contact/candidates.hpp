@@ -129,8 +129,11 @@ class ContactBroadPhase {
   // Scratch of a keep: the pairs of two bodies, and per body its own (none for a rigid one).
   KeptPairs two_bodies_;
   std::vector<KeptPairs> own_;
-  KeptPairs kept_;              // all of them, in order (merge_kept)
-  std::vector<char> kept_own_;  // whether each is a body's own pair
+  KeptPairs kept_;  // all of them, in order (merge_kept)
+  // Whether each is a body's own pair. on_one_body() would say so from the collision mesh, but
+  // near() asks for every overlapping pair, and the flags read in order cost less (the fin-ray
+  // cylinder's broad phase was 2-3 % slower without them).
+  std::vector<char> kept_own_;
   // The kept own pairs' distances at the last keep's start, measured when near() first needs
   // them (kUnmeasured until then); empty until near() is called after a keep.
   std::vector<double> kept_distance_;

@@ -375,10 +375,8 @@ class ProtocolRunner {
     }
     state.outcome.result.record.closing_forces = finger_forces(state);
     state.outcome.closed = true;
-    for (const FingerServo& finger : state.fingers) {
-      state.outcome.closing_at_path_end.push_back(finger.at_limit());
-    }
     for (FingerServo& finger : state.fingers) {
+      state.outcome.closing_at_path_end.push_back(finger.at_limit());
       if (gripper_.driven_fingers()) {
         finger.halt();
       } else {
