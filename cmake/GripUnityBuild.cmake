@@ -1,4 +1,4 @@
-# GRIP_UNITY_BUILD: every library and the grip executable compiled as a few batches of their
+# GRIP_UNITY_BUILD: every library and the grip and grip-bench executables compiled as a few batches of their
 # sources ("unity" builds). Separate translation units each parse and instantiate the same Eigen
 # and CGAL templates again; batches do it once, so a clean build of grip takes about 30% less
 # CPU (docs/architecture.md). Same flags, same code, no warning added. scripts/build.sh turns it
@@ -15,7 +15,7 @@ function(grip_unity_build dir)
   get_property(targets DIRECTORY ${dir} PROPERTY BUILDSYSTEM_TARGETS)
   foreach(target IN LISTS targets)
     get_target_property(type ${target} TYPE)
-    if(type STREQUAL "STATIC_LIBRARY" OR target STREQUAL "grip")
+    if(type STREQUAL "STATIC_LIBRARY" OR target MATCHES "^grip(-bench)?$")
       set_target_properties(${target} PROPERTIES UNITY_BUILD ON)
     endif()
   endforeach()
@@ -25,7 +25,7 @@ function(grip_unity_build dir)
   endforeach()
 endfunction()
 
-foreach(module solver src io farm bench)
+foreach(module solver src io farm app bench)
   grip_unity_build(${PROJECT_SOURCE_DIR}/${module})
 endforeach()
 

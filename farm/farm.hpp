@@ -24,7 +24,7 @@ struct FarmOptions {
   std::string grip_version;       // recorded in the dataset's provenance
   std::string git_revision;
   // Rank 0 calls it on the dataset to resume before anything opens it; it throws
-  // io::DatasetError for a file HDF5 cannot read (grip's: src/app/dataset_probe.hpp).
+  // io::DatasetError for a file HDF5 cannot read (grip's: app/dataset_probe.hpp).
   std::function<void(const std::filesystem::path&)> check_dataset;
   // PETSc's options for the job's PETSc groups (grip farm JOB -- OPTIONS), e.g. -ksp_rtol 1e-12.
   std::vector<std::string> petsc_options;

@@ -1,5 +1,5 @@
 #pragma once
-// The reads `grip inspect` makes of a dataset (and its crash probe, src/app/dataset_probe.cpp):
+// The reads `grip inspect` makes of a dataset (and its crash probe, app/dataset_probe.cpp):
 // the layout, provenance, every object and gripper record, the summary (the candidate table
 // and every committed row against its checksums) and a few trajectories and stress fields.
 // Shared by the two dataset fuzz targets.

@@ -10,9 +10,9 @@
 #include <random>
 #include <utility>
 
-#include "bench/common/process_memory.hpp"
 #include "solver/batch/batch.hpp"
 #include "src/json/json_text.hpp"
+#include "src/platform/process_memory.hpp"
 
 namespace grip::bench {
 namespace {
@@ -58,7 +58,7 @@ BatchBenchmarkResult run_batch_benchmark(const scene::SceneFile& scene, const st
 
     // Batched first, on a trimmed heap, so that its memory is measured from a clean baseline:
     // the model (shared by all copies) and every environment's own state.
-    const MemoryPeak memory;
+    const platform::MemoryPeak memory;
     const std::shared_ptr<const solver::Model> model = solver::Model::build(scene.scene);
     std::vector<Eigen::VectorXd> batched_state;
     {

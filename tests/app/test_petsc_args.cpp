@@ -1,7 +1,7 @@
 // PETSc options pass through after a lone `--`; everything before it is grip's.
 #include <gtest/gtest.h>
 
-#include "src/app/petsc_args.hpp"
+#include "app/cli/petsc_args.hpp"
 
 namespace grip {
 namespace {

@@ -12,7 +12,7 @@ import tempfile
 import unittest
 
 SOURCE_DIR = None
-COPIED = ("CMakeLists.txt", "cmake", "docs/architecture.md", "solver", "src", "io", "farm",
+COPIED = ("CMakeLists.txt", "cmake", "docs/architecture.md", "solver", "src", "io", "farm", "app",
           "bench", "tests", "scripts/check-layering.py")
 
 
