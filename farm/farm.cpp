@@ -15,13 +15,13 @@
 #include "farm/petsc_groups.hpp"
 #include "farm/plan.hpp"
 #include "farm/stop_request.hpp"
-#include "farm/trial_runner.hpp"
 #include "farm/wire.hpp"
 #include "farm/work_unit_claims.hpp"
 #include "io/dataset_error.hpp"
 #include "io/dataset_writer.hpp"
 #include "src/config/config.hpp"
 #include "src/grippers/gripper_registry.hpp"
+#include "src/trial/trial.hpp"
 
 namespace grip::farm {
 namespace {
@@ -92,31 +92,32 @@ std::vector<WorkUnit> make_work_units(const io::DatasetPlan& plan,
   return units;
 }
 
-// The trial scenes this rank has built, by (object, gripper); consecutive work units mostly
-// share one, so only the most recent few are kept.
-class RunnerCache {
+// The trial scenes this rank has built, by (object, gripper setting); consecutive work units
+// mostly share one, so only the most recent few are kept.
+class SceneCache {
  public:
-  RunnerCache(const FarmPlan& plan, const Job& job) : plan_(plan), job_(job) {}
+  SceneCache(const FarmPlan& plan, const Job& job) : plan_(plan), job_(job) {}
 
-  const TrialRunner& get(std::uint32_t object, std::uint32_t gripper) {
+  const trial::TrialScene& get(std::uint32_t object, std::uint32_t gripper) {
     const auto key = std::make_pair(object, gripper);
-    for (auto& [k, runner] : runners_) {
-      if (k == key) return *runner;
+    for (auto& [k, scene] : scenes_) {
+      if (k == key) return *scene;
     }
-    if (runners_.size() == kKept) runners_.erase(runners_.begin());
-    runners_.emplace_back(
-        key, std::make_unique<TrialRunner>(trial_object(plan_.dataset.objects[object]),
-                                           job_.grippers[gripper].kind,
-                                           job_.grippers[gripper].bimanual, job_.trial));
-    return *runners_.back().second;
+    if (scenes_.size() == kKept) scenes_.erase(scenes_.begin());
+    const GripperSetting& setting = job_.grippers[gripper];
+    scenes_.emplace_back(key, trial::make_trial_scene(trial_object(plan_.dataset.objects[object]),
+                                                      grippers::gripper_type(setting.kind),
+                                                      setting.bimanual ? 2 : 1, job_.trial));
+    return *scenes_.back().second;
   }
 
  private:
   static constexpr std::size_t kKept = 2;
   const FarmPlan& plan_;
   const Job& job_;
-  std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<TrialRunner>>>
-      runners_;
+  std::vector<
+      std::pair<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<trial::TrialScene>>>
+      scenes_;
 };
 
 // Rank 0 checks the dataset to resume; its refusal is every rank's.
@@ -247,7 +248,7 @@ struct UnitRun {
   const FarmPlan& plan;
   const Job& job;
   int threads = 1;
-  RunnerCache& runners;
+  SceneCache& scenes;
   LiveProgress& progress;
   io::DatasetWriter& writer;
   MPI_Comm comm;
@@ -260,21 +261,24 @@ struct UnitRun {
 // group-only unit's systems all go to the leader's group.
 std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, bool group_only,
                                           const UnitRun& run) {
-  std::vector<const synth::Candidate*> candidates;
-  for (std::uint64_t id : unit.ids) candidates.push_back(&run.plan.candidates[id]);
-  const bool trajectory = run.plan.dataset.candidates[unit.ids.front()].frames;
+  std::vector<synth::Candidate> candidates;
+  for (std::uint64_t id : unit.ids) candidates.push_back(run.plan.candidates[id]);
   std::size_t counted = 0;  // of this work unit's trials, added to the progress
-  const auto after_step = [&](std::size_t ended) {
+  trial::TrialRunOptions options;
+  options.threads = run.threads;
+  options.trajectory = run.plan.dataset.candidates[unit.ids.front()].frames;
+  options.ids = unit.ids;
+  options.max_active = 2 * run.threads;  // enough to keep every thread busy while others freeze
+  options.after_step = [&](std::size_t ended) {
     run.progress.add(LiveProgress::kTrials, ended - counted);
     counted = ended;
     run.progress.poll();
     run.writer.poll_journal();
   };
+  if (group_only) options.big_system_solver = run.big_system_solver;
   std::vector<io::CandidateResult> results;
   for (trial::TrialOutcome& outcome :
-       run.runners.get(unit.object, unit.gripper)
-           .run(candidates, unit.ids, run.threads, trajectory, after_step,
-                group_only ? run.big_system_solver : nullptr)) {
+       trial::run_trials(run.scenes.get(unit.object, unit.gripper), candidates, options)) {
     io::CandidateResult& result = outcome.result;
     if (!run.plan.dataset.candidates[result.record.id].stress) result.stress.reset();
     results.push_back(std::move(result));
@@ -288,7 +292,7 @@ std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, bool group_only,
 // plain rank's CHOLMOD takes a system the rule says is too big for it. Rank 0 builds each
 // (object, gripper) pair's model once and tells every rank; without groups, none.
 std::vector<char> group_only_units(const std::vector<WorkUnit>& units, const Job& job,
-                                   RunnerCache& runners, MPI_Comm comm) {
+                                   SceneCache& scenes, MPI_Comm comm) {
   std::vector<char> group_only(units.size(), 0);
   if (job.petsc.group_ranks == 0) return group_only;
   int rank = 0;
@@ -300,7 +304,7 @@ std::vector<char> group_only_units(const std::vector<WorkUnit>& units, const Job
       const auto pair = std::make_pair(units[k].object, units[k].gripper);
       auto known = by_pair.find(pair);
       if (known == by_pair.end()) {
-        const solver::Model& model = runners.get(pair.first, pair.second).model();
+        const solver::Model& model = *scenes.get(pair.first, pair.second).model();
         known = by_pair.emplace(pair, too_big_for_one_rank(job.petsc, model)).first;
       }
       group_only[k] = known->second;
@@ -381,11 +385,11 @@ void run_trials(const FarmOptions& options, const FarmPlan& plan, const Job& job
   }
   const Clock::time_point trial_start = Clock::now();
   progress.start_trials(pending.size());
-  RunnerCache runners(plan, job);
-  const std::vector<char> group_only = group_only_units(units, job, runners, comm);
+  SceneCache scenes(plan, job);
+  const std::vector<char> group_only = group_only_units(units, job, scenes, comm);
   WorkUnitClaims claims(comm, 2);
   PetscGroups groups(job.petsc, options.petsc_options, comm);
-  UnitRun run{plan, job, report.threads, runners, progress, writer, comm, {}};
+  UnitRun run{plan, job, report.threads, scenes, progress, writer, comm, {}};
   if (groups.leader()) {
     // One caller at a time, on this thread (MPI_THREAD_FUNNELED): the leader runs one thread.
     run.threads = 1;

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "src/config/config.hpp"
+#include "src/config/parameter_table.hpp"
 #include "src/grippers/number_text.hpp"
 #include "src/objects/object_library.hpp"
 #include "src/scene/sim_parameters.hpp"
@@ -20,6 +21,9 @@ namespace grip::farm {
 namespace {
 
 using config::Table;
+
+// The [outputs] table's section of the trial parameter table: the frame counts.
+constexpr std::string_view kOutputs = "outputs";
 
 double positive(const Table& table, std::string_view key, double fallback) {
   const double value = table.number_or(key, fallback);
@@ -166,44 +170,14 @@ void read_randomization(const Table& t, objects::RandomizationRanges& r) {
 }
 
 void read_trial(const Table& t, trial::TrialParameters& p) {
-  t.allow({"placement_gap", "squeeze_speed", "grip_force", "final_opening", "finger_stiffness",
-           "hand_drive_stiffness", "settle_speed", "settle_angular_speed", "force_tolerance",
-           "settle_steps", "settle_max_steps", "gravity", "phase_duration", "rest_duration",
-           "displacement_factor", "object_damping", "metric_samples", "finger_friction"});
-  p.placement_gap = t.number_or("placement_gap", p.placement_gap);
-  if (!(p.placement_gap >= 1.0)) t.fail("placement_gap", "must be at least 1 (times d_hat)");
-  p.squeeze_speed = positive(t, "squeeze_speed", p.squeeze_speed);
-  p.grip_force = positive(t, "grip_force", p.grip_force);
-  p.final_opening = t.number_or("final_opening", p.final_opening);
-  if (!(p.final_opening >= 0)) t.fail("final_opening", "must be non-negative (m)");
-  p.finger_stiffness = positive(t, "finger_stiffness", p.finger_stiffness);
-  p.hand_drive_stiffness = positive(t, "hand_drive_stiffness", p.hand_drive_stiffness);
-  p.settle_speed = positive(t, "settle_speed", p.settle_speed);
-  p.settle_angular_speed = positive(t, "settle_angular_speed", p.settle_angular_speed);
-  p.force_tolerance = positive(t, "force_tolerance", p.force_tolerance);
-  if (!(p.force_tolerance < 1.0)) t.fail("force_tolerance", "must be below 1 (of grip_force)");
-  p.settle_steps = positive_integer(t, "settle_steps", p.settle_steps);
-  p.settle_max_steps = positive_integer(t, "settle_max_steps", p.settle_max_steps);
-  p.gravity_magnitude = positive(t, "gravity", p.gravity_magnitude);
-  p.phase_duration = positive(t, "phase_duration", p.phase_duration);
-  p.rest_duration = t.number_or("rest_duration", p.rest_duration);
-  if (!(p.rest_duration >= 0 && std::isfinite(p.rest_duration))) {
-    t.fail("rest_duration", "must be a non-negative time (s)");
-  }
-  p.displacement_factor = positive(t, "displacement_factor", p.displacement_factor);
-  p.object_damping = t.number_or("object_damping", p.object_damping);
-  if (!(p.object_damping >= 0 && std::isfinite(p.object_damping))) {
-    t.fail("object_damping", "must be a non-negative time (s, Rayleigh beta)");
-  }
-  p.metric_samples = positive_integer(t, "metric_samples", p.metric_samples);
+  t.allow(config::parameter_keys(trial::trial_parameter_table()));
+  config::read_parameters(t, trial::trial_parameter_table(), p);
   if (p.metric_samples > trial::kMaxMetricSamples) {
     t.fail("metric_samples", "is " + std::to_string(p.metric_samples) +
                                  " surface points per gripper, more than the " +
                                  std::to_string(trial::kMaxMetricSamples) +
                                  " a trial may hold (24 bytes each, per hand); sample fewer");
   }
-  p.rigid_finger_friction = t.number_or("finger_friction", p.rigid_finger_friction);
-  if (!(p.rigid_finger_friction >= 0)) t.fail("finger_friction", "must be non-negative");
 }
 
 // A tiny dt (or long phases) would make a trial of more steps than an int counts, or run for
@@ -262,12 +236,10 @@ void check_trial_consistency(const trial::TrialParameters& p, const std::optiona
 }
 
 void read_outputs(const Table& t, Job& job) {
-  t.allow({"frames", "stress", "closing_frames", "validation_frames"});
+  t.allow(config::parameter_keys(trial::trial_parameter_table(), kOutputs), {"frames", "stress"});
   job.record_frames = t.boolean_or("frames", job.record_frames);
   job.record_stress = t.boolean_or("stress", job.record_stress);
-  job.trial.closing_frames = positive_integer(t, "closing_frames", job.trial.closing_frames);
-  job.trial.validation_frames =
-      positive_integer(t, "validation_frames", job.trial.validation_frames);
+  config::read_parameters(t, trial::trial_parameter_table(), job.trial, kOutputs);
   if (job.trial.validation_frames % 6 != 0) {
     t.fail("validation_frames", "must be a multiple of 6 (one share per gravity axis)");
   }
@@ -318,20 +290,6 @@ void read_farm(const Table& t, Job& job) {
   petsc.location = t.location("petsc_group_ranks");
 }
 
-// The least CPU time one trial of a rigid object takes with the gripper, from `grip bench trial`
-// on the 2-core development machine (docs/results.md, "Trial cost", 2026-11): what a job
-// refused for its size is told it would need at least.
-double rigid_trial_cpu_seconds(grippers::GripperKind kind) {
-  switch (kind) {
-    case grippers::GripperKind::kParallelJaw:
-      return 0.06;
-    case grippers::GripperKind::kFinRay:
-      return 17.0;
-    default:
-      return 0.28;  // the LEAP hand
-  }
-}
-
 // A job of more candidates than [farm] max_candidates is refused before planning, which holds
 // every candidate in memory on every rank and would otherwise run for days before a trial. It is
 // refused on the key that made it large (max_candidates if set, else the largest [[grippers]]
@@ -352,7 +310,8 @@ void check_candidate_count(const Job& job, const Table& root,
   for (std::size_t g = 0; g < job.grippers.size(); ++g) {
     const GripperSetting& setting = job.grippers[g];
     per_object += setting.candidates;
-    cpu_seconds += objects * setting.candidates * rigid_trial_cpu_seconds(setting.kind) *
+    cpu_seconds += objects * setting.candidates *
+                   grippers::gripper_type(setting.kind).trial_cpu_seconds *
                    (setting.bimanual ? 2 : 1);
     if (setting.candidates > job.grippers[largest_gripper].candidates) largest_gripper = g;
   }
@@ -426,7 +385,7 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
   if (auto t = root.optional_table("randomization")) read_randomization(*t, job.randomization);
   const auto physics = root.optional_table("physics");
   if (physics) {
-    physics->allow(scene::kSimParameterKeys);
+    physics->allow(config::parameter_keys(scene::sim_parameter_table()));
     scene::read_sim_parameters(*physics, job.trial.sim);
   }
   const auto trial_table = root.optional_table("trial");
@@ -434,10 +393,8 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
   check_trial_steps(job.trial, physics, trial_table);
   check_trial_consistency(job.trial, physics, trial_table);
   if (auto t = root.optional_table("synthesis")) {
-    t->allow({"steps", "margin"});
-    job.synthesis_steps = positive_integer(*t, "steps", job.synthesis_steps);
-    job.synthesis_margin = t->number_or("margin", job.synthesis_margin);
-    if (!(job.synthesis_margin >= 0)) t->fail("margin", "must be non-negative (m)");
+    t->allow(config::parameter_keys(synth::synthesis_parameter_table()));
+    config::read_parameters(*t, synth::synthesis_parameter_table(), job.synthesis);
   }
   if (auto t = root.optional_table("outputs")) read_outputs(*t, job);
   const auto farm_table = root.optional_table("farm");
@@ -467,48 +424,16 @@ Job load_job(const std::filesystem::path& file) { return parse_job(read_job_text
 
 std::vector<io::Parameter> resolved_parameters(const Job& job) {
   std::vector<io::Parameter> out;
-  // Shortest text that reads back as the same double: "0.05", not "0.050000000000000003".
-  auto add = [&out](std::string key, double value) {
-    char text[32];
-    const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-    out.push_back({std::move(key), std::string(text, end)});
+  const auto add = [&out](std::string_view section, const auto& rows, const auto& values) {
+    for (const auto& row : rows) {
+      const std::string_view group = row.section.empty() ? section : row.section;
+      out.push_back(
+          {std::string(group) + "." + std::string(row.key), config::value_text(row, values)});
+    }
   };
-  const solver::SimParameters& s = job.trial.sim;
-  add("physics.dt", s.dt);
-  add("physics.d_hat", s.d_hat);
-  if (s.adaptive_kappa)
-    out.push_back({"physics.kappa", "auto"});
-  else
-    add("physics.kappa", s.kappa);
-  add("physics.eps_v", s.eps_v);
-  add("physics.newton_tol", s.newton_tol);
-  add("physics.newton_velocity_tol", s.newton_velocity_tol);
-  add("physics.max_newton_iters", s.max_newton_iters);
-  add("physics.projected_iterations", s.projected_iterations);
-  add("physics.max_step_halvings", s.max_step_halvings);
-  add("physics.friction_lag_iterations", s.friction_lag_iterations);
-  add("physics.ccd_rescaling", s.ccd_rescaling);
-  const trial::TrialParameters& t = job.trial;
-  add("trial.placement_gap", t.placement_gap);
-  add("trial.squeeze_speed", t.squeeze_speed);
-  add("trial.grip_force", t.grip_force);
-  add("trial.final_opening", t.final_opening);
-  add("trial.finger_stiffness", t.finger_stiffness);
-  add("trial.hand_drive_stiffness", t.hand_drive_stiffness);
-  add("trial.settle_speed", t.settle_speed);
-  add("trial.settle_angular_speed", t.settle_angular_speed);
-  add("trial.force_tolerance", t.force_tolerance);
-  add("trial.settle_steps", t.settle_steps);
-  add("trial.settle_max_steps", t.settle_max_steps);
-  add("trial.gravity", t.gravity_magnitude);
-  add("trial.phase_duration", t.phase_duration);
-  add("trial.rest_duration", t.rest_duration);
-  add("trial.displacement_threshold", t.displacement_threshold());
-  add("trial.object_damping", t.object_damping);
-  add("trial.metric_samples", t.metric_samples);
-  add("trial.finger_friction", t.rigid_finger_friction);
-  add("synthesis.steps", job.synthesis_steps);
-  add("synthesis.margin", job.synthesis_margin);
+  add("physics", scene::sim_parameter_table(), job.trial.sim);
+  add("trial", trial::trial_parameter_table(), job.trial);
+  add("synthesis", synth::synthesis_parameter_table(), job.synthesis);
   return out;
 }
 

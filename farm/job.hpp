@@ -12,6 +12,7 @@
 #include "src/geometry/tetrahedralize.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/objects/domain_randomization.hpp"
+#include "src/synth/synthesis_settings.hpp"
 #include "src/trial/trial_parameters.hpp"
 
 namespace grip::farm {
@@ -74,11 +75,10 @@ struct Job {
   std::vector<ObjectGroup> objects;
   std::vector<GripperSetting> grippers;
   objects::RandomizationRanges randomization;
-  trial::TrialParameters trial;    // trial.sim holds the [physics] settings
-  int synthesis_steps = 1500;      // annealing steps per hand attempt
-  double synthesis_margin = 5e-4;  // m, clearance beyond d_hat every candidate keeps
-  bool record_frames = true;       // every candidate's trajectory
-  bool record_stress = true;       // soft objects' von Mises stress at the settled grasp
+  trial::TrialParameters trial;        // trial.sim holds the [physics] settings
+  synth::SynthesisSettings synthesis;  // [synthesis]
+  bool record_frames = true;           // every candidate's trajectory
+  bool record_stress = true;           // soft objects' von Mises stress at the settled grasp
   // [farm] batch: candidates per work unit; 0: 4 per worker thread.
   int work_unit_size = 0;
   // [farm] max_candidates: the most candidates (objects x candidates per gripper, summed over

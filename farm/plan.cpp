@@ -3,11 +3,11 @@
 #include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
 
-#include "farm/trial_runner.hpp"
 #include "farm/wire.hpp"
 #include "src/config/config.hpp"
 #include "src/synth/prepared_object.hpp"
 #include "src/synth/synthesize.hpp"
+#include "src/trial/trial.hpp"
 
 namespace grip::farm {
 namespace {
@@ -16,12 +16,7 @@ std::vector<synth::Candidate> synthesize_for(const Job& job, const FarmObject& o
                                              const io::ObjectRecord& record,
                                              const GripperSetting& gripper, std::uint64_t stream) {
   const synth::PreparedObject prepared(trial_object(record).surface);
-  synth::SynthesisParams params;
-  const double d_hat = job.trial.sim.d_hat;
-  params.antipodal.d_hat = params.hand.clearance.d_hat = d_hat;
-  params.antipodal.margin = params.hand.clearance.margin = job.synthesis_margin;
-  params.hand.steps = job.synthesis_steps;
-  params.bimanual.hand_clearance = d_hat + job.synthesis_margin;
+  const synth::SynthesisParams params = synth::synthesis_params(job.synthesis, job.trial.sim.d_hat);
   synth::SynthesisResult result = synth::synthesize(
       prepared, gripper.kind, gripper.bimanual, params, object.seed ^ stream, gripper.candidates);
   if (static_cast<int>(result.candidates.size()) < gripper.candidates) {
@@ -112,8 +107,9 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads, LiveProgress& pro
   // object's scene: a gripper's record does not depend on the object).
   const trial::TrialObject first = trial_object(plan.dataset.objects.front());
   for (const GripperSetting& gripper : job.grippers) {
-    io::GripperRecord record =
-        TrialRunner(first, gripper.kind, gripper.bimanual, job.trial).gripper_record();
+    io::GripperRecord record = trial::make_trial_scene(first, grippers::gripper_type(gripper.kind),
+                                                       gripper.bimanual ? 2 : 1, job.trial)
+                                   ->gripper_record();
     plan.dataset.grippers.push_back(std::move(record));
   }
   plan.dataset.closing_frames = static_cast<std::uint32_t>(job.trial.closing_frames);

@@ -140,6 +140,11 @@ Check Check::output_file() {
   return Check(std::make_shared<const CLI::Validator>(
       [](std::string& input) { return output_file_problem(input); }, ""));
 }
+Check Check::custom(std::function<std::string(const std::string&)> problem, std::string name) {
+  return Check(std::make_shared<const CLI::Validator>(
+      [problem = std::move(problem)](std::string& input) { return problem(input); },
+      std::move(name)));
+}
 Check Check::output_folder() {
   return Check(std::make_shared<const CLI::Validator>(
       [](std::string& input) { return output_folder_problem(input); }, ""));
@@ -192,6 +197,11 @@ template Option Command::option(const std::string&, std::vector<double>&, const 
 
 Option Command::flag(const std::string& name, bool& value, const std::string& help) {
   return Option(app_->add_flag(name, value, help));
+}
+
+Option Command::option_text(const std::string& name, std::function<void(const std::string&)> apply,
+                            const std::string& help) {
+  return Option(app_->add_option_function<std::string>(name, std::move(apply), help));
 }
 
 Command Command::subcommand(const std::string& name, const std::string& help) {

@@ -39,6 +39,8 @@ class Check {
   // end on a path it cannot write.
   static Check output_file();
   static Check output_folder();
+  // `problem` says what is wrong with a value ("must be ..., not 'x'"), or "" when it is right.
+  static Check custom(std::function<std::string(const std::string&)> problem, std::string name);
 
  private:
   friend class Option;
@@ -83,6 +85,9 @@ class Command {
   template <class T>
   Option option(const std::string& name, T& value, const std::string& help);
   Option flag(const std::string& name, bool& value, const std::string& help);
+  // An option whose text `apply` takes (after its checks): a value of more than one type.
+  Option option_text(const std::string& name, std::function<void(const std::string&)> apply,
+                     const std::string& help);
 
   Command subcommand(const std::string& name, const std::string& help);
   // A group: exactly one of its subcommands must be chosen.

@@ -15,9 +15,14 @@ void declare_trial(cli::Command& root);     // grip trial --candidates FILE (tri
 void declare_synth(cli::Command& root);     // grip synth --object ... --out FILE (synth.cpp)
 void declare_simulate(cli::Command& root);  // grip simulate SCENE.toml... (simulate.cpp)
 void declare_inspect(cli::Command& root);   // grip inspect DATASET.h5 (inspect.cpp)
+// grip parameters: every parameter of job and scene files (parameters.cpp).
+void declare_parameters_command(cli::Command& root);
 // The `asset` group's commands: prepare (asset_prepare.cpp) and gallery (asset_gallery.cpp).
 void declare_asset_prepare(cli::Command& asset);
 void declare_asset_gallery(cli::Command& asset);
+
+// The Markdown tables grip parameters prints, one per section of a job file.
+std::string parameter_tables();
 
 // A dataset's provenance and summary on stdout: grip inspect's work, and grip farm's last words.
 // The exit code: 1 when committed rows do not match their checksums.

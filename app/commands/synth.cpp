@@ -6,14 +6,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 
 #include "app/cli/command_line.hpp"
 #include "app/commands/commands.hpp"
+#include "app/commands/parameter_options.hpp"
 #include "src/grippers/gripper_registry.hpp"
+#include "src/scene/sim_parameters.hpp"
 #include "src/synth/candidate_file.hpp"
 #include "src/synth/object_spec.hpp"
+#include "src/synth/synthesis_settings.hpp"
 #include "src/synth/synthesize.hpp"
 
 namespace grip::commands {
@@ -26,18 +30,13 @@ struct SynthArgs {
   bool bimanual = false;
   int count = 0;
   std::uint64_t seed = 0;
-  std::string out;       // candidate file (docs/synthesis.md)
-  int steps = 1500;      // annealing steps per hand attempt
-  double d_hat = 1e-3;   // m, IPC barrier activation distance
-  double margin = 5e-4;  // m, clearance kept beyond d_hat
+  std::string out;                    // candidate file (docs/synthesis.md)
+  synth::SynthesisSettings settings;  // steps, margin
+  solver::SimParameters physics;      // its d_hat: the clearance candidates keep
 };
 
 int synth(const SynthArgs& args) {
   if (args.count < 1) throw std::invalid_argument("--count must be at least 1");
-  if (args.steps < 1) throw std::invalid_argument("--steps must be at least 1");
-  if (!(args.d_hat > 0.0) || !(args.margin >= 0.0)) {
-    throw std::invalid_argument("--d-hat must be positive and --margin non-negative (m)");
-  }
   const std::filesystem::path folder = std::filesystem::path(args.out).parent_path();
   if (!folder.empty() && !std::filesystem::is_directory(folder)) {
     throw std::invalid_argument("--out: the folder '" + folder.string() +
@@ -48,11 +47,7 @@ int synth(const SynthArgs& args) {
   spdlog::info("object '{}': {} vertices, {} triangles", args.object,
                object.surface().vertices.rows(), object.surface().triangles.rows());
 
-  synth::SynthesisParams params;
-  params.antipodal.d_hat = params.hand.clearance.d_hat = args.d_hat;
-  params.antipodal.margin = params.hand.clearance.margin = args.margin;
-  params.bimanual.hand_clearance = args.d_hat + args.margin;
-  params.hand.steps = args.steps;
+  const synth::SynthesisParams params = synth::synthesis_params(args.settings, args.physics.d_hat);
   const synth::SynthesisResult result =
       synth::synthesize(object, gripper, args.bimanual, params, args.seed, args.count);
   const std::string file_hash = synth::object_file_hash(args.object);  // empty: a category
@@ -115,15 +110,11 @@ void declare_synth(cli::Command& root) {
   synth.option("--out", args->out, "Candidate file to write")
       .required()
       .check(cli::Check::output_file());
-  synth.option("--steps", args->steps, "Annealing steps per hand attempt (leap)")
-      .show_default()
-      .check(cli::Check::positive_count());
-  synth.option("--d-hat", args->d_hat, "IPC barrier activation distance (m)")
-      .show_default()
-      .check(cli::Check::positive());
-  synth.option("--margin", args->margin, "Clearance kept beyond d-hat (m)")
-      .show_default()
-      .check(cli::Check::non_negative());
+  // [synthesis] steps and margin, and [physics] d_hat, as a job file gives them.
+  declare_parameters(synth, grip::synth::synthesis_parameter_table(), args->settings);
+  for (const auto& row : scene::sim_parameter_table()) {
+    if (row.key == "d_hat") declare_parameters(synth, std::span(&row, 1), args->physics);
+  }
   synth.on_run([args] { return grip::commands::synth(*args); });
 }
 

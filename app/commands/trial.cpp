@@ -16,17 +16,18 @@
 
 #include "app/cli/command_line.hpp"
 #include "app/commands/commands.hpp"
+#include "app/commands/parameter_options.hpp"
 #include "solver/batch/batch.hpp"
 #include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/mesh_measures.hpp"
 #include "src/geometry/tetrahedralize.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/platform/process_memory.hpp"
+#include "src/scene/sim_parameters.hpp"
 #include "src/synth/candidate_file.hpp"
 #include "src/synth/object_spec.hpp"
-#include "src/trial/grasp_trial.hpp"
-#include "src/trial/hand_trial.hpp"
 #include "src/trial/same_result.hpp"
+#include "src/trial/trial.hpp"
 #include "src/trial/trial_report.hpp"
 #include "src/trial/vtk_series.hpp"
 
@@ -55,9 +56,8 @@ struct TrialArgs {
   std::string report;                  // JSON report file; stdout when empty
   std::string vtk;                     // folder for per-candidate VTK series; none when empty
   int threads = 0;                     // 0: all cores
-  double squeeze_speed = 0.01;         // m/s per finger, closing and servoing
-  double grip_force = 50.0;            // N per finger
   bool compare_solo = false;           // also run each candidate alone: speedup and identity
+  trial::TrialParameters parameters;   // the protocol's and the solver's (their tables' options)
   // The fin-ray finger's mesh (grippers::FinRayOptions layers and edge_length); unset: its
   // defaults. Refused for other grippers.
   std::optional<int> finger_layers;
@@ -95,11 +95,43 @@ grippers::FinRayOptions fin_ray_options(const TrialArgs& args) {
   return options;
 }
 
-// Runs the candidates as one batch with `run(scene, grasps, options)`, optionally one by one
-// too, writes the VTK series and the report; 1 when a solo run differs from the batch.
-template <class Scene, class Grasp, class Run>
-int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<Grasp>& grasps,
-                   const std::vector<std::uint64_t>& ids, Run run) {
+// Each candidate run again alone, on one thread: the batch's speedup, memory, and whether each
+// solo run is the batch's bit for bit (into the report).
+void compare_solo(const trial::TrialScene& scene, const std::vector<synth::Candidate>& candidates,
+                  const trial::TrialRunOptions& options,
+                  const std::vector<trial::TrialOutcome>& outcomes, double seconds,
+                  trial::TrialReport& report) {
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    trial::TrialRunOptions solo = options;
+    solo.threads = 1;
+    solo.ids = {options.ids[k]};
+    solo.body_frames = false;
+    const platform::MemoryPeak solo_memory;
+    const auto solo_start = std::chrono::steady_clock::now();
+    const trial::TrialOutcome alone = trial::run_trials(scene, {candidates[k]}, solo).front();
+    report.solo_wall_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - solo_start).count();
+    report.solo_memory_mib = std::max(report.solo_memory_mib, solo_memory.mib());
+    if (!trial::same_result(alone.result, outcomes[k].result)) {
+      report.identical_to_solo = false;
+      spdlog::error("candidate {}: the solo run differs from the batch", options.ids[k]);
+    }
+  }
+  spdlog::info("solo runs: {:.3f} s; batch speedup {:.2f}; identical: {}", report.solo_wall_seconds,
+               report.solo_wall_seconds / seconds, report.identical_to_solo);
+  spdlog::info("peak memory: the batch {:.1f} MiB, one candidate alone {:.1f} MiB{}",
+               report.batch_memory_mib, report.solo_memory_mib,
+               candidates.size() > 1
+                   ? fmt::format(", {:.2f} MiB per added environment",
+                                 report.memory_per_added_environment_mib(candidates.size()))
+                   : std::string());
+}
+
+// Runs the candidates as one batch, optionally one by one too, writes the VTK series and the
+// report; 1 when a solo run differs from the batch.
+int run_and_report(const TrialArgs& args, const trial::TrialScene& scene,
+                   const std::vector<synth::Candidate>& candidates,
+                   const std::vector<std::uint64_t>& ids) {
   trial::TrialRunOptions options;
   options.threads = args.threads;
   options.ids = ids;
@@ -108,7 +140,7 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
   std::optional<platform::MemoryPeak> batch_memory;
   if (args.compare_solo) batch_memory.emplace();
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<trial::TrialOutcome> outcomes = run(scene, grasps, options);
+  const std::vector<trial::TrialOutcome> outcomes = trial::run_trials(scene, candidates, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   spdlog::info("{} trial(s) in {:.3f} s", outcomes.size(), seconds);
@@ -117,33 +149,8 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
   report.compared_solo = args.compare_solo;
   if (args.compare_solo) {
     report.batch_memory_mib = batch_memory->mib();
-    for (std::size_t k = 0; k < grasps.size(); ++k) {
-      trial::TrialRunOptions solo = options;
-      solo.threads = 1;
-      solo.ids = {ids[k]};
-      solo.body_frames = false;
-      const platform::MemoryPeak solo_memory;
-      const auto solo_start = std::chrono::steady_clock::now();
-      const trial::TrialOutcome alone = run(scene, std::vector<Grasp>{grasps[k]}, solo).front();
-      report.solo_wall_seconds +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - solo_start).count();
-      report.solo_memory_mib = std::max(report.solo_memory_mib, solo_memory.mib());
-      if (!trial::same_result(alone.result, outcomes[k].result)) {
-        report.identical_to_solo = false;
-        spdlog::error("candidate {}: the solo run differs from the batch", ids[k]);
-      }
-    }
-    spdlog::info("solo runs: {:.3f} s; batch speedup {:.2f}; identical: {}",
-                 report.solo_wall_seconds, report.solo_wall_seconds / seconds,
-                 report.identical_to_solo);
-    spdlog::info("peak memory: the batch {:.1f} MiB, one candidate alone {:.1f} MiB{}",
-                 report.batch_memory_mib, report.solo_memory_mib,
-                 grasps.size() > 1
-                     ? fmt::format(", {:.2f} MiB per added environment",
-                                   report.memory_per_added_environment_mib(grasps.size()))
-                     : std::string());
+    compare_solo(scene, candidates, options, outcomes, seconds, report);
   }
-
   if (!args.vtk.empty()) {
     for (const trial::TrialOutcome& outcome : outcomes) {
       trial::write_vtk_series(args.vtk, "candidate_" + std::to_string(outcome.result.record.id),
@@ -152,11 +159,9 @@ int run_and_report(const TrialArgs& args, const Scene& scene, const std::vector<
   }
   report.object = *args.object;
   report.gripper = *args.gripper;
-  if (grippers::gripper_type(*args.gripper).kind == grippers::GripperKind::kFinRay) {
-    report.fin_ray = fin_ray_options(args);
-  }
+  if (grippers::gripper_type(*args.gripper).meshed_finger) report.fin_ray = fin_ray_options(args);
   report.soft = args.soft;
-  report.grippers = args.bimanual ? 2 : 1;
+  report.grippers = scene.gripper_count();
   report.threads = solver::Batch(args.threads).threads();
   report.wall_seconds = seconds;
   if (args.report.empty()) {
@@ -204,31 +209,13 @@ TrialArgs with_file_object(const TrialArgs& given, const synth::CandidateFile& f
   return args;
 }
 
-grippers::ParallelGripper parallel_gripper(const TrialArgs& args,
-                                           const grippers::GripperType& type) {
-  if (type.kind != grippers::GripperKind::kFinRay) {
-    return grippers::make_parallel_gripper(type.kind);
-  }
-  const grippers::FinRayOptions options = fin_ray_options(args);
-  grippers::ParallelGripper gripper = grippers::make_umi_soft_gripper(options);
-  const geometry::TetMesh& finger = gripper.soft_finger->mesh;
-  spdlog::info("fin-ray finger: {} tet layers, profile edges up to {:g} m: {} vertices, {} tets",
-               options.layers, options.edge_length, finger.vertices.rows(), finger.tets.rows());
-  return gripper;
-}
-
-int trial(const TrialArgs& given) {
-  const synth::CandidateFile file = synth::read_candidates(given.candidates);
+// The candidates --index names, checked against the gripper and --bimanual (their record ids
+// into `ids`).
+std::vector<synth::Candidate> chosen_candidates(const TrialArgs& args,
+                                                const synth::CandidateFile& file,
+                                                const grippers::GripperType& type,
+                                                std::vector<std::uint64_t>& ids) {
   const std::vector<synth::Candidate>& candidates = file.candidates;
-  if (candidates.empty()) throw std::invalid_argument(given.candidates + ": no candidates");
-  const TrialArgs args = with_file_object(given, file);
-  const grippers::GripperType& type = grippers::gripper_type(*args.gripper);
-  if ((args.finger_layers || args.finger_edge) && type.kind != grippers::GripperKind::kFinRay) {
-    throw std::invalid_argument(
-        std::string(args.finger_layers ? "--finger-layers" : "--finger-edge") +
-        ": only the fin-ray gripper has a meshed finger, not '" + *args.gripper +
-        "'; leave it out");
-  }
   // A candidate file holds one kind of candidate (write_candidates refuses a mix): the first
   // says whether the file is bimanual.
   const bool file_bimanual = candidates.front().hands.size() == 2;
@@ -243,9 +230,8 @@ int trial(const TrialArgs& given) {
                                 "leave --bimanual out or synthesize with grip synth --bimanual");
   }
   const std::size_t hands = args.bimanual ? 2 : 1;
-  const std::vector<std::size_t> indices = parse_indices(args.index, candidates.size());
-  std::vector<std::uint64_t> ids;
-  for (std::size_t i : indices) {
+  std::vector<synth::Candidate> chosen;
+  for (std::size_t i : parse_indices(args.index, candidates.size())) {
     const synth::Candidate& c = candidates[i];
     const bool joints_fit = std::all_of(c.hands.begin(), c.hands.end(), [&](const auto& hand) {
       return hand.joints.size() == type.joints;
@@ -257,89 +243,104 @@ int trial(const TrialArgs& given) {
           std::to_string(c.hands.size()) + " hand(s), not " + (hands == 1 ? "one" : "two") + " '" +
           *args.gripper + "'; synthesize with the same --gripper");
     }
+    chosen.push_back(c);
     ids.push_back(i);
   }
+  return chosen;
+}
 
+// The object as the command line says: the candidate file's shape, rigid or tetrahedralized.
+trial::TrialObject trial_object(const TrialArgs& args) {
   trial::TrialObject object;
   object.name = *args.object;
   object.surface = synth::load_object(*args.object, *args.seed, *args.scale);
   object.material = {args.density, args.youngs, args.poisson, args.friction};
-  if (args.soft) {
-    geometry::TetOptions options;
-    options.edge_length = synth::object_tet_edge(*args.object, *args.seed, 1.0, args.tet_edge);
-    options.interior_growth = args.tet_growth;
-    if (options.edge_length < args.tet_edge) {
-      spdlog::info("tet edge {:.4f} m: half the object's thinnest part", options.edge_length);
-    }
-    const double tets = geometry::estimated_tet_count(
-        std::abs(geometry::surface_volume(object.surface)), options.edge_length);
-    if (tets > args.max_tets) {
-      throw std::invalid_argument(
-          fmt::format("--tet-edge: a tet edge of {:g} m would make about {:.3g} tets for '{}', "
-                      "more than the {:.0f} allowed; use a larger --tet-edge (or raise "
-                      "--max-tets)",
-                      options.edge_length, tets, *args.object, args.max_tets));
-    }
-    object.tets = geometry::tetrahedralize(object.surface, options, *args.object);
-    object.surface = geometry::boundary_surface(*object.tets);
-    spdlog::info("soft object: {} vertices, {} tets", object.tets->vertices.rows(),
-                 object.tets->tets.rows());
+  if (!args.soft) return object;
+  geometry::TetOptions options;
+  options.edge_length = synth::object_tet_edge(*args.object, *args.seed, 1.0, args.tet_edge);
+  options.interior_growth = args.tet_growth;
+  if (options.edge_length < args.tet_edge) {
+    spdlog::info("tet edge {:.4f} m: half the object's thinnest part", options.edge_length);
   }
-  trial::TrialParameters parameters;
-  parameters.squeeze_speed = args.squeeze_speed;
-  parameters.grip_force = args.grip_force;
+  const double tets = geometry::estimated_tet_count(
+      std::abs(geometry::surface_volume(object.surface)), options.edge_length);
+  if (tets > args.max_tets) {
+    throw std::invalid_argument(
+        fmt::format("--tet-edge: a tet edge of {:g} m would make about {:.3g} tets for '{}', "
+                    "more than the {:.0f} allowed; use a larger --tet-edge (or raise "
+                    "--max-tets)",
+                    options.edge_length, tets, *args.object, args.max_tets));
+  }
+  object.tets = geometry::tetrahedralize(object.surface, options, *args.object);
+  object.surface = geometry::boundary_surface(*object.tets);
+  spdlog::info("soft object: {} vertices, {} tets", object.tets->vertices.rows(),
+               object.tets->tets.rows());
+  return object;
+}
 
-  const auto hand_grasp = [](const synth::HandGrasp& hand) {
-    return trial::HandTrialGrasp{hand.pose, hand.joints, hand.contacts, hand.contact_normals};
-  };
-  const auto parallel_grasp = [](const synth::HandGrasp& hand) {
-    return trial::ParallelGrasp{hand.pose, hand.joints[0]};
-  };
-  if (type.is_hand() && args.bimanual) {
-    // The file's second hand is the left one (grip synth --bimanual).
-    std::vector<grippers::HandModel> models;
-    models.push_back(grippers::make_hand(type.kind, grippers::HandSide::kRight));
-    models.push_back(grippers::make_hand(type.kind, grippers::HandSide::kLeft));
-    const trial::HandTrialScene scene(object, std::move(models), std::string(type.name),
-                                      parameters);
-    std::vector<std::array<trial::HandTrialGrasp, 2>> grasps;
-    for (std::size_t i : indices) {
-      grasps.push_back({hand_grasp(candidates[i].hands[0]), hand_grasp(candidates[i].hands[1])});
-    }
-    return run_and_report(args, scene, grasps, ids,
-                          [](const auto& s, const auto& g, const auto& o) {
-                            return trial::run_bimanual_hand_trials(s, g, o);
-                          });
+int trial(const TrialArgs& given) {
+  const synth::CandidateFile file = synth::read_candidates(given.candidates);
+  if (file.candidates.empty()) throw std::invalid_argument(given.candidates + ": no candidates");
+  const TrialArgs args = with_file_object(given, file);
+  const grippers::GripperType& type = grippers::gripper_type(*args.gripper);
+  if ((args.finger_layers || args.finger_edge) && !type.meshed_finger) {
+    throw std::invalid_argument(
+        std::string(args.finger_layers ? "--finger-layers" : "--finger-edge") +
+        ": only the fin-ray gripper has a meshed finger, not '" + *args.gripper +
+        "'; leave it out");
   }
-  if (type.is_hand()) {
-    const trial::HandTrialScene scene(object,
-                                      grippers::make_hand(type.kind, grippers::HandSide::kRight),
-                                      std::string(type.name), parameters);
-    std::vector<trial::HandTrialGrasp> grasps;
-    for (std::size_t i : indices) grasps.push_back(hand_grasp(candidates[i].hands.front()));
-    return run_and_report(args, scene, grasps, ids,
-                          [](const auto& s, const auto& g, const auto& o) {
-                            return trial::run_hand_trials(s, g, o);
-                          });
+  std::vector<std::uint64_t> ids;
+  const std::vector<synth::Candidate> candidates = chosen_candidates(args, file, type, ids);
+  const trial::TrialObject object = trial_object(args);
+  const grippers::FinRayOptions finger = fin_ray_options(args);
+  const std::unique_ptr<trial::TrialScene> scene =
+      trial::make_trial_scene(object, type, args.bimanual ? 2 : 1, args.parameters, finger);
+  if (type.meshed_finger) {
+    spdlog::info("fin-ray finger: {} tet layers, profile edges up to {:g} m: {}", finger.layers,
+                 finger.edge_length, scene->description());
   }
-  const trial::TrialScene scene(object, parallel_gripper(args, type), parameters,
-                                static_cast<int>(hands));
-  if (args.bimanual) {
-    std::vector<std::array<trial::ParallelGrasp, 2>> grasps;
-    for (std::size_t i : indices) {
-      grasps.push_back(
-          {parallel_grasp(candidates[i].hands[0]), parallel_grasp(candidates[i].hands[1])});
-    }
-    return run_and_report(args, scene, grasps, ids,
-                          [](const auto& s, const auto& g, const auto& o) {
-                            return trial::run_bimanual_trials(s, g, o);
-                          });
-  }
-  std::vector<trial::ParallelGrasp> grasps;
-  for (std::size_t i : indices) grasps.push_back(parallel_grasp(candidates[i].hands.front()));
-  return run_and_report(args, scene, grasps, ids, [](const auto& s, const auto& g, const auto& o) {
-    return trial::run_trials(s, g, o);
-  });
+  return run_and_report(args, *scene, candidates, ids);
+}
+
+// The object's options: its shape (the candidate file's), and its model and material.
+void declare_object_options(cli::Command& trial, TrialArgs& args) {
+  trial.option("--object", args.object,
+               "Object category or mesh file (default: the candidate file's; must agree)");
+  trial
+      .option("--seed", args.seed,
+              "The seed the candidates were synthesized with (default: the file's)")
+      .check(cli::Check::count());
+  trial
+      .option("--scale", args.scale,
+              "A mesh file's scale (default: the candidate file's; must agree)")
+      .check(cli::Check::positive());
+  trial.flag("--soft", args.soft, "Simulate the object as FEM (tetrahedralized)");
+  trial
+      .option("--max-tets", args.max_tets,
+              "Soft object: refuse a --tet-edge that would make more tets")
+      .show_default()
+      .check(cli::Check::positive());
+  trial.option("--tet-edge", args.tet_edge, "Soft object: target tet edge length (m)")
+      .show_default()
+      .check(cli::Check::positive());
+  trial
+      .option("--tet-growth", args.tet_growth,
+              "Soft object: how fast tets grow with depth below the surface (m per m; 0: "
+              "uniform)")
+      .show_default()
+      .check(cli::Check::range(0.0, geometry::kMaxInteriorGrowth));
+  trial.option("--density", args.density, "Object density (kg/m^3)")
+      .show_default()
+      .check(cli::Check::positive());
+  trial.option("--youngs", args.youngs, "Soft object: Young's modulus (Pa)")
+      .show_default()
+      .check(cli::Check::positive());
+  trial.option("--poisson", args.poisson, "Soft object: Poisson's ratio")
+      .show_default()
+      .check(cli::Check::poisson_ratio());
+  trial.option("--friction", args.friction, "Object friction coefficient")
+      .show_default()
+      .check(cli::Check::non_negative());
 }
 
 }  // namespace
@@ -349,43 +350,7 @@ void declare_trial(cli::Command& root) {
   cli::Command trial = root.subcommand(
       "trial",
       "Grasp trials of candidates as one batch: close, settle, six-axis gravity (docs/trial.md)");
-  trial.option("--object", args->object,
-               "Object category or mesh file (default: the candidate file's; must agree)");
-  trial
-      .option("--seed", args->seed,
-              "The seed the candidates were synthesized with (default: the file's)")
-      .check(cli::Check::count());
-  trial
-      .option("--scale", args->scale,
-              "A mesh file's scale (default: the candidate file's; must agree)")
-      .check(cli::Check::positive());
-  trial.flag("--soft", args->soft, "Simulate the object as FEM (tetrahedralized)");
-  trial
-      .option("--max-tets", args->max_tets,
-              "Soft object: refuse a --tet-edge that would make more tets")
-      .show_default()
-      .check(cli::Check::positive());
-  trial.option("--tet-edge", args->tet_edge, "Soft object: target tet edge length (m)")
-      .show_default()
-      .check(cli::Check::positive());
-  trial
-      .option("--tet-growth", args->tet_growth,
-              "Soft object: how fast tets grow with depth below the surface (m per m; 0: "
-              "uniform)")
-      .show_default()
-      .check(cli::Check::range(0.0, geometry::kMaxInteriorGrowth));
-  trial.option("--density", args->density, "Object density (kg/m^3)")
-      .show_default()
-      .check(cli::Check::positive());
-  trial.option("--youngs", args->youngs, "Soft object: Young's modulus (Pa)")
-      .show_default()
-      .check(cli::Check::positive());
-  trial.option("--poisson", args->poisson, "Soft object: Poisson's ratio")
-      .show_default()
-      .check(cli::Check::poisson_ratio());
-  trial.option("--friction", args->friction, "Object friction coefficient")
-      .show_default()
-      .check(cli::Check::non_negative());
+  declare_object_options(trial, *args);
   trial
       .option("--gripper", args->gripper,
               "Gripper: " + grippers::gripper_name_list() +
@@ -402,14 +367,6 @@ void declare_trial(cli::Command& root) {
       .check(cli::Check::output_folder());
   trial.option("--threads", args->threads, "Threads (default: all cores)")
       .check(cli::Check::count());
-  trial
-      .option("--squeeze-speed", args->squeeze_speed,
-              "Fastest finger speed while closing and servoing its force (m/s)")
-      .show_default()
-      .check(cli::Check::positive());
-  trial.option("--grip-force", args->grip_force, "Force each finger servos to (N)")
-      .show_default()
-      .check(cli::Check::positive());
   trial.flag("--compare-solo", args->compare_solo,
              "Also run each candidate alone: batch speedup and bit-identity");
   trial
@@ -423,11 +380,19 @@ void declare_trial(cli::Command& root) {
                   "Fin-ray: largest triangle edge of the finger's profile mesh (m; default {:g})",
                   grippers::FinRayOptions{}.edge_length))
       .check(cli::Check::range(grippers::kMinFinRayEdge, grippers::kMaxFinRayEdge));
+  // Every solver and protocol setting, as a job file's [physics], [trial] and [outputs] keys.
+  declare_parameters(trial, scene::sim_parameter_table(), args->parameters.sim);
+  declare_parameters(trial, trial::trial_parameter_table(), args->parameters);
   trial.on_check([trial, args] {
     for (const char* soft_only : {"--tet-edge", "--tet-growth", "--youngs", "--poisson"}) {
       if (trial.given(soft_only) && !args->soft) {
         throw cli::UsageError(soft_only, "applies to soft objects only: add --soft");
       }
+    }
+    try {
+      trial::validate(args->parameters);  // values that contradict each other
+    } catch (const std::invalid_argument& e) {
+      throw cli::UsageError("parameters", e.what());
     }
   });
   trial.on_run([args] { return grip::commands::trial(*args); });

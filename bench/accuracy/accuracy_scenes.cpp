@@ -12,8 +12,9 @@
 #include "src/scene/primitives.hpp"
 #include "src/synth/prepared_object.hpp"
 #include "src/synth/synthesize.hpp"
-#include "src/trial/grasp_trial.hpp"
-#include "src/trial/hand_trial.hpp"
+#include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/parallel_trial_scene.hpp"
+#include "src/trial/trial.hpp"
 
 namespace grip::bench {
 namespace {
@@ -59,11 +60,11 @@ trial::TrialParameters fin_ray_parameters(double width) {
 
 // A parallel grasp with the gripper's origin at `at` (gripper frame = world otherwise; the
 // fingers extend along +z, the jaws close along y) and the jaws open 4.6 mm beyond `width`.
-trial::ParallelGrasp parallel_grasp(const Eigen::Vector3d& at, double width) {
+synth::Candidate parallel_grasp(const Eigen::Vector3d& at, double width) {
   trial::ParallelGrasp grasp;
   grasp.pose.translation() = at;
   grasp.opening = width + 0.0046;
-  return grasp;
+  return trial::parallel_candidate({grasp});
 }
 
 AccuracyScene fin_ray_rigid() {
@@ -84,10 +85,10 @@ AccuracyScene fin_ray_rigid() {
     object.surface = geometry::make_cylinder(0.02, 0.03, 24);
     object.material.density = 500.0;
     object.material.friction = 1.0;
-    const trial::TrialScene scene(object, fin_ray(layers), p);
-    const std::vector<trial::ParallelGrasp> grasps = {parallel_grasp({0.0, 0.0, -0.05}, 0.04),
-                                                      parallel_grasp({0.0, 0.0, -0.085}, 0.04),
-                                                      parallel_grasp({0.015, 0.0, -0.05}, 0.04)};
+    const trial::ParallelTrialScene scene(object, fin_ray(layers), p);
+    const std::vector<synth::Candidate> grasps = {parallel_grasp({0.0, 0.0, -0.05}, 0.04),
+                                                  parallel_grasp({0.0, 0.0, -0.085}, 0.04),
+                                                  parallel_grasp({0.015, 0.0, -0.05}, 0.04)};
     trial::TrialRunOptions options;
     options.threads = threads;
     return timed([&] { return trial::run_trials(scene, grasps, options); });
@@ -111,10 +112,10 @@ AccuracyScene fin_ray_soft() {
     object.tets = scene::box_tets(Eigen::Vector3d(0.06, 0.03, 0.02), cell);
     object.surface = geometry::boundary_surface(*object.tets);
     object.material = {500.0, 1e6, 0.4, 0.5};
-    const trial::TrialScene scene(object, fin_ray(1), p);
-    const std::vector<trial::ParallelGrasp> grasps = {parallel_grasp({0.0, 0.0, -0.05}, 0.03),
-                                                      parallel_grasp({0.02, 0.0, -0.05}, 0.03),
-                                                      parallel_grasp({0.0, 0.0, -0.08}, 0.03)};
+    const trial::ParallelTrialScene scene(object, fin_ray(1), p);
+    const std::vector<synth::Candidate> grasps = {parallel_grasp({0.0, 0.0, -0.05}, 0.03),
+                                                  parallel_grasp({0.02, 0.0, -0.05}, 0.03),
+                                                  parallel_grasp({0.0, 0.0, -0.08}, 0.03)};
     trial::TrialRunOptions options;
     options.threads = threads;
     return timed([&] { return trial::run_trials(scene, grasps, options); });
@@ -131,19 +132,12 @@ const grippers::HandModel& coarse_leap() {
 
 // Two candidates synthesized on the cylinder (300 annealing steps, seed 1), as the hand trial's
 // tests make them: the first one's fingers touch one after the other, the second's all close.
-const std::vector<trial::HandTrialGrasp>& hand_grasps(const geometry::SurfaceMesh& cylinder) {
-  static const std::vector<trial::HandTrialGrasp> grasps = [&] {
+const std::vector<synth::Candidate>& hand_grasps(const geometry::SurfaceMesh& cylinder) {
+  static const std::vector<synth::Candidate> grasps = [&] {
     synth::SynthesisParams params;
     params.hand.steps = 300;
     const synth::PreparedObject object(cylinder);
-    const synth::SynthesisResult result =
-        synth::synthesize(object, grippers::GripperKind::kLeap, false, params, 1, 2);
-    std::vector<trial::HandTrialGrasp> out;
-    for (const synth::Candidate& c : result.candidates) {
-      const synth::HandGrasp& h = c.hands.front();
-      out.push_back({h.pose, h.joints, h.contacts, h.contact_normals});
-    }
-    return out;
+    return synth::synthesize(object, grippers::GripperKind::kLeap, false, params, 1, 2).candidates;
   }();
   return grasps;
 }
@@ -166,10 +160,10 @@ AccuracyScene hand_rigid() {
     object.material.density = 500.0;
     object.material.friction = 1.0;
     const trial::HandTrialScene scene(object, coarse_leap(), "leap", p);
-    const std::vector<trial::HandTrialGrasp>& grasps = hand_grasps(object.surface);
+    const std::vector<synth::Candidate>& grasps = hand_grasps(object.surface);
     trial::TrialRunOptions options;
     options.threads = threads;
-    return timed([&] { return trial::run_hand_trials(scene, grasps, options); });
+    return timed([&] { return trial::run_trials(scene, grasps, options); });
   };
   return scene;
 }

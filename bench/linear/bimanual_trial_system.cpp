@@ -9,7 +9,8 @@
 #include "src/geometry/primitives.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/scene/primitives.hpp"
-#include "src/trial/grasp_trial.hpp"
+#include "src/trial/parallel_trial_scene.hpp"
+#include "src/trial/trial.hpp"
 
 namespace grip::bench {
 
@@ -64,11 +65,11 @@ NewtonSystem capture_bimanual_trial_system(double cell) {
   bar.material.youngs = 1e6;  // the middle (log) of the farm's default range, 0.1-10 MPa
   bar.material.poisson = 0.4;
   const trial::TrialParameters parameters;
-  const trial::TrialScene scene(
+  const trial::ParallelTrialScene scene(
       bar, grippers::make_parallel_gripper(grippers::GripperKind::kFinRay), parameters, 2);
   // Both grippers approach from below (-z) and close across the bar's width, 12 cm either side
   // of its middle, their jaws open 4.6 mm beyond it.
-  std::array<trial::ParallelGrasp, 2> grasps;
+  std::vector<trial::ParallelGrasp> grasps(2);
   for (int g = 0; g < 2; ++g) {
     grasps[g].pose.translation() = Eigen::Vector3d(g == 0 ? -0.12 : 0.12, 0.0, -0.05);
     grasps[g].opening = kBar.y() + 0.0046;
@@ -80,7 +81,7 @@ NewtonSystem capture_bimanual_trial_system(double cell) {
   options.big_system_solver = recorder;
   try {
     const trial::TrialOutcome outcome =
-        trial::run_bimanual_trials(scene, {grasps}, options).front();
+        trial::run_trials(scene, {trial::parallel_candidate(grasps)}, options).front();
     throw std::runtime_error("the bimanual trial ended (" + outcome.failure_reason +
                              ") before its fingers touched the bar");
   } catch (const Captured&) {

@@ -5,7 +5,8 @@
 namespace grip::bench {
 namespace {
 
-// Both fingers over their finger-frame vertices, as trial::TrialScene samples its D1/D2 points.
+// Both fingers over their finger-frame vertices, as trial::ParallelTrialScene samples its D1/D2
+// points.
 geometry::SurfaceMesh finger_pair(const grippers::ParallelGripper& gripper) {
   if (gripper.soft_finger) {
     throw std::invalid_argument("grip bench peer: soft fingers are not compared");

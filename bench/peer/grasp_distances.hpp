@@ -1,8 +1,8 @@
 #pragma once
 // D1/D2 of a rigid-jaw parallel gripper or a dexterous hand against a rigid object, all at
-// given world poses, with the trial's own points and code (trial::TrialScene::grasp_distances,
-// trial::HandTrialScene::grasp_distances): how `grip bench peer` measures another engine's
-// settled grasp exactly as grip measures its own.
+// given world poses, with the trial's own points and code
+// (trial::ParallelTrialScene::grasp_distances, trial::HandTrialScene::grasp_distances): how `grip
+// bench peer` measures another engine's settled grasp exactly as grip measures its own.
 #include <array>
 #include <vector>
 

@@ -16,7 +16,8 @@
 #include "src/grippers/coarse_leap_hand.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/objects/object_library.hpp"
-#include "src/trial/hand_trial.hpp"
+#include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/trial.hpp"
 
 namespace grip::bench {
 namespace {
@@ -108,10 +109,9 @@ void run_hand_shape(const RobustnessSet& set, std::uint64_t seed,
   run.threads = options.threads;
   run.trajectory = false;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
-    const synth::HandGrasp& h = candidates[k].hands.front();
-    const trial::HandTrialGrasp grasp{h.pose, h.joints, h.contacts, h.contact_normals};
+    const trial::HandTrialGrasp& grasp = candidates[k].hands.front();
     const double start = process_cpu_seconds();
-    const trial::TrialOutcome outcome = trial::run_hand_trials(scene, {grasp}, run).front();
+    const trial::TrialOutcome outcome = trial::run_trials(scene, {candidates[k]}, run).front();
     PeerTrial t =
         grip_row(set, seed, k, outcome, options.parameters, process_cpu_seconds() - start);
 

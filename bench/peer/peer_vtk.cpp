@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "src/trial/hand_trial.hpp"
+#include "src/trial/trial.hpp"
 #include "src/trial/vtk_series.hpp"
 
 namespace grip::bench {
@@ -50,7 +50,9 @@ void write_peer_hand_vtk(const std::filesystem::path& dir, const std::string& st
   options.threads = threads;
   options.trajectory = false;
   options.body_frames = true;
-  const trial::TrialOutcome grip = trial::run_hand_trials(recording, {grasp}, options).front();
+  synth::Candidate candidate;
+  candidate.hands = {grasp};
+  const trial::TrialOutcome grip = trial::run_trials(recording, {candidate}, options).front();
   trial::write_vtk_series(dir, stem + "_grip", *scene.model(), grip.body_frames);
   const std::vector<trial::BodyFrame> frames = {
       mujoco_frame(scene, 0.0, mujoco.links, mujoco.object),

@@ -15,8 +15,9 @@
 #include "src/synth/object_spec.hpp"
 #include "src/synth/prepared_object.hpp"
 #include "src/synth/synthesize.hpp"
-#include "src/trial/grasp_trial.hpp"
-#include "src/trial/hand_trial.hpp"
+#include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/parallel_trial_scene.hpp"
+#include "src/trial/trial.hpp"
 
 namespace grip::bench {
 namespace {
@@ -142,41 +143,27 @@ trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed) {
 RobustnessScene::RobustnessScene(const RobustnessSet& set, const trial::TrialObject& object,
                                  const trial::TrialParameters& parameters) {
   if (set.gripper == "leap") {
-    hand_ = std::make_unique<trial::HandTrialScene>(
+    scene_ = std::make_unique<trial::HandTrialScene>(
         object, set.production_models ? production_hand() : coarse_hand(), "leap", parameters);
   } else {
     const grippers::ParallelGripper& fin_ray = set.fine_fin_ray        ? fine_fin_ray()
                                                : set.production_models ? production_fin_ray()
                                                                        : coarse_fin_ray();
-    parallel_ = std::make_unique<trial::TrialScene>(
+    scene_ = std::make_unique<trial::ParallelTrialScene>(
         object, set.gripper == "fin-ray" ? fin_ray : rigid_jaws(), parameters);
   }
 }
 
 RobustnessScene::~RobustnessScene() = default;
 
-const trial::TrialParameters& RobustnessScene::parameters() const {
-  return hand_ ? hand_->parameters() : parallel_->parameters();
-}
+const trial::TrialParameters& RobustnessScene::parameters() const { return scene_->parameters(); }
 
 std::vector<trial::TrialOutcome> RobustnessScene::run(
     const std::vector<synth::Candidate>& candidates, int threads) const {
   trial::TrialRunOptions options;
   options.threads = threads;
   options.trajectory = false;
-  if (hand_) {
-    std::vector<trial::HandTrialGrasp> grasps;
-    for (const synth::Candidate& c : candidates) {
-      const synth::HandGrasp& h = c.hands.front();
-      grasps.push_back({h.pose, h.joints, h.contacts, h.contact_normals});
-    }
-    return trial::run_hand_trials(*hand_, grasps, options);
-  }
-  std::vector<trial::ParallelGrasp> grasps;
-  for (const synth::Candidate& c : candidates) {
-    grasps.push_back({c.hands.front().pose, c.hands.front().joints[0]});
-  }
-  return trial::run_trials(*parallel_, grasps, options);
+  return trial::run_trials(*scene_, candidates, options);
 }
 
 RobustnessTrial robustness_trial(const RobustnessSet& set, std::uint64_t seed, std::uint64_t k,

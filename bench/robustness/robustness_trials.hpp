@@ -15,7 +15,6 @@
 
 namespace grip::trial {
 class TrialScene;
-class HandTrialScene;
 }  // namespace grip::trial
 
 namespace grip::bench {
@@ -50,8 +49,7 @@ class RobustnessScene {
   const trial::TrialParameters& parameters() const;
 
  private:
-  std::unique_ptr<trial::TrialScene> parallel_;  // rigid jaws, fin-ray
-  std::unique_ptr<trial::HandTrialScene> hand_;  // leap
+  std::unique_ptr<trial::TrialScene> scene_;  // rigid jaws, fin-ray or leap
 };
 
 // Candidate k of the set's shape of `seed`, as its trial under `parameters` ended.

@@ -151,9 +151,11 @@ std::string Table::location(std::string_view key) const {
   return source_->file.string() + ":" + std::to_string(line);
 }
 
-void Table::allow(std::initializer_list<std::string_view> keys) const { allow(keys, {}); }
+void Table::allow(std::initializer_list<std::string_view> keys) const {
+  allow(std::vector<std::string_view>(keys));
+}
 
-void Table::allow(std::initializer_list<std::string_view> first,
+void Table::allow(const std::vector<std::string_view>& first,
                   std::initializer_list<std::string_view> more) const {
   std::vector<std::string_view> keys(first);
   keys.insert(keys.end(), more.begin(), more.end());

@@ -29,9 +29,9 @@ class Table {
   // Declares every key this table may hold. Any other key is an error that suggests the
   // closest allowed key and lists them all. Call it before reading values.
   void allow(std::initializer_list<std::string_view> keys) const;
-  // The same for keys of two lists: a shared list (scene::kSimParameterKeys) and a table's own.
-  void allow(std::initializer_list<std::string_view> keys,
-             std::initializer_list<std::string_view> more) const;
+  // The same for keys of two lists: a shared list (a parameter table's) and a table's own.
+  void allow(const std::vector<std::string_view>& keys,
+             std::initializer_list<std::string_view> more = {}) const;
 
   bool has(std::string_view key) const;
   bool is_string(std::string_view key) const;  // for values that are "a number or a word"

@@ -7,10 +7,12 @@ namespace grip::grippers {
 namespace {
 
 constexpr std::array<GripperType, 3> kGripperTypes{{
-    {GripperKind::kFinRay, "fin-ray", 1, [] { return make_umi_soft_gripper(); }, nullptr},
-    {GripperKind::kParallelJaw, "parallel-jaw", 1, [] { return make_rigid_jaw_gripper(); },
-     nullptr},
-    {GripperKind::kLeap, "leap", 16, nullptr, shipped_leap_hand},
+    {GripperKind::kFinRay, "fin-ray", 1,
+     [](const FinRayOptions& finger) { return make_umi_soft_gripper(finger); }, nullptr, true,
+     17.0},
+    {GripperKind::kParallelJaw, "parallel-jaw", 1,
+     [](const FinRayOptions&) { return make_rigid_jaw_gripper(); }, nullptr, false, 0.06},
+    {GripperKind::kLeap, "leap", 16, nullptr, shipped_leap_hand, false, 0.28},
 }};
 
 }  // namespace
@@ -58,7 +60,7 @@ ParallelGripper make_parallel_gripper(GripperKind kind) {
     throw std::invalid_argument("the " + std::string(type.name) +
                                 " hand is not a parallel gripper");
   }
-  return type.make_parallel();
+  return type.make_parallel(FinRayOptions{});
 }
 
 HandModel make_hand(GripperKind kind, HandSide side) {

@@ -1,6 +1,7 @@
 #pragma once
 // The gripper kinds grip knows, in one table: the name users type (--gripper, job files,
-// candidate files), whether it is a parallel gripper or a hand, its joint count, how to build it.
+// candidate files), whether it is a parallel gripper or a hand, its joint count, how to build it,
+// whether its fingers are meshed, and what one of its trials costs.
 #include <span>
 #include <string>
 #include <string_view>
@@ -20,8 +21,15 @@ struct GripperType {
   GripperKind kind;
   std::string_view name;  // as typed; also a hand's name in the dataset
   int joints;             // joint values per hand: 1 (the opening, m) or the hand's DoFs (rad)
-  ParallelGripper (*make_parallel)();     // a parallel gripper's default build
+  // A parallel gripper's build; its fingers' tet mesh as the options say when meshed_finger.
+  ParallelGripper (*make_parallel)(const FinRayOptions& finger);
   LeapHandFiles (*hand_files)(HandSide);  // a hand's shipped URDF and points, per side
+  // Soft fingers meshed with tets (grippers::FinRayOptions: grip trial --finger-layers).
+  bool meshed_finger;
+  // The least CPU time one trial of a rigid object takes, from `grip bench trial` on the 2-core
+  // development machine (docs/results.md, "Trial cost"): what a job refused for its size is told
+  // it would need at least.
+  double trial_cpu_seconds;
 
   bool is_hand() const { return hand_files != nullptr; }
 };
@@ -39,7 +47,7 @@ std::vector<std::string> gripper_names();
 // The same for people: "fin-ray, parallel-jaw or leap".
 std::string gripper_name_list();
 
-// Throws std::invalid_argument when `kind` is a hand.
+// The default build; throws std::invalid_argument when `kind` is a hand.
 ParallelGripper make_parallel_gripper(GripperKind kind);
 // Loads one side of a hand from its shipped files; throws std::invalid_argument when `kind` is
 // a parallel gripper.

@@ -7,6 +7,7 @@
 
 #include "solver/model.hpp"
 #include "src/config/config.hpp"
+#include "src/config/parameter_table.hpp"
 #include "src/geometry/mesh_io.hpp"
 #include "src/geometry/mesh_measures.hpp"
 #include "src/geometry/primitives.hpp"
@@ -42,7 +43,7 @@ double positive(const Table& table, std::string_view key, double fallback) {
 }
 
 void read_sim(const Table& sim, SceneFile& out) {
-  sim.allow(kSimParameterKeys, {"duration", "gravity"});
+  sim.allow(config::parameter_keys(sim_parameter_table()), {"duration", "gravity"});
   solver::SimParameters& p = out.scene.sim;
   read_sim_parameters(sim, p);
   out.duration = positive(sim, "duration", out.duration);

@@ -1,25 +1,15 @@
 #pragma once
-// The solver settings shared by scene files' [sim] table and job files' [physics] table, read
-// strictly with their range checks (docs/scene-format.md lists them).
+// The IPC solver's settings (solver::SimParameters) as one parameter table: a scene file's
+// [sim] table and a job file's [physics] table read them, grip trial offers them as options, a
+// dataset's provenance lists them and the docs' tables are made from them (docs/scene-format.md).
 #include "solver/scene.hpp"
 #include "src/config/config.hpp"
+#include "src/config/parameter.hpp"
 
 namespace grip::scene {
 
-// The keys read_sim_parameters reads; a table may allow more of its own.
-inline const std::initializer_list<std::string_view> kSimParameterKeys = {"dt",
-                                                                          "d_hat",
-                                                                          "kappa",
-                                                                          "eps_v",
-                                                                          "newton_tol",
-                                                                          "newton_velocity_tol",
-                                                                          "max_newton_iters",
-                                                                          "projected_iterations",
-                                                                          "max_step_halvings",
-                                                                          "friction_lag_iterations",
-                                                                          "reuse_iterations",
-                                                                          "reuse_tolerance",
-                                                                          "ccd_rescaling"};
+// Every setting but gravity (a scene's own key; a trial's gravity is the protocol's).
+config::ParameterTable<solver::SimParameters> sim_parameter_table();
 
 // Overwrites the settings the table gives (kappa = "auto" turns adaptive kappa on) and keeps
 // the rest. Throws config::ConfigError at the key for a value out of range.

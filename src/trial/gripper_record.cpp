@@ -1,6 +1,11 @@
-#include "src/trial/gripper_record.hpp"
+// How each kind of trial scene describes its gripper: the dataset's record (io::GripperRecord:
+// what its joints and closing forces mean, its surface at rest in the vertex order of the
+// recorded frames) and a line for the log.
+#include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/parallel_trial_scene.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace grip::trial {
 
@@ -23,21 +28,33 @@ std::string setting_name(const std::string& name, int hands) {
 
 }  // namespace
 
-io::GripperRecord gripper_record(const TrialScene& scene) {
-  const grippers::ParallelGripper& gripper = scene.gripper();
+io::GripperRecord ParallelTrialScene::gripper_record() const {
+  const grippers::ParallelGripper& gripper = gripper_;
   io::GripperRecord record;
-  record.name = setting_name(gripper.name, scene.gripper_count());
+  record.name = setting_name(gripper.name, gripper_count());
   record.kind = "parallel";
-  record.hands = static_cast<std::uint32_t>(scene.gripper_count());
+  record.hands = static_cast<std::uint32_t>(gripper_count());
   record.soft = gripper.soft_finger.has_value();
   record.joint_names = {"opening"};
   record.finger_names = {"positive", "negative"};
   const geometry::SurfaceMesh surface = gripper.surface(gripper.max_opening);
-  for (int g = 0; g < scene.gripper_count(); ++g) add_surface(record, surface);
+  for (int g = 0; g < gripper_count(); ++g) add_surface(record, surface);
   return record;
 }
 
-io::GripperRecord gripper_record(const HandTrialScene& scene) {
+std::string ParallelTrialScene::description() const {
+  if (!gripper_.soft_finger) return "rigid fingers";
+  const geometry::TetMesh& finger = gripper_.soft_finger->mesh;
+  return std::to_string(finger.vertices.rows()) + " vertices, " +
+         std::to_string(finger.tets.rows()) + " tets";
+}
+
+std::string HandTrialScene::description() const {
+  return std::to_string(fingers_.size()) + " fingers";
+}
+
+io::GripperRecord HandTrialScene::gripper_record() const {
+  const HandTrialScene& scene = *this;
   io::GripperRecord record;
   record.name = setting_name(scene.name(), scene.hand_count());
   record.kind = "hand";

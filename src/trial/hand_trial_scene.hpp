@@ -1,6 +1,6 @@
 #pragma once
-// The static part shared by every trial of one object and one dexterous hand (the LEAP-style
-// hand), or two (bimanual: a right and a left hand): the solver scene in hand-canonical placement
+// The trial scene of a dexterous hand (the LEAP-style hand), or two (bimanual: a right and a left
+// hand): the solver scene in hand-canonical placement
 // (object at the world origin, each hand frame = world, joints at 0) with one body per link, its
 // Model, the hands' fingers, how a candidate places a hand and how a finger's joints move it.
 #include <array>
@@ -17,21 +17,19 @@
 #include "src/grippers/hand_model.hpp"
 #include "src/metrics/distance_metrics.hpp"
 #include "src/metrics/surface_points.hpp"
+#include "src/synth/candidate.hpp"
 #include "src/trial/object_body.hpp"
 #include "src/trial/trial_object.hpp"
 #include "src/trial/trial_parameters.hpp"
+#include "src/trial/trial_scene.hpp"
 
 namespace grip::trial {
 
-// One hand candidate: world from hand frame, the joint values (rad, the hand's degrees of
-// freedom in order) and the synthesized contacts (world points on the hand's fingers and the
-// object's outward normals there; may be empty). The contacts steer how the fingers close.
-struct HandTrialGrasp {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  Eigen::VectorXd joints;
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contacts;
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> contact_normals;
-};
+// One hand candidate (a synthesized candidate's hand): world from hand frame, the joint values
+// (rad, the hand's degrees of freedom in order) and the synthesized contacts (world points on the
+// hand's fingers and the object's outward normals there; may be empty). The contacts steer how
+// the fingers close.
+using HandTrialGrasp = synth::HandGrasp;
 
 // A finger: a subtree of links hanging from the palm (the root link) of one hand, named by its
 // first link's name up to the first '_' ("index_knuckle": "index"; the second hand's fingers
@@ -44,7 +42,7 @@ struct HandFinger {
   std::vector<int> dofs;    // its hand's degrees of freedom that move it
 };
 
-class HandTrialScene {
+class HandTrialScene final : public TrialScene {
  public:
   // Builds the scene and its Model: the object (one affine body, or FEM when soft) and one
   // kinematic body per link with a surface (friction `rigid_finger_friction`). `name` is the
@@ -57,18 +55,31 @@ class HandTrialScene {
   // The first hand's bodies come first, as with one hand; the second's names are suffixed " 2".
   HandTrialScene(const TrialObject& object, std::vector<grippers::HandModel> hands,
                  std::string name, const TrialParameters& parameters);
-  ~HandTrialScene();
+  ~HandTrialScene() override;
   HandTrialScene(const HandTrialScene&) = delete;
   HandTrialScene& operator=(const HandTrialScene&) = delete;
 
-  const std::shared_ptr<const solver::Model>& model() const { return model_; }
+  const std::shared_ptr<const solver::Model>& model() const override { return model_; }
+  const TrialParameters& parameters() const override { return parameters_; }
+  int gripper_count() const override { return hand_count(); }
+  // Kind "hand", its joints in degree-of-freedom order (rad), its fingers, every link at joints 0
+  // in the hand frame (hand_rest_surface). A right and a left hand: hands = 2, named
+  // "NAME-bimanual", joint and finger names per hand (the left hand's are the right's), then the
+  // right hand's surface and the left one's, each in its own hand frame. Throws
+  // std::invalid_argument for two hands that differ in joints, fingers or surface size.
+  io::GripperRecord gripper_record() const override;
+  std::string description() const override;
+  // Each candidate's hands: a pose, the joint values and the synthesized contacts, which steer
+  // how each finger closes.
+  std::unique_ptr<TrialGripper> protocol_gripper(
+      const std::vector<synth::Candidate>& candidates) const override;
+
   int hand_count() const { return static_cast<int>(hands_.size()); }
   const grippers::HandModel& hand(int h = 0) const {
     return hands_.at(static_cast<std::size_t>(h));
   }
   const grippers::KinematicTree& kinematics(int h = 0) const { return hand(h).kinematics; }
   const std::string& name() const { return name_; }
-  const TrialParameters& parameters() const { return parameters_; }
   bool soft_object() const { return object_.soft(); }
   int object_body() const { return 0; }
 

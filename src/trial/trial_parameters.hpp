@@ -1,12 +1,14 @@
 #pragma once
 // The grasp trial protocol's settings (GRIP, Sec. III-D): closing, settling, the six-axis
-// gravity test, the verdict's threshold, the recorded frames and the D1/D2 sampling.
-// docs/trial.md gives each default and why.
+// gravity test, the verdict's threshold, the recorded frames and the D1/D2 sampling, and their
+// parameter table (a job file's [trial] and [outputs] keys, grip trial's options, the dataset's
+// provenance, docs/job-format.md). docs/trial.md gives each default and why.
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
 
 #include "solver/scene.hpp"
+#include "src/config/parameter.hpp"
 
 namespace grip::trial {
 
@@ -119,7 +121,12 @@ inline bool slipped_beyond_threshold(const TrialParameters& parameters,
   return slip_over_threshold(parameters, displacement, phase_seconds, phases) >= 1.0;
 }
 
-// Throws std::invalid_argument naming the first setting that is out of range.
+// Every setting but `sim` (scene::sim_parameter_table's) and metric_seed: the keys of a job
+// file's [trial] table, and the frame counts of its [outputs] table (section "outputs").
+config::ParameterTable<TrialParameters> trial_parameter_table();
+
+// Throws std::invalid_argument naming the first setting that is out of range (the solver's
+// included), or the first pair that contradicts itself.
 void validate(const TrialParameters& parameters);
 
 }  // namespace grip::trial

@@ -2,6 +2,7 @@
 // The grasp trial protocol shared by every gripper (GRIP, Sec. III-D): what the protocol needs
 // from one gripper's scene and candidates (TrialGripper), and run_protocol, which steps them as
 // one solver::Batch through closing, settling and the six gravity phases to their outcomes.
+// Callers run trials through src/trial/trial.hpp (run_trials), which builds the TrialGripper.
 #include <array>
 #include <cstddef>
 #include <cstdint>

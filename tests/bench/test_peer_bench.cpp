@@ -10,8 +10,10 @@
 #include "src/grippers/coarse_leap_hand.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/synth/synthesize.hpp"
-#include "src/trial/grasp_trial.hpp"
-#include "src/trial/hand_trial.hpp"
+#include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/parallel_trial_scene.hpp"
+#include "src/trial/trial.hpp"
+#include "tests/trial/short_trial.hpp"
 
 namespace grip::bench {
 namespace {
@@ -51,8 +53,9 @@ TEST(PeerBench, CentredBoxIsHeldByBothEngines) {
   const trial::TrialObject object = box();
   const trial::TrialParameters p = parameters();
   const trial::ParallelGrasp grasp = centred(0.035);
-  const trial::TrialScene scene(object, jaws(), p);
-  const trial::TrialOutcome grip = trial::run_trials(scene, {grasp}).front();
+  const trial::ParallelTrialScene scene(object, jaws(), p);
+  const trial::TrialOutcome grip =
+      trial::run_trials(scene, trial::testing::parallel_candidates({grasp})).front();
   EXPECT_EQ(grip.result.record.failure, io::FailureKind::kNone) << grip.failure_reason;
 
   if (!mujoco_available()) GTEST_SKIP() << "built without MuJoCo: its half is not tested";
@@ -76,7 +79,7 @@ TEST(PeerBench, CentredBoxIsHeldByBothEngines) {
 TEST(PeerBench, DistancesAreTheTrialsAtTheSamePoses) {
   const trial::TrialObject object = box();
   const trial::TrialParameters p = parameters();
-  const trial::TrialScene scene(object, jaws(), p);
+  const trial::ParallelTrialScene scene(object, jaws(), p);
   const GraspDistances distances(jaws(), object.surface, p);
   // Open (D1 = 0) and closed into the box (D1 > 0), turned about the approach axis.
   for (const double opening : {0.036, 0.024}) {
@@ -137,7 +140,8 @@ TEST(PeerBench, HandGraspOfACylinderIsHeldByBothEngines) {
   const trial::HandTrialGrasp& grasp = hand_candidate();
   trial::TrialRunOptions options;
   options.trajectory = false;
-  const trial::TrialOutcome grip = trial::run_hand_trials(scene, {grasp}, options).front();
+  const trial::TrialOutcome grip =
+      trial::run_trials(scene, trial::testing::hand_candidates({grasp}), options).front();
   EXPECT_EQ(grip.result.record.failure, io::FailureKind::kNone) << grip.failure_reason;
 
   if (!mujoco_available()) GTEST_SKIP() << "built without MuJoCo: its half is not tested";

@@ -9,6 +9,8 @@
 #include "src/config/config.hpp"
 #include "src/scene/scene_file.hpp"
 #include "src/scene/scene_run.hpp"
+#include "src/scene/sim_parameters.hpp"
+#include "tests/config/parameter_samples.hpp"
 
 namespace grip::scene {
 namespace {
@@ -74,6 +76,31 @@ TEST(SceneFile, BuildsBodiesParametersAndContacts) {
   ASSERT_EQ(file.scene.contacts.size(), 1u);
   EXPECT_EQ(file.scene.contacts[0].body_a, 1);
   EXPECT_DOUBLE_EQ(file.scene.contacts[0].friction, 0.9);
+}
+
+// Every row of the solver's parameter table is a [sim] key: read into its setting, and refused
+// outside its range, naming the key (the job reader's [physics] is checked in tests/farm).
+TEST(SceneFile, SimTakesEverySolverParameter) {
+  const std::string bodies = kDrop.substr(kDrop.find("[[body]]"));
+  const solver::SimParameters defaults;
+  for (const auto& row : sim_parameter_table()) {
+    const std::string value = config::testing::inside_value(row, defaults);
+    const std::string key = std::string(row.key);
+    const SceneFile file = load_scene_file(write_scene(
+        "grip_scene_row.toml", "[sim]\n" + key + " = " + value + "\nduration = 0.5\n" + bodies));
+    EXPECT_EQ(config::number_text(config::testing::field_value(row, file.scene.sim)),
+              config::number_text(std::stod(value)))
+        << key;
+    try {
+      load_scene_file(write_scene(
+          "grip_scene_row.toml",
+          "[sim]\n" + key + " = " + config::testing::outside_value(row) + "\n" + bodies));
+      ADD_FAILURE() << key << " = " << config::testing::outside_value(row) << " was read";
+    } catch (const config::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("key 'sim." + key + "' must"), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(SceneFile, RunsAndReportsTheInvariants) {

@@ -75,7 +75,7 @@ class CheckLayeringTest(unittest.TestCase):
         self.edit("src/trial/CMakeLists.txt", " grip_io ", " ")
         code, out = self.run_check()
         self.assertEqual(code, 1, out)
-        self.assertIn('src/trial/gripper_record.hpp:4: #include "io/gripper_record.hpp": '
+        self.assertIn('src/trial/trial_scene.hpp:12: #include "io/gripper_record.hpp": '
                       "target grip_trial", out)
         self.assertIn("does not link grip_io (module io)", out)
 

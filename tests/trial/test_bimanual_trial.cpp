@@ -15,18 +15,21 @@
 #include "src/geometry/primitives.hpp"
 #include "src/grippers/coarse_leap_hand.hpp"
 #include "src/synth/synthesize.hpp"
-#include "src/trial/grasp_trial.hpp"
-#include "src/trial/gripper_record.hpp"
-#include "src/trial/hand_trial.hpp"
 #include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/parallel_trial_scene.hpp"
 #include "src/trial/same_result.hpp"
+#include "src/trial/trial.hpp"
 #include "tests/trial/short_trial.hpp"
 
 namespace grip::trial {
 namespace {
 
+using testing::bimanual_candidates;
+using testing::bimanual_hand_candidates;
+using testing::hand_candidates;
 using testing::largest;
 using testing::one_layer_fin_ray;
+using testing::parallel_candidates;
 using testing::short_parameters;
 
 // ---- Two fin-ray grippers ----
@@ -64,10 +67,11 @@ std::array<ParallelGrasp, 2> pinched_near_the_ends() {
 
 TEST(BimanualTrial, TwoFinRayGrippersHoldALongBoxWithFrictionAndSqueezeItOutWithout) {
   const TrialParameters p = fin_ray_parameters();
-  const TrialScene scene(long_box(), one_layer_fin_ray(), p, 2);
+  const ParallelTrialScene scene(long_box(), one_layer_fin_ray(), p, 2);
   ASSERT_EQ(scene.gripper_count(), 2);
   ASSERT_EQ(scene.jaws().size(), 4u);
-  const TrialOutcome held = run_bimanual_trials(scene, {pinched_near_the_ends()}).front();
+  const TrialOutcome held =
+      run_trials(scene, bimanual_candidates({pinched_near_the_ends()})).front();
   const io::CandidateRecord& h = held.result.record;
   EXPECT_EQ(h.failure, io::FailureKind::kNone)
       << io::to_string(h.failure) << " " << held.failure_reason;
@@ -102,8 +106,9 @@ TEST(BimanualTrial, TwoFinRayGrippersHoldALongBoxWithFrictionAndSqueezeItOutWith
   // axis (+z, the same for both grippers) before any gravity phase: it leaves every finger.
   grippers::ParallelGripper slick = one_layer_fin_ray();
   slick.soft_finger->material.friction = 0.0;
-  const TrialScene slick_scene(long_box(), slick, p, 2);
-  const TrialOutcome lost = run_bimanual_trials(slick_scene, {pinched_near_the_ends()}).front();
+  const ParallelTrialScene slick_scene(long_box(), slick, p, 2);
+  const TrialOutcome lost =
+      run_trials(slick_scene, bimanual_candidates({pinched_near_the_ends()})).front();
   const io::CandidateRecord& r = lost.result.record;
   EXPECT_EQ(r.failure, io::FailureKind::kNoContact)
       << io::to_string(r.failure) << " " << lost.failure_reason;
@@ -115,11 +120,13 @@ TEST(BimanualTrial, TwoFinRayGrippersHoldALongBoxWithFrictionAndSqueezeItOutWith
 
 TEST(BimanualTrial, AScenesGripperCountMustMatchItsCandidates) {
   const TrialParameters p = fin_ray_parameters();
-  const TrialScene one(long_box(), one_layer_fin_ray(), p);
-  const TrialScene two(long_box(), one_layer_fin_ray(), p, 2);
-  EXPECT_THROW(run_bimanual_trials(one, {pinched_near_the_ends()}), std::invalid_argument);
-  EXPECT_THROW(run_trials(two, {pinched_near_the_ends()[0]}), std::invalid_argument);
-  EXPECT_THROW(TrialScene(long_box(), one_layer_fin_ray(), p, 3), std::invalid_argument);
+  const ParallelTrialScene one(long_box(), one_layer_fin_ray(), p);
+  const ParallelTrialScene two(long_box(), one_layer_fin_ray(), p, 2);
+  EXPECT_THROW(run_trials(one, bimanual_candidates({pinched_near_the_ends()})),
+               std::invalid_argument);
+  EXPECT_THROW(run_trials(two, parallel_candidates({pinched_near_the_ends()[0]})),
+               std::invalid_argument);
+  EXPECT_THROW(ParallelTrialScene(long_box(), one_layer_fin_ray(), p, 3), std::invalid_argument);
   // The second gripper's bodies follow the first's, named apart.
   const auto& bodies = two.model()->scene().bodies;
   EXPECT_EQ(bodies.size(), 1u + 2u * 2u * 2u);  // the object, then per jaw a jaw and a finger
@@ -131,20 +138,22 @@ TEST(BimanualTrial, BatchMatchesSoloRunsForAnyThreadCount) {
   // Rigid jaws (kinematic fingers, a fast trial): the grasp near the ends, one nearer the centre,
   // and one whose second gripper's jaws start inside the box (it leaves the batch at once).
   const grippers::ParallelGripper jaws = grippers::make_rigid_jaw_gripper();
-  const TrialScene scene(long_box(), jaws, short_parameters(), 2);
+  const ParallelTrialScene scene(long_box(), jaws, short_parameters(), 2);
   std::vector<std::array<ParallelGrasp, 2>> grasps(3, pinched_near_the_ends());
   grasps[1][0].pose.translation().x() = -0.05;
   grasps[1][1].pose.translation().x() = 0.05;
   grasps[2][1].opening = 0.03;  // the box is 4 cm wide
   TrialRunOptions batch_options;
   batch_options.threads = 2;
-  const std::vector<TrialOutcome> batch = run_bimanual_trials(scene, grasps, batch_options);
+  const std::vector<TrialOutcome> batch =
+      run_trials(scene, bimanual_candidates(grasps), batch_options);
   ASSERT_EQ(batch.size(), grasps.size());
   for (std::size_t k = 0; k < grasps.size(); ++k) {
     TrialRunOptions solo_options;
     solo_options.threads = 1;
     solo_options.ids = {k};
-    const TrialOutcome solo = run_bimanual_trials(scene, {grasps[k]}, solo_options).front();
+    const TrialOutcome solo =
+        run_trials(scene, bimanual_candidates({grasps[k]}), solo_options).front();
     EXPECT_TRUE(same_result(batch[k].result, solo.result)) << "candidate " << k;
   }
   EXPECT_EQ(batch[0].result.record.failure, io::FailureKind::kNone) << batch[0].failure_reason;
@@ -198,7 +207,8 @@ TEST(BimanualTrial, ARightAndALeftHandHoldALargeBox) {
   ASSERT_EQ(scene.fingers().size(), 8u);
   EXPECT_EQ(scene.fingers()[4].name, "index 2");
   EXPECT_EQ(scene.fingers()[4].hand, 1);
-  const TrialOutcome outcome = run_bimanual_hand_trials(scene, {synthesized_pair()}).front();
+  const TrialOutcome outcome =
+      run_trials(scene, bimanual_hand_candidates({synthesized_pair()})).front();
   const io::CandidateRecord& r = outcome.result.record;
   EXPECT_EQ(r.failure, io::FailureKind::kNone)
       << io::to_string(r.failure) << " " << outcome.failure_reason;
@@ -234,11 +244,11 @@ TEST(BimanualTrial, AHandScenesCountMustMatchItsCandidates) {
   HandTrialGrasp open;  // a hand 30 cm above the box, joints at 0
   open.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.3);
   open.joints = Eigen::VectorXd::Zero(16);
-  EXPECT_THROW(run_bimanual_hand_trials(one, {{open, open}}), std::invalid_argument);
+  EXPECT_THROW(run_trials(one, bimanual_hand_candidates({{open, open}})), std::invalid_argument);
   std::vector<grippers::HandModel> hands = {coarse_hand(grippers::HandSide::kRight),
                                             coarse_hand(grippers::HandSide::kLeft)};
   const HandTrialScene two(large_box(), std::move(hands), "leap", short_parameters());
-  EXPECT_THROW(run_hand_trials(two, {open}), std::invalid_argument);
+  EXPECT_THROW(run_trials(two, hand_candidates({open})), std::invalid_argument);
   EXPECT_EQ(two.hand_count(), 2);
   EXPECT_THROW(
       HandTrialScene(large_box(), std::vector<grippers::HandModel>{}, "leap", short_parameters()),
@@ -253,7 +263,7 @@ TEST(BimanualTrial, GripperRecordDescribesBothGrippers) {
   const HandTrialScene two(large_box(), std::move(hands), "leap", short_parameters());
   const HandTrialScene one(large_box(), coarse_hand(grippers::HandSide::kRight), "leap",
                            short_parameters());
-  const io::GripperRecord r2 = gripper_record(two), r1 = gripper_record(one);
+  const io::GripperRecord r2 = two.gripper_record(), r1 = one.gripper_record();
   EXPECT_EQ(r1.hands, 1u);
   EXPECT_EQ(r2.hands, 2u);
   EXPECT_EQ(r1.name, "leap");
@@ -283,10 +293,10 @@ TEST(BimanualTrial, GripperRecordDescribesBothGrippers) {
   // The frames' order: hand_surface_vertices at rest is the record's surface.
   EXPECT_EQ(two.rest_surface().vertices.rows(), static_cast<Eigen::Index>(2 * n));
 
-  const TrialScene jaws(long_box(),
-                        grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw),
-                        short_parameters(), 2);
-  const io::GripperRecord parallel = gripper_record(jaws);
+  const ParallelTrialScene jaws(
+      long_box(), grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw),
+      short_parameters(), 2);
+  const io::GripperRecord parallel = jaws.gripper_record();
   EXPECT_EQ(parallel.hands, 2u);
   EXPECT_EQ(parallel.name.substr(parallel.name.size() - 9), "-bimanual");
   EXPECT_EQ(parallel.joint_names, std::vector<std::string>{"opening"});

@@ -5,7 +5,8 @@
 // is lost without it; a trial not steady in time is unsettled; a grasp closing on air fails; a
 // squeezed soft box is stressed under the fingers; IPC leaves D1 = 0 and D2 within d_hat; and
 // a batch matches solo runs for any thread count.
-#include "src/trial/grasp_trial.hpp"
+#include "src/trial/parallel_trial_scene.hpp"
+#include "src/trial/trial.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,6 +26,7 @@ namespace {
 
 using testing::largest;
 using testing::one_layer_fin_ray;
+using testing::parallel_candidates;
 using testing::short_parameters;
 
 const grippers::ParallelGripper& rigid_jaws() {
@@ -77,8 +79,8 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   TrialParameters p = fin_ray_parameters(0.04);
   p.final_opening = 0.01;
   p.grip_force = 10.0;
-  const TrialScene held(box, one_layer_fin_ray(), p);
-  const TrialOutcome with = run_trials(held, {centred(0.04)}).front();
+  const ParallelTrialScene held(box, one_layer_fin_ray(), p);
+  const TrialOutcome with = run_trials(held, parallel_candidates({centred(0.04)})).front();
   EXPECT_EQ(with.result.record.failure, io::FailureKind::kNone)
       << io::to_string(with.result.record.failure) << " " << with.failure_reason;
   const io::CandidateRecord& h = with.result.record;
@@ -109,8 +111,8 @@ TEST(GraspTrial, CentredFinRayGraspOfABoxHoldsWithFrictionAndFailsWithout) {
   // squeeze the released box out along the approach axis before any gravity phase.
   grippers::ParallelGripper slick = one_layer_fin_ray();
   slick.soft_finger->material.friction = 0.0;
-  const TrialScene scene(box, slick, p);
-  const TrialOutcome without = run_trials(scene, {centred(0.04)}).front();
+  const ParallelTrialScene scene(box, slick, p);
+  const TrialOutcome without = run_trials(scene, parallel_candidates({centred(0.04)})).front();
   const io::CandidateRecord& r = without.result.record;
   EXPECT_EQ(r.failure, io::FailureKind::kNoContact)
       << io::to_string(r.failure) << " " << without.failure_reason;
@@ -136,7 +138,9 @@ TEST(GraspTrial, AnOffCentreFinRayGraspTurnsWithTheFingersAndSlipsOnlyWhenTooHea
     bar.name = "bar";
     bar.surface = geometry::make_box(Eigen::Vector3d(0.16, 0.03, 0.03));
     bar.material.density = density;
-    return run_trials(TrialScene(bar, one_layer_fin_ray(), parameters), {grasp}).front();
+    return run_trials(ParallelTrialScene(bar, one_layer_fin_ray(), parameters),
+                      parallel_candidates({grasp}))
+        .front();
   };
   const TrialOutcome light = trial(1000.0, p);
   const io::CandidateRecord& held = light.result.record;
@@ -173,8 +177,9 @@ TEST(GraspTrial, RigidJawsHoldABallWithFrictionAndLoseItWithout) {
   TrialObject ball = rigid_cylinder(1.0);
   ball.name = "ball";
   ball.surface = geometry::make_sphere(0.02, 16, 8);
-  const TrialScene held(ball, rigid_jaws(), rigid_parameters());
-  const io::CandidateRecord with = run_trials(held, {centred(0.04)}).front().result.record;
+  const ParallelTrialScene held(ball, rigid_jaws(), rigid_parameters());
+  const io::CandidateRecord with =
+      run_trials(held, parallel_candidates({centred(0.04)})).front().result.record;
   EXPECT_EQ(with.failure, io::FailureKind::kNone);
   EXPECT_LT(largest(with.displacement), held.parameters().displacement_threshold());
   EXPECT_EQ(with.d1, 0.0);
@@ -186,8 +191,8 @@ TEST(GraspTrial, RigidJawsHoldABallWithFrictionAndLoseItWithout) {
   // squeeze never settles, or dropped or displaced by gravity): a physical failure, not a
   // solver one.
   ball.material.friction = 0.0;
-  const TrialScene scene(ball, rigid_jaws(), rigid_parameters());
-  const TrialOutcome outcome = run_trials(scene, {centred(0.04)}).front();
+  const ParallelTrialScene scene(ball, rigid_jaws(), rigid_parameters());
+  const TrialOutcome outcome = run_trials(scene, parallel_candidates({centred(0.04)})).front();
   const io::CandidateRecord& r = outcome.result.record;
   EXPECT_EQ(r.status, io::Status::kFailure);
   EXPECT_TRUE(r.failure == io::FailureKind::kNoContact ||
@@ -222,7 +227,8 @@ TEST(GraspTrial, AGraspHeldNearTheFrictionLimitCreepsAtIpcsStaticSpeedAndIsHeld)
     // holds no torque.
     ParallelGrasp grasp = centred(0.04);
     grasp.pose.translation().z() = -0.025;
-    return run_trials(TrialScene(cube, rigid_jaws(), with), {grasp}).front();
+    return run_trials(ParallelTrialScene(cube, rigid_jaws(), with), parallel_candidates({grasp}))
+        .front();
   };
   const TrialOutcome creeping = trial(r);
   const io::CandidateRecord& held = creeping.result.record;
@@ -251,8 +257,8 @@ TEST(GraspTrial, ATrialThatIsNotSteadyInTimeIsUnsettled) {
   // test on a grasp that has not come to rest, and no D1/D2 of it.
   TrialParameters p = rigid_parameters();
   p.settle_max_steps = 4;
-  const TrialScene scene(rigid_cylinder(1.0), rigid_jaws(), p);
-  const TrialOutcome outcome = run_trials(scene, {centred(0.04)}).front();
+  const ParallelTrialScene scene(rigid_cylinder(1.0), rigid_jaws(), p);
+  const TrialOutcome outcome = run_trials(scene, parallel_candidates({centred(0.04)})).front();
   const io::CandidateRecord& r = outcome.result.record;
   EXPECT_EQ(r.failure, io::FailureKind::kUnsettled);
   EXPECT_NE(outcome.failure_reason.find("not steady after 4 steps"), std::string::npos)
@@ -261,16 +267,17 @@ TEST(GraspTrial, ATrialThatIsNotSteadyInTimeIsUnsettled) {
   EXPECT_TRUE(std::isnan(r.displacement[0]));
   EXPECT_EQ(r.newton.steps, 4u);
   // The same trial with the default allowance settles and is held.
-  const TrialScene patient(rigid_cylinder(1.0), rigid_jaws(), rigid_parameters());
-  EXPECT_EQ(run_trials(patient, {centred(0.04)}).front().result.record.failure,
+  const ParallelTrialScene patient(rigid_cylinder(1.0), rigid_jaws(), rigid_parameters());
+  EXPECT_EQ(run_trials(patient, parallel_candidates({centred(0.04)})).front().result.record.failure,
             io::FailureKind::kNone);
 }
 
 TEST(GraspTrial, ClosingOnAirFindsNoContact) {
-  const TrialScene scene(rigid_cylinder(3.5), one_layer_fin_ray(), fin_ray_parameters(0.04));
+  const ParallelTrialScene scene(rigid_cylinder(3.5), one_layer_fin_ray(),
+                                 fin_ray_parameters(0.04));
   ParallelGrasp air = centred(0.04);
   air.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.05);  // the fingers miss the object
-  const TrialOutcome outcome = run_trials(scene, {air}).front();
+  const TrialOutcome outcome = run_trials(scene, parallel_candidates({air})).front();
   const io::CandidateRecord& r = outcome.result.record;
   EXPECT_EQ(r.status, io::Status::kFailure);
   EXPECT_EQ(r.failure, io::FailureKind::kNoContact);
@@ -285,10 +292,11 @@ TEST(GraspTrial, ClosingOnAirFindsNoContact) {
 }
 
 TEST(GraspTrial, StartingInsideTheObjectIsAnInitialPenetration) {
-  const TrialScene scene(rigid_cylinder(3.5), rigid_jaws(), rigid_parameters());
+  const ParallelTrialScene scene(rigid_cylinder(3.5), rigid_jaws(), rigid_parameters());
   ParallelGrasp inside = centred(0.04);
   inside.opening = 0.03;  // narrower than the cylinder: the fingers start inside it
-  const io::CandidateRecord r = run_trials(scene, {inside}).front().result.record;
+  const io::CandidateRecord r =
+      run_trials(scene, parallel_candidates({inside})).front().result.record;
   EXPECT_EQ(r.failure, io::FailureKind::kInitialPenetration);
 }
 
@@ -300,11 +308,11 @@ TEST(GraspTrial, PiercingOrContainedFingersAreAnInitialPenetration) {
     TrialObject object;
     object.name = "slab";
     object.surface = geometry::make_box(size);
-    const TrialScene scene(object, rigid_jaws(), rigid_parameters());
+    const ParallelTrialScene scene(object, rigid_jaws(), rigid_parameters());
     ParallelGrasp grasp;
     grasp.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.03);
     grasp.opening = 0.04;
-    const TrialOutcome outcome = run_trials(scene, {grasp}).front();
+    const TrialOutcome outcome = run_trials(scene, parallel_candidates({grasp})).front();
     EXPECT_EQ(outcome.result.record.failure, io::FailureKind::kInitialPenetration)
         << "object " << size.transpose() << ": " << io::to_string(outcome.result.record.failure);
     EXPECT_EQ(outcome.result.record.newton.steps, 0u);
@@ -312,9 +320,9 @@ TEST(GraspTrial, PiercingOrContainedFingersAreAnInitialPenetration) {
 }
 
 TEST(GraspTrial, RecordsTheDatasetTrajectory) {
-  const TrialScene scene(rigid_cylinder(3.5), rigid_jaws(), rigid_parameters());
+  const ParallelTrialScene scene(rigid_cylinder(3.5), rigid_jaws(), rigid_parameters());
   const ParallelGrasp grasp = centred(0.04);
-  const TrialOutcome outcome = run_trials(scene, {grasp}).front();
+  const TrialOutcome outcome = run_trials(scene, parallel_candidates({grasp})).front();
   ASSERT_TRUE(outcome.result.trajectory.has_value());
   const io::TrajectoryRecord& t = *outcome.result.trajectory;
   const std::size_t frames = 8 + 12, g = 16;  // two box fingers of 8 vertices
@@ -376,11 +384,11 @@ TEST(GraspTrial, SqueezedSoftBoxIsStressedUnderTheFingers) {
   TrialParameters p = fin_ray_parameters(0.03);
   p.phase_duration = p.sim.dt;
   p.validation_frames = 6;
-  const TrialScene scene(soft, one_layer_fin_ray(), p);
+  const ParallelTrialScene scene(soft, one_layer_fin_ray(), p);
   // A soft object dissipates as the trial sets (Rayleigh beta, object_damping).
   EXPECT_EQ(scene.model()->bodies()[scene.object_body()].material.damping, p.object_damping);
   EXPECT_GT(p.object_damping, 0.0);
-  const TrialOutcome outcome = run_trials(scene, {centred(0.03)}).front();
+  const TrialOutcome outcome = run_trials(scene, parallel_candidates({centred(0.03)})).front();
   const io::CandidateRecord& r = outcome.result.record;
   EXPECT_NE(r.failure, io::FailureKind::kNoContact) << outcome.failure_reason;
   EXPECT_EQ(r.d1, 0.0);
@@ -410,7 +418,7 @@ TEST(GraspTrial, SqueezedSoftBoxIsStressedUnderTheFingers) {
 TEST(GraspTrial, BatchMatchesSoloRunsForAnyThreadCount) {
   // Candidates that hold, slip, miss and start inside, on rigid jaws, as one batch (two
   // threads) and one by one (one thread): the same results bit for bit, wall time aside.
-  const TrialScene scene(rigid_cylinder(1.0), rigid_jaws(), rigid_parameters());
+  const ParallelTrialScene scene(rigid_cylinder(1.0), rigid_jaws(), rigid_parameters());
   std::vector<ParallelGrasp> grasps;
   for (int k = 0; k < 6; ++k) {
     ParallelGrasp g = centred(0.04);
@@ -423,14 +431,16 @@ TEST(GraspTrial, BatchMatchesSoloRunsForAnyThreadCount) {
   grasps[5].opening = 0.03;  // inside the cylinder
   TrialRunOptions batch_options;
   batch_options.threads = 2;
-  const std::vector<TrialOutcome> batch = run_trials(scene, grasps, batch_options);
+  const std::vector<TrialOutcome> batch =
+      run_trials(scene, parallel_candidates(grasps), batch_options);
   ASSERT_EQ(batch.size(), grasps.size());
   std::vector<io::FailureKind> kinds;
   for (std::size_t k = 0; k < grasps.size(); ++k) {
     TrialRunOptions solo_options;
     solo_options.threads = 1;
     solo_options.ids = {k};
-    const TrialOutcome solo = run_trials(scene, {grasps[k]}, solo_options).front();
+    const TrialOutcome solo =
+        run_trials(scene, parallel_candidates({grasps[k]}), solo_options).front();
     EXPECT_TRUE(same_result(batch[k].result, solo.result)) << "candidate " << k;
     kinds.push_back(batch[k].result.record.failure);
     if (k != 5) {
@@ -443,10 +453,10 @@ TEST(GraspTrial, BatchMatchesSoloRunsForAnyThreadCount) {
 }
 
 TEST(GraspTrial, RejectsAnOpeningTheGripperCannotTake) {
-  const TrialScene scene(rigid_cylinder(1.0), rigid_jaws(), rigid_parameters());
+  const ParallelTrialScene scene(rigid_cylinder(1.0), rigid_jaws(), rigid_parameters());
   ParallelGrasp wide = centred(0.04);
   wide.opening = 0.2;
-  EXPECT_THROW(run_trials(scene, {wide}), std::out_of_range);
+  EXPECT_THROW(run_trials(scene, parallel_candidates({wide})), std::out_of_range);
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 // intersects the object, D1 = 0, the record and trajectory follow the dataset's layout and the
 // hand's gripper record, a hand closing on air finds no contact, and a batch matches solo runs.
 // The hand is the shipped one with coarser capsules (8 sides).
-#include "src/trial/hand_trial.hpp"
+#include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/trial.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,13 +18,13 @@
 #include "src/geometry/primitives.hpp"
 #include "src/grippers/coarse_leap_hand.hpp"
 #include "src/synth/synthesize.hpp"
-#include "src/trial/gripper_record.hpp"
 #include "src/trial/same_result.hpp"
 #include "tests/trial/short_trial.hpp"
 
 namespace grip::trial {
 namespace {
 
+using testing::hand_candidates;
 using testing::short_parameters;
 
 const grippers::HandModel& leap() {
@@ -104,7 +105,7 @@ TEST(HandTrial, SynthesizedGraspClosesOnACylinderWithoutIntersecting) {
   TrialRunOptions options;
   options.body_frames = true;
   const HandTrialGrasp& grasp = closing_candidate();
-  const TrialOutcome outcome = run_hand_trials(scene, {grasp}, options).front();
+  const TrialOutcome outcome = run_trials(scene, hand_candidates({grasp}), options).front();
   const io::CandidateRecord& r = outcome.result.record;
   SCOPED_TRACE(std::string(io::to_string(r.failure)) + " " + outcome.failure_reason);
   EXPECT_NE(r.failure, io::FailureKind::kInitialPenetration);
@@ -142,7 +143,7 @@ TEST(HandTrial, SynthesizedGraspClosesOnACylinderWithoutIntersecting) {
   ASSERT_TRUE(outcome.result.trajectory.has_value());
   const io::TrajectoryRecord& t = *outcome.result.trajectory;
   const std::size_t frames = 600 + 30;
-  EXPECT_EQ(t.gripper_vertices.size(), frames * gripper_record(scene).vertex_count() * 3);
+  EXPECT_EQ(t.gripper_vertices.size(), frames * scene.gripper_record().vertex_count() * 3);
   EXPECT_EQ(t.joints.size(), frames * 16);
   EXPECT_EQ(t.hand_poses.size(), frames * 12);
   // The first frame is the placed hand: each finger at or beyond the candidate's joints along
@@ -168,7 +169,7 @@ TEST(HandTrial, ClosingOnAirFindsNoContact) {
   TrialParameters p = short_parameters();
   const HandTrialScene scene(cylinder(), leap(), "leap", p);
   const HandTrialGrasp air = on_air();
-  const TrialOutcome outcome = run_hand_trials(scene, {air}).front();
+  const TrialOutcome outcome = run_trials(scene, hand_candidates({air})).front();
   const io::CandidateRecord& r = outcome.result.record;
   EXPECT_EQ(r.failure, io::FailureKind::kNoContact) << outcome.failure_reason;
   EXPECT_EQ(r.closing_forces, std::vector<double>(4, 0.0));
@@ -195,7 +196,7 @@ TEST(HandTrial, StartingInsideTheObjectIsAnInitialPenetration) {
   const HandTrialScene scene(cylinder(), leap(), "leap", short_parameters());
   HandTrialGrasp inside = on_air();
   inside.pose.translation() = Eigen::Vector3d(-0.05, 0.0, 0.01);  // the palm through the cylinder
-  const TrialOutcome outcome = run_hand_trials(scene, {inside}).front();
+  const TrialOutcome outcome = run_trials(scene, hand_candidates({inside})).front();
   EXPECT_EQ(outcome.result.record.failure, io::FailureKind::kInitialPenetration);
   EXPECT_EQ(outcome.result.record.newton.steps, 0u);
 }
@@ -207,13 +208,13 @@ TEST(HandTrial, BatchMatchesSoloRuns) {
   grasps.back().pose.translation() = Eigen::Vector3d(-0.05, 0.0, 0.01);
   TrialRunOptions batch_options;
   batch_options.threads = 2;
-  const std::vector<TrialOutcome> batch = run_hand_trials(scene, grasps, batch_options);
+  const std::vector<TrialOutcome> batch = run_trials(scene, hand_candidates(grasps), batch_options);
   ASSERT_EQ(batch.size(), grasps.size());
   for (std::size_t k = 0; k < grasps.size(); ++k) {
     TrialRunOptions solo_options;
     solo_options.threads = 1;
     solo_options.ids = {k};
-    const TrialOutcome solo = run_hand_trials(scene, {grasps[k]}, solo_options).front();
+    const TrialOutcome solo = run_trials(scene, hand_candidates({grasps[k]}), solo_options).front();
     EXPECT_TRUE(same_result(batch[k].result, solo.result)) << "candidate " << k;
   }
   EXPECT_EQ(batch.back().result.record.failure, io::FailureKind::kInitialPenetration);
@@ -223,14 +224,14 @@ TEST(HandTrial, RejectsJointsTheHandCannotTake) {
   const HandTrialScene scene(cylinder(), leap(), "leap", short_parameters());
   HandTrialGrasp bent = on_air();
   bent.joints[1] = 3.0;  // index MCP beyond its 2.23 rad limit
-  EXPECT_THROW(run_hand_trials(scene, {bent}), std::out_of_range);
+  EXPECT_THROW(run_trials(scene, hand_candidates({bent})), std::out_of_range);
   bent.joints.resize(15);
-  EXPECT_THROW(run_hand_trials(scene, {bent}), std::out_of_range);
+  EXPECT_THROW(run_trials(scene, hand_candidates({bent})), std::out_of_range);
 }
 
 TEST(HandTrial, GripperRecordDescribesTheHand) {
   const HandTrialScene scene(cylinder(), leap(), "leap", short_parameters());
-  const io::GripperRecord r = gripper_record(scene);
+  const io::GripperRecord r = scene.gripper_record();
   EXPECT_EQ(r.name, "leap");
   EXPECT_EQ(r.kind, "hand");
   EXPECT_EQ(r.hands, 1u);

@@ -1,4 +1,7 @@
-#include "src/trial/hand_trial.hpp"
+// A hand's trial scene as the protocol sees it, with candidates placed
+// (HandTrialScene::protocol_gripper).
+#include "src/trial/hand_trial_scene.hpp"
+#include "src/trial/trial_protocol.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -135,28 +138,11 @@ class HandTrialGripper final : public TrialGripper {
 
 }  // namespace
 
-std::vector<TrialOutcome> run_hand_trials(const HandTrialScene& scene,
-                                          const std::vector<HandTrialGrasp>& grasps,
-                                          const TrialRunOptions& options) {
-  if (scene.hand_count() != 1) {
-    throw std::invalid_argument("run_hand_trials: the scene has " +
-                                std::to_string(scene.hand_count()) + " hands, not one");
-  }
-  std::vector<std::vector<HandTrialGrasp>> each;
-  for (const HandTrialGrasp& g : grasps) each.push_back({g});
-  return run_protocol(HandTrialGripper(scene, std::move(each)), options);
-}
-
-std::vector<TrialOutcome> run_bimanual_hand_trials(
-    const HandTrialScene& scene, const std::vector<std::array<HandTrialGrasp, 2>>& grasps,
-    const TrialRunOptions& options) {
-  if (scene.hand_count() != 2) {
-    throw std::invalid_argument("run_bimanual_hand_trials: the scene has " +
-                                std::to_string(scene.hand_count()) + " hand, not two");
-  }
-  std::vector<std::vector<HandTrialGrasp>> each;
-  for (const auto& g : grasps) each.push_back({g[0], g[1]});
-  return run_protocol(HandTrialGripper(scene, std::move(each)), options);
+std::unique_ptr<TrialGripper> HandTrialScene::protocol_gripper(
+    const std::vector<synth::Candidate>& candidates) const {
+  std::vector<std::vector<HandTrialGrasp>> grasps;
+  for (const synth::Candidate& candidate : candidates) grasps.push_back(candidate.hands);
+  return std::make_unique<HandTrialGripper>(*this, std::move(grasps));
 }
 
 }  // namespace grip::trial

@@ -1,4 +1,7 @@
-#include "src/trial/grasp_trial.hpp"
+// A parallel gripper's trial scene as the protocol sees it, with candidates placed
+// (ParallelTrialScene::protocol_gripper).
+#include "src/trial/parallel_trial_scene.hpp"
+#include "src/trial/trial_protocol.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -16,7 +19,8 @@ constexpr std::array<Jaw, 2> kJaws = {Jaw::kPositive, Jaw::kNegative};
 // grasps[k][g] is candidate k's grasp for gripper g; finger f is jaw f % 2 of gripper f / 2.
 class ParallelTrialGripper final : public TrialGripper {
  public:
-  ParallelTrialGripper(const TrialScene& scene, std::vector<std::vector<ParallelGrasp>> grasps)
+  ParallelTrialGripper(const ParallelTrialScene& scene,
+                       std::vector<std::vector<ParallelGrasp>> grasps)
       : scene_(scene), grasps_(std::move(grasps)) {
     for (const JawBodies& jaw : scene.jaws()) finger_bodies_.push_back({jaw.finger});
   }
@@ -93,35 +97,30 @@ class ParallelTrialGripper final : public TrialGripper {
     return grasps_[k][static_cast<std::size_t>(finger / 2)];
   }
 
-  const TrialScene& scene_;
+  const ParallelTrialScene& scene_;
   std::vector<std::vector<ParallelGrasp>> grasps_;
   std::vector<std::vector<int>> finger_bodies_;
 };
 
 }  // namespace
 
-std::vector<TrialOutcome> run_trials(const TrialScene& scene,
-                                     const std::vector<ParallelGrasp>& grasps,
-                                     const TrialRunOptions& options) {
-  if (scene.gripper_count() != 1) {
-    throw std::invalid_argument("run_trials: the scene has " +
-                                std::to_string(scene.gripper_count()) + " grippers, not one");
+synth::Candidate parallel_candidate(const std::vector<ParallelGrasp>& grasps) {
+  synth::Candidate candidate;
+  for (const ParallelGrasp& grasp : grasps) {
+    candidate.hands.push_back({grasp.pose, Eigen::VectorXd::Constant(1, grasp.opening), {}, {}});
   }
-  std::vector<std::vector<ParallelGrasp>> each;
-  for (const ParallelGrasp& g : grasps) each.push_back({g});
-  return run_protocol(ParallelTrialGripper(scene, std::move(each)), options);
+  return candidate;
 }
 
-std::vector<TrialOutcome> run_bimanual_trials(
-    const TrialScene& scene, const std::vector<std::array<ParallelGrasp, 2>>& grasps,
-    const TrialRunOptions& options) {
-  if (scene.gripper_count() != 2) {
-    throw std::invalid_argument("run_bimanual_trials: the scene has " +
-                                std::to_string(scene.gripper_count()) + " gripper, not two");
+std::unique_ptr<TrialGripper> ParallelTrialScene::protocol_gripper(
+    const std::vector<synth::Candidate>& candidates) const {
+  std::vector<std::vector<ParallelGrasp>> grasps;
+  for (const synth::Candidate& candidate : candidates) {
+    std::vector<ParallelGrasp>& each = grasps.emplace_back();
+    for (const synth::HandGrasp& hand : candidate.hands)
+      each.push_back({hand.pose, hand.joints[0]});
   }
-  std::vector<std::vector<ParallelGrasp>> each;
-  for (const auto& g : grasps) each.push_back({g[0], g[1]});
-  return run_protocol(ParallelTrialGripper(scene, std::move(each)), options);
+  return std::make_unique<ParallelTrialGripper>(*this, std::move(grasps));
 }
 
 }  // namespace grip::trial

@@ -1,4 +1,4 @@
-#include "src/trial/trial_scene.hpp"
+#include "src/trial/parallel_trial_scene.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -30,8 +30,9 @@ solver::Pose to_pose(const Eigen::Isometry3d& isometry) {
 
 }  // namespace
 
-TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGripper& gripper,
-                       const TrialParameters& parameters, int grippers)
+ParallelTrialScene::ParallelTrialScene(const TrialObject& object,
+                                       const grippers::ParallelGripper& gripper,
+                                       const TrialParameters& parameters, int grippers)
     : gripper_(gripper), parameters_(parameters), object_(object) {
   validate(parameters);
   if (grippers < 1 || grippers > 2) {
@@ -130,9 +131,10 @@ TrialScene::TrialScene(const TrialObject& object, const grippers::ParallelGrippe
   object_.bind(model_);
 }
 
-TrialScene::~TrialScene() = default;
+ParallelTrialScene::~ParallelTrialScene() = default;
 
-void TrialScene::place(solver::Environment& environment, const ParallelGrasp& grasp, int g) const {
+void ParallelTrialScene::place(solver::Environment& environment, const ParallelGrasp& grasp,
+                               int g) const {
   for (int j = 0; j < 2; ++j) {
     const JawBodies& bodies = jaws_.at(static_cast<std::size_t>(2 * g + j));
     const Eigen::Isometry3d motion =
@@ -144,8 +146,8 @@ void TrialScene::place(solver::Environment& environment, const ParallelGrasp& gr
   environment.set_gravity(Eigen::Vector3d::Zero());
 }
 
-void TrialScene::advance_jaw(solver::Environment& environment, const ParallelGrasp& grasp, int jaw,
-                             double distance) const {
+void ParallelTrialScene::advance_jaw(solver::Environment& environment, const ParallelGrasp& grasp,
+                                     int jaw, double distance) const {
   const Eigen::Isometry3d motion(
       Eigen::Translation3d(closing_velocity(grasp, kJaws[jaw % 2], distance)));
   const JawBodies& bodies = jaws_.at(static_cast<std::size_t>(jaw));
@@ -153,13 +155,13 @@ void TrialScene::advance_jaw(solver::Environment& environment, const ParallelGra
   if (bodies.finger != bodies.jaw) environment.place(bodies.finger, motion);
 }
 
-Eigen::Vector3d TrialScene::closing_velocity(const ParallelGrasp& grasp, grippers::Jaw jaw,
-                                             double speed) const {
+Eigen::Vector3d ParallelTrialScene::closing_velocity(const ParallelGrasp& grasp, grippers::Jaw jaw,
+                                                     double speed) const {
   const double sign = jaw == Jaw::kPositive ? -1.0 : 1.0;
   return sign * speed * grasp.pose.linear().col(1);
 }
 
-geometry::Vertices TrialScene::gripper_surface_vertices(
+geometry::Vertices ParallelTrialScene::gripper_surface_vertices(
     const solver::Environment& environment) const {
   const Eigen::Index per_finger = surface_to_body_.size();
   geometry::Vertices vertices(static_cast<Eigen::Index>(jaws_.size()) * per_finger, 3);
@@ -172,16 +174,17 @@ geometry::Vertices TrialScene::gripper_surface_vertices(
   return vertices;
 }
 
-int TrialScene::gripper_surface_vertex_count() const {
+int ParallelTrialScene::gripper_surface_vertex_count() const {
   return static_cast<int>(jaws_.size() * surface_to_body_.size());
 }
 
-metrics::DistanceMetrics TrialScene::grasp_distances(const solver::Environment& environment) const {
+metrics::DistanceMetrics ParallelTrialScene::grasp_distances(
+    const solver::Environment& environment) const {
   return object_.distances(
       environment, finger_points_->positions(finger_vertices(environment, 0, gripper_count())));
 }
 
-std::vector<metrics::DistanceMetrics> TrialScene::gripper_distances(
+std::vector<metrics::DistanceMetrics> ParallelTrialScene::gripper_distances(
     const solver::Environment& environment) const {
   std::vector<metrics::DistanceMetrics> distances;
   if (!gripper_points_) return distances;
@@ -192,7 +195,8 @@ std::vector<metrics::DistanceMetrics> TrialScene::gripper_distances(
   return distances;
 }
 
-Eigen::VectorXd TrialScene::body_stress(const solver::Environment& environment, int body) const {
+Eigen::VectorXd ParallelTrialScene::body_stress(const solver::Environment& environment,
+                                                int body) const {
   if (body == object_body()) return object_.stress(environment);
   const bool finger = std::any_of(jaws_.begin(), jaws_.end(),
                                   [&](const JawBodies& jaw) { return jaw.finger == body; });
@@ -202,8 +206,8 @@ Eigen::VectorXd TrialScene::body_stress(const solver::Environment& environment, 
                                    material.youngs, material.poisson);
 }
 
-geometry::Vertices TrialScene::finger_vertices(const solver::Environment& environment, int first,
-                                               int last) const {
+geometry::Vertices ParallelTrialScene::finger_vertices(const solver::Environment& environment,
+                                                       int first, int last) const {
   std::vector<geometry::Vertices> bodies;
   Eigen::Index rows = 0;
   for (int i = 2 * first; i < 2 * last; ++i) {
