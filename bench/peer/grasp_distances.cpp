@@ -35,7 +35,7 @@ GraspDistances::GraspDistances(const trial::HandTrialScene& hand,
                                const trial::TrialParameters& parameters)
     : points_(hand.rest_surface(), parameters.metric_samples, parameters.metric_seed),
       object_(object) {
-  // The links with a surface in link order, as HandTrialScene::hand_surface_vertices orders them.
+  // The links with a surface in link order, as HandTrialScene::surface_vertices orders them.
   const std::vector<grippers::KinematicLink>& links = hand.kinematics().links();
   for (std::size_t l = 0; l < links.size(); ++l) {
     if (links[l].surface.triangles.rows() == 0) continue;

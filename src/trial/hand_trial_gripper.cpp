@@ -1,7 +1,7 @@
 // A hand's trial scene as the protocol sees it, with candidates placed
 // (HandTrialScene::protocol_gripper).
 #include "src/trial/hand_trial_scene.hpp"
-#include "src/trial/trial_protocol.hpp"
+#include "src/trial/scene_trial_gripper.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -14,10 +14,10 @@ namespace {
 // One or two hands in the protocol: each finger's travel runs along its closing direction in
 // its hand's joint space (HandTrialScene::closing_direction, fixed at the candidate) until one
 // of its joints reaches a limit. grasps[k][h] is candidate k's grasp for hand h.
-class HandTrialGripper final : public TrialGripper {
+class HandTrialGripper final : public SceneTrialGripper<HandTrialScene> {
  public:
   HandTrialGripper(const HandTrialScene& scene, std::vector<std::vector<HandTrialGrasp>> grasps)
-      : scene_(scene), grasps_(std::move(grasps)) {
+      : SceneTrialGripper(scene), grasps_(std::move(grasps)) {
     const auto fingers = static_cast<int>(scene.fingers().size());
     for (std::size_t k = 0; k < grasps_.size(); ++k) {
       try {
@@ -37,10 +37,6 @@ class HandTrialGripper final : public TrialGripper {
     }
   }
 
-  const TrialParameters& parameters() const override { return scene_.parameters(); }
-  const std::shared_ptr<const solver::Model>& model() const override { return scene_.model(); }
-  bool soft_object() const override { return scene_.soft_object(); }
-  int object_body() const override { return scene_.object_body(); }
   std::size_t candidate_count() const override { return grasps_.size(); }
   int finger_count() const override { return static_cast<int>(scene_.fingers().size()); }
   const std::vector<int>& finger_bodies(int finger) const override {
@@ -102,23 +98,6 @@ class HandTrialGripper final : public TrialGripper {
     return values;
   }
 
-  geometry::Vertices surface_vertices(const solver::Environment& environment) const override {
-    return scene_.hand_surface_vertices(environment);
-  }
-  std::array<double, 12> object_pose(const solver::Environment& environment) const override {
-    return scene_.object_pose(environment);
-  }
-  metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const override {
-    return scene_.grasp_distances(environment);
-  }
-  std::vector<metrics::DistanceMetrics> gripper_distances(
-      const solver::Environment& environment) const override {
-    return scene_.hand_distances(environment);
-  }
-  Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const override {
-    return scene_.body_stress(environment, body);
-  }
-
  private:
   // Per finger: its closing direction in joint space and its longest travel (m).
   struct Path {
@@ -131,7 +110,6 @@ class HandTrialGripper final : public TrialGripper {
     return grasps_[k][static_cast<std::size_t>(hand)];
   }
 
-  const HandTrialScene& scene_;
   std::vector<std::vector<HandTrialGrasp>> grasps_;
   std::vector<Path> paths_;
 };

@@ -331,8 +331,7 @@ geometry::Vertices HandTrialScene::hand_vertices(const solver::Environment& envi
   return vertices;
 }
 
-geometry::Vertices HandTrialScene::hand_surface_vertices(
-    const solver::Environment& environment) const {
+geometry::Vertices HandTrialScene::surface_vertices(const solver::Environment& environment) const {
   if (hands_.size() == 1) return hand_vertices(environment, 0);
   const geometry::Vertices right = hand_vertices(environment, 0);
   const geometry::Vertices left = hand_vertices(environment, 1);
@@ -343,11 +342,10 @@ geometry::Vertices HandTrialScene::hand_surface_vertices(
 
 metrics::DistanceMetrics HandTrialScene::grasp_distances(
     const solver::Environment& environment) const {
-  return object_.distances(environment,
-                           hand_points_->positions(hand_surface_vertices(environment)));
+  return object_.distances(environment, hand_points_->positions(surface_vertices(environment)));
 }
 
-std::vector<metrics::DistanceMetrics> HandTrialScene::hand_distances(
+std::vector<metrics::DistanceMetrics> HandTrialScene::gripper_distances(
     const solver::Environment& environment) const {
   std::vector<metrics::DistanceMetrics> distances;
   for (std::size_t h = 0; h < each_hand_points_.size(); ++h) {

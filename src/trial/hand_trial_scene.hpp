@@ -122,14 +122,14 @@ class HandTrialScene final : public TrialScene {
 
   // The hand's surface: every link with a surface in link order, each link's vertices in its
   // mesh's order (hand after hand). rest_surface() has the joints at 0 in the hand frame (the
-  // dataset's gripper surface); hand_surface_vertices() is the same vertices in an environment
+  // dataset's gripper surface); surface_vertices() is the same vertices in an environment
   // now.
   const geometry::SurfaceMesh& rest_surface() const { return rest_surface_; }
   // Hand h's rows of rest_surface(), in its own hand frame (the left hand mirrors the right).
   const geometry::SurfaceMesh& hand_rest_surface(int h) const {
     return hand_rest_surfaces_.at(static_cast<std::size_t>(h));
   }
-  geometry::Vertices hand_surface_vertices(const solver::Environment& environment) const;
+  geometry::Vertices surface_vertices(const solver::Environment& environment) const;
 
   // The object's pose as a row-major 3x4 [A | t], world from object frame (A: the affine
   // body's matrix; a soft object's best-fit rotation).
@@ -141,7 +141,7 @@ class HandTrialScene final : public TrialScene {
   // are sampled once on the rest surface of the hands' links and follow them; and per hand, from
   // points sampled on its own links (empty for one hand).
   metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const;
-  std::vector<metrics::DistanceMetrics> hand_distances(
+  std::vector<metrics::DistanceMetrics> gripper_distances(
       const solver::Environment& environment) const;
 
   // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
@@ -159,7 +159,7 @@ class HandTrialScene final : public TrialScene {
   };
 
   const HandLinks& links_of(int finger) const;
-  // Hand h's surface vertices now, the rows of hand_surface_vertices() it takes.
+  // Hand h's surface vertices now, the rows of surface_vertices() it takes.
   geometry::Vertices hand_vertices(const solver::Environment& environment, int h) const;
 
   std::vector<grippers::HandModel> hands_;

@@ -1,7 +1,7 @@
 // A parallel gripper's trial scene as the protocol sees it, with candidates placed
 // (ParallelTrialScene::protocol_gripper).
 #include "src/trial/parallel_trial_scene.hpp"
-#include "src/trial/trial_protocol.hpp"
+#include "src/trial/scene_trial_gripper.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -17,18 +17,14 @@ constexpr std::array<Jaw, 2> kJaws = {Jaw::kPositive, Jaw::kNegative};
 // One or two parallel grippers in the protocol: each jaw is a finger whose travel runs along its
 // gripper's closing axis, down to final_opening; a gripper's joint value is its opening.
 // grasps[k][g] is candidate k's grasp for gripper g; finger f is jaw f % 2 of gripper f / 2.
-class ParallelTrialGripper final : public TrialGripper {
+class ParallelTrialGripper final : public SceneTrialGripper<ParallelTrialScene> {
  public:
   ParallelTrialGripper(const ParallelTrialScene& scene,
                        std::vector<std::vector<ParallelGrasp>> grasps)
-      : scene_(scene), grasps_(std::move(grasps)) {
+      : SceneTrialGripper(scene), grasps_(std::move(grasps)) {
     for (const JawBodies& jaw : scene.jaws()) finger_bodies_.push_back({jaw.finger});
   }
 
-  const TrialParameters& parameters() const override { return scene_.parameters(); }
-  const std::shared_ptr<const solver::Model>& model() const override { return scene_.model(); }
-  bool soft_object() const override { return scene_.soft_object(); }
-  int object_body() const override { return scene_.object_body(); }
   std::size_t candidate_count() const override { return grasps_.size(); }
   int finger_count() const override { return static_cast<int>(finger_bodies_.size()); }
   const std::vector<int>& finger_bodies(int finger) const override {
@@ -75,29 +71,11 @@ class ParallelTrialGripper final : public TrialGripper {
     return openings;
   }
 
-  geometry::Vertices surface_vertices(const solver::Environment& environment) const override {
-    return scene_.gripper_surface_vertices(environment);
-  }
-  std::array<double, 12> object_pose(const solver::Environment& environment) const override {
-    return scene_.object_pose(environment);
-  }
-  metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const override {
-    return scene_.grasp_distances(environment);
-  }
-  std::vector<metrics::DistanceMetrics> gripper_distances(
-      const solver::Environment& environment) const override {
-    return scene_.gripper_distances(environment);
-  }
-  Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const override {
-    return scene_.body_stress(environment, body);
-  }
-
  private:
   const ParallelGrasp& grasp(std::size_t k, int finger) const {
     return grasps_[k][static_cast<std::size_t>(finger / 2)];
   }
 
-  const ParallelTrialScene& scene_;
   std::vector<std::vector<ParallelGrasp>> grasps_;
   std::vector<std::vector<int>> finger_bodies_;
 };

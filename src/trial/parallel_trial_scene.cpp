@@ -161,7 +161,7 @@ Eigen::Vector3d ParallelTrialScene::closing_velocity(const ParallelGrasp& grasp,
   return sign * speed * grasp.pose.linear().col(1);
 }
 
-geometry::Vertices ParallelTrialScene::gripper_surface_vertices(
+geometry::Vertices ParallelTrialScene::surface_vertices(
     const solver::Environment& environment) const {
   const Eigen::Index per_finger = surface_to_body_.size();
   geometry::Vertices vertices(static_cast<Eigen::Index>(jaws_.size()) * per_finger, 3);

@@ -290,7 +290,7 @@ TEST(BimanualTrial, GripperRecordDescribesBothGrippers) {
     EXPECT_GE(r2.triangles[i], static_cast<std::int32_t>(n));
     EXPECT_LT(r2.triangles[i], static_cast<std::int32_t>(2 * n));
   }
-  // The frames' order: hand_surface_vertices at rest is the record's surface.
+  // The frames' order: surface_vertices at rest is the record's surface.
   EXPECT_EQ(two.rest_surface().vertices.rows(), static_cast<Eigen::Index>(2 * n));
 
   const ParallelTrialScene jaws(
