@@ -2,7 +2,7 @@
 // Where an HDF5 file keeps its stored values: the byte ranges of every dataset's contiguous
 // storage, in file order. Every other byte is HDF5's own structure (superblock, object headers
 // with their attributes, B-trees, heaps). A grip dataset stores every dataset contiguously and
-// allocates it at creation (io/dataset_writer.cpp), so its values are all in these ranges.
+// allocates it at creation (io/layout_writer.cpp), so its values are all in these ranges.
 #include <hdf5.h>
 
 #include <algorithm>

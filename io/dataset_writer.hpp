@@ -4,15 +4,14 @@
 // touch raw data at fixed offsets only; commit_unit() commits one rank's work unit alone
 // (independent writes, a sync, its ids to rank 0's journal), write() a batch from every rank
 // collectively; resume() reopens a file of the same job and reports which candidates are done.
+// Each concern is its own file: layout_writer, row_writer, result_check, sync_file,
+// journal_relay, resume_state.
 #include <mpi.h>
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
-#include <map>
-#include <optional>
 #include <span>
-#include <string>
 #include <vector>
 
 #include "io/candidate_record.hpp"
@@ -20,8 +19,10 @@
 #include "io/dataset_layout.hpp"
 #include "io/dataset_plan.hpp"
 #include "io/hdf5.hpp"
-#include "io/journal.hpp"
+#include "io/journal_relay.hpp"
 #include "io/provenance.hpp"
+#include "io/row_writer.hpp"
+#include "io/sync_file.hpp"
 
 namespace grip::io {
 
@@ -74,51 +75,20 @@ class DatasetWriter {
   void close();
 
  private:
-  // The dataset's file as a plain descriptor, to sync this rank's independent writes.
-  class SyncFile {
-   public:
-    SyncFile() = default;
-    explicit SyncFile(int fd) : fd_(fd) {}
-    SyncFile(SyncFile&& other) noexcept;
-    SyncFile& operator=(SyncFile&& other) noexcept;
-    ~SyncFile();
-    int get() const { return fd_; }
-
-   private:
-    int fd_ = -1;
-  };
-  struct Send {
-    MPI_Request request = MPI_REQUEST_NULL;
-    std::vector<std::uint64_t> ids;
-  };
-
-  DatasetWriter(std::filesystem::path path, DatasetLayout layout, MPI_Comm comm);
+  DatasetWriter(std::filesystem::path path, MPI_Comm comm);
   void open_collective(bool create);
-  void open_row_datasets();
-  hid_t row_dataset(const std::string& path) const;
-  // Writes `sorted`'s rows and checksums into every row dataset in `touched` (candidate table,
-  // then trajectories per pair, then stress per object); collectively, every rank joining each.
-  void write_result_rows(const std::vector<const CandidateResult*>& sorted,
-                         const std::vector<std::uint8_t>& touched, bool collective);
-  std::vector<std::uint8_t> touched_by(const std::vector<const CandidateResult*>& sorted) const;
-  void append_to_journal();
+  void check_open() const;
 
   std::filesystem::path path_;
   DatasetLayout layout_;
   MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0;
   h5::Handle file_;
-  h5::Handle transfer_;                             // collective MPI-IO data transfer
-  h5::Handle independent_;                          // independent MPI-IO data transfer
-  std::map<std::string, h5::Handle> row_datasets_;  // opened collectively, by path
   SyncFile sync_file_;
+  RowWriter row_writer_;  // opened once the layout is in the file
   std::vector<std::uint8_t> done_;
   std::vector<Damage> damaged_;
-  std::optional<Journal> journal_;          // rank 0 only
-  std::vector<std::uint64_t> unjournaled_;  // rank 0: committed ids not yet in the journal
-  std::uint64_t units_received_ = 0;        // rank 0: messages from other ranks
-  std::vector<Send> sends_;                 // other ranks: ids sent to rank 0, maybe not received
-  std::uint64_t units_sent_ = 0;
+  JournalRelay journal_;
 };
 
 }  // namespace grip::io

@@ -1,6 +1,7 @@
 #include "io/hdf5.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 #include "io/dataset_error.hpp"
 
@@ -141,6 +142,21 @@ std::vector<hsize_t> dims(hid_t dataset) {
   std::vector<hsize_t> result(static_cast<std::size_t>(std::max(rank, 0)));
   if (rank > 0) H5Sget_simple_extent_dims(space, result.data(), nullptr);
   return result;
+}
+
+std::size_t element_count(const std::vector<hsize_t>& dims) {
+  return std::accumulate(dims.begin(), dims.end(), std::size_t{1},
+                         [](std::size_t a, hsize_t b) { return a * b; });
+}
+
+Handle transfer_properties(bool collective) {
+  Handle transfer = plist_handle(H5Pcreate(H5P_DATASET_XFER), "creating transfer properties");
+  if (collective) {
+    check(H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE), "choosing collective transfers");
+  } else {
+    check(H5Pset_dxpl_mpio(transfer, H5FD_MPIO_INDEPENDENT), "choosing independent transfers");
+  }
+  return transfer;
 }
 
 std::vector<std::string> read_strings(hid_t dataset) {

@@ -72,8 +72,12 @@ std::string read_string_attribute(hid_t object, const std::string& name);
 double read_double_attribute(hid_t object, const std::string& name);
 std::uint64_t read_uint_attribute(hid_t object, const std::string& name);
 
-// The dimensions of a dataset.
+// The dimensions of a dataset, and the number of elements such dimensions hold.
 std::vector<hsize_t> dims(hid_t dataset);
+std::size_t element_count(const std::vector<hsize_t>& dims);
+
+// MPI-IO data transfer properties: collective (every rank joins each write) or independent.
+Handle transfer_properties(bool collective);
 
 // Reads a whole numeric dataset, converted to the memory type of T.
 template <typename T>
