@@ -10,7 +10,7 @@
 
 #include "io/gripper_record.hpp"
 #include "solver/linear/linear_system_solver.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/synth/candidate.hpp"
 #include "src/trial/trial_object.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // The solver settings shared by scene files' [sim] table and job files' [physics] table, read
 // strictly with their range checks (docs/scene-format.md lists them).
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 #include "src/config/config.hpp"
 
 namespace grip::scene {

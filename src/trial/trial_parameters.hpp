@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace grip::trial {
 
