@@ -38,3 +38,7 @@ foreach(source src/scene/sim_parameters.cpp src/synth/triangle_tree.cpp
   set_source_files_properties(${PROJECT_SOURCE_DIR}/${source} DIRECTORY ${dir}
                               PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
 endforeach()
+# The broad phase too: in a batch, GCC stops inlining its inner loops' box and distance tests.
+set_source_files_properties(${PROJECT_SOURCE_DIR}/solver/contact/candidates.cpp
+                            DIRECTORY ${PROJECT_SOURCE_DIR}/solver
+                            PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)

@@ -18,7 +18,7 @@
 #include "farm/petsc/petsc_session.hpp"
 #include "farm/petsc/petsc_system_solver.hpp"
 #include "solver/linear/linear_system_solver.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace grip::farm {
 

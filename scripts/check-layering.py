@@ -4,8 +4,14 @@
 The rule is the `layering` block of docs/architecture.md (module folder, its CMake target, the
 module folders it may include). This script reads that block, every #include of a project
 header under solver/ src/ io/ farm/ app/ bench/ tests/, and every CMakeLists.txt, and prints
-one line per violation (file:line, the include or link, the rule broken). Exit status: 0 when
-the tree keeps the rule, 1 on a violation, 2 when the table or the tree cannot be read.
+one line per violation (file:line, the include or link, the rule broken), and the modules of an
+include cycle if the includes make one. Exit status: 0 when the tree keeps the rule, 1 on a
+violation, 2 when the table or the tree cannot be read.
+
+Several module folders may share one target (the solver's folders all build grip_solver):
+between them each include is checked against the block, but from a module of another target
+they are one, so listing a module allows the folders under it that its target builds too
+(`src/trial` lists `solver` and may include `solver/newton`).
 
   scripts/check-layering.py                 check the tree this script lives in
   scripts/check-layering.py --root DIR      check another tree (DIR/docs/architecture.md's table)
@@ -79,10 +85,24 @@ def read_table(path):
                                  "which is not a module of the table")
             if other == module:
                 raise TableError(f"{path}:{line}: {module} lists itself")
-    cycle = find_cycle({m: a for m, (_, a, _) in table.items()})
+    cycle = find_cycle(allowed_edges(table))
     if cycle:
         raise TableError(f"{path}: the table has a cycle: {' -> '.join(cycle)}")
     return table
+
+
+def allowed_edges(table):
+    """{module: set of modules it may include}: the block's edges, and from a module of another
+    target, the folders under a listed module that the listed module's target builds too."""
+    edges = {}
+    for module, (target, allowed, _) in table.items():
+        edges[module] = set(allowed)
+        for other in allowed:
+            if table[other][0] == target:
+                continue
+            edges[module] |= {m for m, (t, _, _) in table.items()
+                              if t == table[other][0] and m.startswith(other + "/")}
+    return edges
 
 
 def find_cycle(graph):
@@ -109,6 +129,18 @@ def find_cycle(graph):
             if found:
                 return found
     return None
+
+
+def include_cycles(edges, first_include):
+    """A line naming the modules of an include cycle, and an include of each edge, if any."""
+    graph = collections.defaultdict(list)
+    for (a, b) in sorted(edges):
+        graph[a].append(b)
+    cycle = find_cycle(graph)
+    if not cycle:
+        return []
+    sites = ", ".join(first_include[(a, b)] for a, b in zip(cycle, cycle[1:]))
+    return [f"include cycle between modules: {' -> '.join(cycle)} ({sites})"]
 
 
 def module_of(path, modules):
@@ -315,6 +347,8 @@ def check(root, table_path):
     files = list(project_files(root))
     includes = {f: read_includes(root, f) for f in files}
     edges = collections.Counter()
+    first_include = {}  # (module, module) -> where the first include across that edge is
+    allowed = allowed_edges(table)
 
     # 1. Every include follows an edge of the table.
     for path in files:
@@ -337,9 +371,11 @@ def check(root, table_path):
             if in_tests or there == here:
                 continue
             edges[(here, there)] += 1
-            if there not in table[here][1]:
+            first_include.setdefault((here, there), f"{path}:{number}")
+            if there not in allowed[here]:
                 violations.append(f"{where}: module {here} may not include module {there} "
                                   f"({table_rel}, layering block)")
+    violations.extend(include_cycles(edges, first_include))
 
     # 2. Every target links (directly, or through PUBLIC dependencies) the target of each module
     #    whose headers its sources reach, and links across allowed edges only.
@@ -347,12 +383,12 @@ def check(root, table_path):
         targets = read_targets(root)
     except (OSError, UnicodeDecodeError) as e:
         raise TableError(f"cannot read the CMake files: {e}")
-    provider = {}
+    provider = collections.defaultdict(list)  # target -> its modules, in table order
     for module, (target, _, line) in table.items():
         if target not in targets:
             table_errors.append(f"{table_rel}:{line}: module {module}: target {target} is "
                                 "defined by no CMakeLists.txt")
-        provider[target] = module
+        provider[target].append(module)
     # A header belongs to the target that compiles its .cpp (src/app has several targets);
     # a header without one to its module's target.
     header_target = {}
@@ -365,15 +401,15 @@ def check(root, table_path):
     reported = set()
     for name in sorted(targets):
         t = targets[name]
-        owner = provider.get(name) or module_of(t.folder, modules)
-        if owner is None and not (t.folder + "/").startswith(TESTS + "/"):
+        owners = provider.get(name) or [m for m in [module_of(t.folder, modules)] if m]
+        if not owners and not (t.folder + "/").startswith(TESTS + "/"):
             continue  # e.g. cmake/'s wrappers of third-party libraries
-        if owner is not None:
-            for _, lib, cmake, line in t.links:
-                other = provider.get(lib)
-                if other and other != owner and other not in table[owner][1]:
-                    violations.append(f"{cmake}:{line}: {name} links {lib}: module {owner} may "
-                                      f"not use module {other} ({table_rel}, layering block)")
+        for _, lib, cmake, line in t.links if owners else ():
+            others = provider.get(lib, [])
+            if others and not any(w in others or o in allowed[w] for w in owners for o in others):
+                owner, other = min(owners, key=len), min(others, key=len)
+                violations.append(f"{cmake}:{line}: {name} links {lib}: module {owner} may "
+                                  f"not use module {other} ({table_rel}, layering block)")
         reach = compile_closure(name, targets, memo)
         for source in t.sources:
             if source not in includes:
@@ -389,7 +425,7 @@ def check(root, table_path):
                     if header in includes:
                         stack.append(header)
                     there = module_of(header, modules)
-                    if there is None or there == owner:
+                    if there is None or there in owners:
                         continue
                     need = header_target.get(header, table[there][0])
                     key = (path, number, name)

@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "solver/body/body.hpp"
 #include "solver/contact/candidates.hpp"
 #include "solver/linear/blas_threads.hpp"
 
@@ -29,7 +28,14 @@ Environment::Environment(std::shared_ptr<const Model> model)
   state_.gravity = model_->sim().gravity;
   state_.kappa = model_->sim().kappa;
   for (std::size_t b = 0; b < body_count; ++b) {
-    initial_body_state(model_->bodies()[b], static_cast<int>(b), scene.bodies[b], state_);
+    const BodyDescription& description = scene.bodies[b];
+    state_.poses[b] = description.pose;
+    state_.scripts[b] = description.script;
+    state_.kinematic_velocity[b] = description.script.keyframes.empty()
+                                       ? description.script.velocity
+                                       : Eigen::Vector3d::Zero();
+    const BodyModel& body = model_->bodies()[b];
+    body.kind->initial_state(body.local, description, state_);
   }
 }
 
@@ -40,7 +46,8 @@ void Environment::place(int index, const Eigen::Isometry3d& motion) {
   if (state_.time != 0.0 || step_) {
     throw std::logic_error("Environment::place after the first step");
   }
-  place_body(model_->bodies().at(static_cast<std::size_t>(index)), index, motion, state_);
+  const BodyModel& body = model_->bodies().at(static_cast<std::size_t>(index));
+  body.kind->place(body.local, motion, state_);
   near_.reset();
 }
 
@@ -50,29 +57,10 @@ void Environment::set_script(int body, const Script& script) {
 
 void Environment::hold(int index) {
   const BodyModel& body = model_->bodies().at(static_cast<std::size_t>(index));
-  if (body.type == BodyType::kKinematic) {
+  if (!body.has_dofs()) {
     throw std::invalid_argument("Environment::hold: body '" + body.name + "' is kinematic");
   }
-  std::vector<int> dofs;
-  if (body.type == BodyType::kAffine) {
-    for (int d = 0; d < body.dof_count; ++d) dofs.push_back(body.dof_offset + d);
-  } else {
-    const Eigen::Vector3d center = center_of_mass(index);
-    const auto vertex = [&](int v) { return state_.q.segment<3>(body.dof_offset + 3 * v); };
-    const FemTet* nearest = nullptr;
-    double nearest_sq = std::numeric_limits<double>::infinity();
-    for (const FemTet& tet : body.tets) {
-      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-      for (int v : tet.vertices) centroid += 0.25 * vertex(v);
-      if ((centroid - center).squaredNorm() < nearest_sq) {
-        nearest_sq = (centroid - center).squaredNorm();
-        nearest = &tet;
-      }
-    }
-    for (int v : nearest->vertices) {
-      for (int k = 0; k < 3; ++k) dofs.push_back(body.dof_offset + 3 * v + k);
-    }
-  }
+  const std::vector<int> dofs = body.kind->held_dofs(body.local, state_);
   if (state_.held.empty()) state_.held.assign(static_cast<std::size_t>(model_->dof_count()), 0);
   for (int d : dofs) {
     state_.held[static_cast<std::size_t>(d)] = 1;
@@ -118,7 +106,7 @@ Environment::Progress Environment::begin_step() {
   if (state_.time == 0.0) {
     const StepTargets now = targets_at_rest(*model_, state_);
     const Vertices start = solver::collision_positions(*model_, state_.q, now, 0.0);
-    near_ = newton_.broad_phase().find(*model_, start, start, model_->sim().d_hat);
+    near_ = newton_.broad_phase().find(model_->collision(), start, start, model_->sim().d_hat);
     for (const ContactCandidate& c : *near_) {
       if (!(newton_.potential().barrier().contact_force(c, start).distance > 0.0)) {
         return fail(Failure::kIntersectingStart,
@@ -212,7 +200,7 @@ void Environment::finish_part() {
   const double h = step_->h;
   state_.v = (state_.q - targets.q_start) / h;
   for (std::size_t b = 0; b < model_->bodies().size(); ++b) {
-    if (!is_scripted(model_->bodies()[b])) continue;
+    if (!model_->bodies()[b].scripted()) continue;
     state_.kinematic_velocity[b] = (targets.pose_target[b].position - state_.poses[b].position) / h;
     state_.poses[b] = targets.pose_target[b];
   }
@@ -234,7 +222,7 @@ void Environment::finish_step() {
 void Environment::record_diagnostics() {
   const StageTimer timer(newton_.stages().diagnostics);
   const Vertices x = solver::collision_positions(*model_, state_.q, step_->targets, 1.0);
-  if (!near_) near_ = newton_.broad_phase().find(*model_, x, x, model_->sim().d_hat);
+  if (!near_) near_ = newton_.broad_phase().find(model_->collision(), x, x, model_->sim().d_hat);
   diagnostics_.min_volume_ratio = min_volume_ratio();
   diagnostics_.friction_contacts =
       static_cast<int>(newton_.potential().friction().contacts().size());

@@ -10,14 +10,14 @@
 #include <optional>
 #include <string>
 
-#include "solver/contact/contact_forces.hpp"
-#include "solver/diagnostics.hpp"
-#include "solver/failure.hpp"
 #include "solver/linear/linear_system_solver.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
+#include "solver/newton/diagnostics.hpp"
+#include "solver/newton/failure.hpp"
 #include "solver/newton/newton_solver.hpp"
 #include "solver/newton/step_policy.hpp"
-#include "solver/state.hpp"
+#include "solver/potential/contact_forces.hpp"
+#include "solver/scene/state.hpp"
 
 namespace grip::solver {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
-#include "solver/body/body.hpp"
 #include "solver/contact/aabb.hpp"
 #include "solver/contact/bvh.hpp"
 #include "solver/environment.hpp"
@@ -114,31 +114,34 @@ Vertices Environment::collision_positions() const {
 
 Vertices Environment::body_vertices(int index) const {
   const BodyModel& body = model_->bodies()[index];
-  Vertices x(body.rest.rows(), 3);
-  for (Eigen::Index v = 0; v < body.rest.rows(); ++v) {
-    x.row(v) = vertex_position(body, state_.q, state_.poses[index], static_cast<int>(v));
-  }
+  std::vector<int> all(static_cast<std::size_t>(body.kind->vertex_count(body.local)));
+  std::iota(all.begin(), all.end(), 0);
+  Vertices x(static_cast<Eigen::Index>(all.size()), 3);
+  body.kind->vertex_positions(body.local, state_.q, state_.poses[index], all, x, 0);
   return x;
 }
 
 Eigen::Vector3d Environment::center_of_mass(int index) const {
-  return solver::center_of_mass(model_->bodies()[index], index, state_);
+  const BodyModel& body = model_->bodies()[index];
+  return body.kind->center_of_mass(body.local, state_);
 }
 
 Eigen::Vector3d Environment::center_of_mass_velocity(int index) const {
-  return solver::center_of_mass_velocity(model_->bodies()[index], index, state_);
+  const BodyModel& body = model_->bodies()[index];
+  return body.kind->center_of_mass_velocity(body.local, state_);
 }
 
 Eigen::Matrix3d Environment::rotation(int index) const {
-  return body_rotation(model_->bodies()[index], index, state_);
+  const BodyModel& body = model_->bodies()[index];
+  return body.kind->rotation(body.local, state_);
 }
 
-double Environment::min_volume_ratio() const { return solver::min_volume_ratio(*model_, state_.q); }
+double Environment::min_volume_ratio() const { return model_->min_volume_ratio(state_.q); }
 
 VertexContactForces Environment::vertex_contact_forces() {
   const Vertices x = collision_positions();
   const std::vector<ContactCandidate> near =
-      newton_.broad_phase().find(*model_, x, x, model_->sim().d_hat);
+      newton_.broad_phase().find(model_->collision(), x, x, model_->sim().d_hat);
   return solver::vertex_contact_forces(*model_, newton_.potential(), x, near);
 }
 

@@ -32,7 +32,7 @@ void place_copy(solver::Environment& env, int copy, const BatchBenchmarkOptions&
   std::vector<char> pinned(model.bodies().size(), 0);
   for (const solver::PinnedVertex& pin : model.pins()) pinned[pin.body] = 1;
   for (std::size_t b = 0; b < model.bodies().size(); ++b) {
-    if (model.bodies()[b].type == solver::BodyType::kKinematic || pinned[b]) continue;
+    if (!model.bodies()[b].has_dofs() || pinned[b]) continue;
     const Eigen::Vector3d shift(uniform(rng), uniform(rng), uniform(rng));
     env.place(static_cast<int>(b),
               Eigen::Isometry3d(Eigen::Translation3d(model.sim().d_hat * shift)));

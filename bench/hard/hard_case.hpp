@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "solver/environment.hpp"
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace grip::bench {
 

@@ -265,7 +265,8 @@ HardCase needle_into_soft_block() {
             // The dent: how far the block's top surface went down under the tip.
             const int b = body_index(env, "block");
             const solver::Vertices x = env.body_vertices(b);
-            const solver::Vertices& rest = env.model().bodies()[b].rest;
+            const solver::BodyModel& body = env.model().bodies()[b];
+            const solver::Vertices rest = body.kind->rest_vertices(body.local);
             double lowest = kTop;
             for (Eigen::Index v = 0; v < x.rows(); ++v) {
               if (rest(v, 2) > kTop - 1e-9) lowest = std::min(lowest, x(v, 2));

@@ -2,7 +2,7 @@
 // A bimanual-like Newton system source: a soft cube squeezed by two grippers' pairs of soft
 // finger pads (one pair along x, one along y), each pad pinned to a kinematic jaw. The tet
 // cell size sets the system's size, from about 2,000 DOFs (1 cm) up.
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace grip::bench {
 

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace grip::bench {
 

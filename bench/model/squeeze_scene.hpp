@@ -9,7 +9,7 @@
 #include <string>
 
 #include "solver/environment.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace grip::bench {
 

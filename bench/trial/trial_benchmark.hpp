@@ -14,7 +14,7 @@
 
 #include "bench/labels/labels_benchmark.hpp"
 #include "bench/robustness/robustness_benchmark.hpp"
-#include "solver/diagnostics.hpp"
+#include "solver/newton/diagnostics.hpp"
 #include "src/trial/trial_parameters.hpp"
 
 namespace grip::bench {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <tuple>
 
-#include "solver/body/body.hpp"
 #include "solver/kernels/edge_edge_distance.hpp"
 #include "solver/kernels/edge_edge_mollifier.hpp"
 #include "solver/kernels/point_triangle_distance.hpp"
@@ -12,23 +11,17 @@
 namespace grip::solver {
 namespace {
 
-Eigen::Vector3d rest_position(const Model& model, int collision_vertex) {
-  const CollisionMesh& mesh = model.collision();
-  return model.bodies()[mesh.vertex_body[collision_vertex]].rest.row(
-      mesh.vertex_local[collision_vertex]);
-}
-
 // For each body, the bodies whose primitives its own look among: for the pairs of one body
 // (own_body >= 0), that body alone, itself; for the pairs of two, the others each may touch.
-std::vector<std::vector<int>> partner_bodies(const Model& model, int own_body) {
-  std::vector<std::vector<int>> partners(model.bodies().size());
+std::vector<std::vector<int>> partner_bodies(const CollisionMesh& mesh, int own_body) {
+  std::vector<std::vector<int>> partners(static_cast<std::size_t>(mesh.body_count()));
   if (own_body >= 0) {
     partners[own_body] = {own_body};
     return partners;
   }
   for (int a = 0; a < static_cast<int>(partners.size()); ++a) {
     for (int b = 0; b < static_cast<int>(partners.size()); ++b) {
-      if (b != a && model.may_touch(a, b)) partners[a].push_back(b);
+      if (b != a && mesh.may_touch(a, b)) partners[a].push_back(b);
     }
   }
   return partners;
@@ -36,11 +29,10 @@ std::vector<std::vector<int>> partner_bodies(const Model& model, int own_body) {
 
 // Each vertex's triangles are listed by face index: the order of the trees' answers depends on
 // their shape, which depends on the boxes they were built over.
-void add_point_triangle_candidates(const Model& model, int own_body,
+void add_point_triangle_candidates(const CollisionMesh& mesh, int own_body,
                                    const std::vector<Aabb>& vertex_boxes, PrimitiveTrees& faces,
                                    std::vector<int>& hits, KeptPairs& kept) {
-  const CollisionMesh& mesh = model.collision();
-  const std::vector<std::vector<int>> partners = partner_bodies(model, own_body);
+  const std::vector<std::vector<int>> partners = partner_bodies(mesh, own_body);
   for (int v = 0; v < mesh.size(); ++v) {
     const int body_v = mesh.vertex_body[v];
     if (partners[body_v].empty()) continue;
@@ -53,7 +45,7 @@ void add_point_triangle_candidates(const Model& model, int own_body,
       const auto& t = mesh.faces[f];
       if (t[0] == v || t[1] == v || t[2] == v) continue;
       const std::array<int, 4> pair{v, t[0], t[1], t[2]};
-      kept.add({false, pair, model.pair_friction(body_v, mesh.vertex_body[t[0]]), 0.0,
+      kept.add({false, pair, mesh.pair_friction(body_v, mesh.vertex_body[t[0]]), 0.0,
                 own_body >= 0 && mesh.near_at_rest(false, pair)},
                {v, f});
     }
@@ -61,15 +53,14 @@ void add_point_triangle_candidates(const Model& model, int own_body,
 }
 
 // Each unordered pair of edges once: from its lower index when both or neither are on untouching
-// bodies (Model::among_untouching), else from the untouching edge's side. Each edge's partners are
-// listed by edge index.
-void add_edge_edge_candidates(const Model& model, int own_body, PrimitiveTrees& edges,
+// bodies (CollisionMesh::among_untouching), else from the untouching edge's side. Each edge's
+// partners are listed by edge index.
+void add_edge_edge_candidates(const CollisionMesh& mesh, int own_body, PrimitiveTrees& edges,
                               std::vector<int>& hits, KeptPairs& kept) {
-  const CollisionMesh& mesh = model.collision();
   auto untouching = [&](int edge) {
-    return model.among_untouching(mesh.vertex_body[mesh.edges[edge][0]]);
+    return mesh.among_untouching(mesh.vertex_body[mesh.edges[edge][0]]);
   };
-  const std::vector<std::vector<int>> partners = partner_bodies(model, own_body);
+  const std::vector<std::vector<int>> partners = partner_bodies(mesh, own_body);
   for (int a = 0; a < static_cast<int>(mesh.edges.size()); ++a) {
     const auto& ea = mesh.edges[a];
     const int body_a = mesh.vertex_body[ea[0]];
@@ -88,10 +79,10 @@ void add_edge_edge_candidates(const Model& model, int own_body, PrimitiveTrees& 
       if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
       // The threshold depends on rest lengths only, so each edge may be in its own body frame.
       const double eps = kernels::edge_edge_mollifier_threshold(
-          rest_position(model, ea[0]), rest_position(model, ea[1]), rest_position(model, eb[0]),
-          rest_position(model, eb[1]));
+          mesh.rest_position(ea[0]), mesh.rest_position(ea[1]), mesh.rest_position(eb[0]),
+          mesh.rest_position(eb[1]));
       const std::array<int, 4> pair{ea[0], ea[1], eb[0], eb[1]};
-      kept.add({true, pair, model.pair_friction(body_a, mesh.vertex_body[eb[0]]), eps,
+      kept.add({true, pair, mesh.pair_friction(body_a, mesh.vertex_body[eb[0]]), eps,
                 own_body >= 0 && mesh.near_at_rest(true, pair)},
                {a, b});
     }
@@ -180,23 +171,25 @@ void KeptPairs::add(const ContactCandidate& pair, const std::array<int, 2>& prim
                   static_cast<std::uint64_t>(primitive_pair[1]));
 }
 
-std::vector<ContactCandidate> ContactBroadPhase::find(const Model& model, const Vertices& start,
-                                                      const Vertices& end, double d_hat) {
-  prepare(model, start, end, d_hat);
+std::vector<ContactCandidate> ContactBroadPhase::find(const CollisionMesh& mesh,
+                                                      const Vertices& start, const Vertices& end,
+                                                      double d_hat) {
+  prepare(mesh, start, end, d_hat);
   return overlapping([](std::size_t) { return false; });
 }
 
-std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const Vertices& start,
-                                                      const Vertices& end, double d_hat,
+std::vector<ContactCandidate> ContactBroadPhase::near(const CollisionMesh& mesh,
+                                                      const Vertices& start, const Vertices& end,
+                                                      double d_hat,
                                                       std::vector<ContactCandidate>* ccd,
                                                       double ccd_rescaling) {
-  prepare(model, start, end, d_hat);
+  prepare(mesh, start, end, d_hat);
   // Each kept pair of one body is measured the first time its box overlaps after a keep: many
   // never do before the next keep.
   if (kept_distance_.size() != kept_.pairs.size()) {
     kept_distance_.assign(kept_.pairs.size(), kUnmeasured);
   }
-  const std::vector<int>& vertex_body = model.collision().vertex_body;
+  const std::vector<int>& vertex_body = mesh.vertex_body;
   const Eigen::VectorXd since_kept = displacements_in_body(vertex_body, kept_start_, start);
   const Eigen::VectorXd on_path = displacements_in_body(vertex_body, start, end);
   // within_reach's tests with a relative margin wider than theirs, so that no rounding can pass
@@ -223,15 +216,14 @@ std::vector<ContactCandidate> ContactBroadPhase::near(const Model& model, const 
   return pairs_within_reach(vertex_body, boxed, start, end, on_path, d_hat, ccd, ccd_rescaling);
 }
 
-void ContactBroadPhase::prepare(const Model& model, const Vertices& start, const Vertices& end,
-                                double d_hat) {
-  const CollisionMesh& mesh = model.collision();
+void ContactBroadPhase::prepare(const CollisionMesh& mesh, const Vertices& start,
+                                const Vertices& end, double d_hat) {
   // Two boxes each inflated by half of d_hat overlap whenever their contents come within d_hat.
   const double margin = 0.5 * d_hat * (1.0 + 1e-9);
   // Each vertex's swept box. A primitive's box is the union of its vertices' (inflating after
   // the union or before gives the same bits: rounding is monotonic).
   vertex_boxes_.resize(static_cast<std::size_t>(mesh.size()));
-  const bool kept = kept_model_ == &model && kept_vertex_boxes_.size() == vertex_boxes_.size();
+  const bool kept = kept_mesh_ == &mesh && kept_vertex_boxes_.size() == vertex_boxes_.size();
   bool kept_covers = kept;
   for (int v = 0; v < mesh.size(); ++v) {
     Aabb& box = vertex_boxes_[v];
@@ -244,19 +236,18 @@ void ContactBroadPhase::prepare(const Model& model, const Vertices& start, const
   if (!kept) {
     kept_.clear();  // another model's, or none
     kept_own_.clear();
-    deformed_.assign(model.bodies().size(), 1);
-    keep(model, start, d_hat);
-  } else if (!own_pairs_cover(model, start, end, d_hat) || !kept_covers) {
-    keep(model, start, d_hat);
+    deformed_.assign(static_cast<std::size_t>(mesh.body_count()), 1);
+    keep(mesh, start, d_hat);
+  } else if (!own_pairs_cover(mesh, start, end, d_hat) || !kept_covers) {
+    keep(mesh, start, d_hat);
   }
   face_boxes(mesh, vertex_boxes_, face_boxes_);
   edge_boxes(mesh, vertex_boxes_, edge_boxes_);
 }
 
-bool ContactBroadPhase::own_pairs_cover(const Model& model, const Vertices& start,
+bool ContactBroadPhase::own_pairs_cover(const CollisionMesh& mesh, const Vertices& start,
                                         const Vertices& end, double d_hat) {
-  const CollisionMesh& mesh = model.collision();
-  const std::size_t body_count = model.bodies().size();
+  const std::size_t body_count = static_cast<std::size_t>(mesh.body_count());
   // Each body's common motion since its own pairs were kept: the centre of the box of its
   // vertices' displacements.
   body_motion_.assign(body_count, Aabb{});
@@ -271,7 +262,7 @@ bool ContactBroadPhase::own_pairs_cover(const Model& model, const Vertices& star
   bool covers = true;
   for (int v = 0; v < mesh.size(); ++v) {
     const int body = mesh.vertex_body[v];
-    if (deformed_[body] || !model.may_touch(body, body)) continue;
+    if (deformed_[body] || !mesh.may_touch(body, body)) continue;
     const Eigen::Vector3d back = body_motion_[body].center();
     Aabb box;
     box.expand(Eigen::Vector3d(start.row(v).transpose() - back));
@@ -327,28 +318,27 @@ void ContactBroadPhase::merge_kept() {
 // The pairs whose boxes overlap once each vertex's box is grown by the skin: they hold every pair
 // of later calls whose vertex boxes stay inside these. The pairs of two bodies are kept again
 // every time; a body's own only when it has deformed (deformed_).
-void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d_hat) {
-  const CollisionMesh& mesh = model.collision();
+void ContactBroadPhase::keep(const CollisionMesh& mesh, const Vertices& start, double d_hat) {
   ++keeps_;
-  kept_model_ = &model;
+  kept_mesh_ = &mesh;
   kept_start_ = start;
   kept_vertex_boxes_ = vertex_boxes_;
   for (Aabb& box : kept_vertex_boxes_) box.inflate(0.5 * kSkin * d_hat);
   face_boxes(mesh, kept_vertex_boxes_, boxes_);
   first_vertex_.resize(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) first_vertex_[f] = mesh.faces[f][0];
-  faces_.update(model, boxes_, first_vertex_);
+  faces_.update(mesh, boxes_, first_vertex_);
   edge_boxes(mesh, kept_vertex_boxes_, boxes_);
   first_vertex_.resize(mesh.edges.size());
   for (std::size_t e = 0; e < mesh.edges.size(); ++e) first_vertex_[e] = mesh.edges[e][0];
-  edges_.update(model, boxes_, first_vertex_);
+  edges_.update(mesh, boxes_, first_vertex_);
   const auto add_pairs = [&](int own_body, KeptPairs& kept) {
     kept.clear();
-    add_point_triangle_candidates(model, own_body, kept_vertex_boxes_, faces_, hits_, kept);
-    add_edge_edge_candidates(model, own_body, edges_, hits_, kept);
+    add_point_triangle_candidates(mesh, own_body, kept_vertex_boxes_, faces_, hits_, kept);
+    add_edge_edge_candidates(mesh, own_body, edges_, hits_, kept);
   };
   add_pairs(-1, two_bodies_);
-  const int body_count = static_cast<int>(model.bodies().size());
+  const int body_count = mesh.body_count();
   // The own pairs of the bodies that have not deformed, back from the merged list (only it is
   // kept between keeps, to spare the memory of a second copy).
   own_.assign(body_count, KeptPairs{});
@@ -359,7 +349,7 @@ void ContactBroadPhase::keep(const Model& model, const Vertices& start, double d
   own_vertex_boxes_.resize(kept_vertex_boxes_.size());
   own_start_.resize(start.rows(), 3);
   for (int b = 0; b < body_count; ++b) {
-    if (!deformed_[b] || !model.may_touch(b, b)) continue;
+    if (!deformed_[b] || !mesh.may_touch(b, b)) continue;
     ++one_body_keeps_;
     for (int v = 0; v < mesh.size(); ++v) {
       if (mesh.vertex_body[v] != b) continue;
@@ -397,28 +387,24 @@ Eigen::VectorXd displacements_in_body(const std::vector<int>& vertex_body, const
   return moved;
 }
 
-std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
-                                                      const Vertices& end, double d_hat) {
-  return ContactBroadPhase().find(model, start, end, d_hat);
+std::vector<ContactCandidate> find_contact_candidates(const CollisionMesh& mesh,
+                                                      const Vertices& start, const Vertices& end,
+                                                      double d_hat) {
+  return ContactBroadPhase().find(mesh, start, end, d_hat);
 }
 
 std::pair<std::vector<std::array<int, 4>>, std::vector<std::array<int, 4>>> self_pairs_near_at_rest(
-    const Model& model) {
-  const CollisionMesh& mesh = model.collision();
-  const double d_hat = model.sim().d_hat;
-  // Rest positions; only pairs of one FEM body are kept, and an FEM body's rest vertices are
-  // all in the world frame.
-  Vertices rest(mesh.size(), 3);
-  for (int v = 0; v < mesh.size(); ++v) rest.row(v) = rest_position(model, v);
+    const CollisionMesh& mesh, double d_hat) {
+  // Only pairs of one body are kept, and only a body that deforms touches itself; its rest
+  // vertices are all in the world frame.
   std::vector<std::array<int, 4>> point_triangle, edge_edge;
-  for (const ContactCandidate& c : find_contact_candidates(model, rest, rest, d_hat)) {
+  for (const ContactCandidate& c : find_contact_candidates(mesh, mesh.rest, mesh.rest, d_hat)) {
     const int body = mesh.vertex_body[c.vertex[0]];
-    if (model.bodies()[body].type != BodyType::kFem) continue;
     if (std::any_of(c.vertex.begin(), c.vertex.end(),
                     [&](int v) { return mesh.vertex_body[v] != body; })) {
       continue;
     }
-    if (pair_distance_sq(c, rest) < d_hat * d_hat)
+    if (pair_distance_sq(c, mesh.rest) < d_hat * d_hat)
       (c.edge_edge ? edge_edge : point_triangle).push_back(c.vertex);
   }
   std::sort(point_triangle.begin(), point_triangle.end());

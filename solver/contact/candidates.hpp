@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "solver/contact/collision_mesh.hpp"
 #include "solver/contact/primitive_trees.hpp"
-#include "solver/model.hpp"
 
 namespace grip::solver {
 
@@ -28,8 +28,9 @@ struct ContactCandidate {
 // deterministic order: point-triangle pairs by vertex then face, then edge-edge pairs by edge
 // then partner edge (indices of the collision mesh). Pairs that share a vertex, and pairs of bodies
 // that never touch, are left out.
-std::vector<ContactCandidate> find_contact_candidates(const Model& model, const Vertices& start,
-                                                      const Vertices& end, double d_hat);
+std::vector<ContactCandidate> find_contact_candidates(const CollisionMesh& mesh,
+                                                      const Vertices& start, const Vertices& end,
+                                                      double d_hat);
 
 // The candidates of the path start -> end that can come within d_hat on it, in their order
 // (vertex_body: each collision vertex's body, CollisionMesh::vertex_body). A
@@ -82,19 +83,20 @@ struct KeptPairs {
 // it bends, not whenever it or the object moves.
 class ContactBroadPhase {
  public:
-  std::vector<ContactCandidate> find(const Model& model, const Vertices& start, const Vertices& end,
-                                     double d_hat);
+  std::vector<ContactCandidate> find(const CollisionMesh& mesh, const Vertices& start,
+                                     const Vertices& end, double d_hat);
 
-  // within_reach(model, find(model, start, end, d_hat), start, end, d_hat, ccd, ccd_rescaling),
-  // the same pairs in the same order, without testing most pairs of one body. Each such kept pair
-  // whose box overlaps is measured where it was kept, once per keep; its vertices have since
-  // moved, and move on the path, by at most their displacements in their body, so a pair that
-  // distance keeps beyond reach (and, with `ccd`, short of d_hat / ccd_rescaling) is passed over
-  // without a distance. Most of a soft finger's kept pairs are the two faces of a wall or
-  // rib 1.5-2.5 mm apart, which only deformation, never the finger's motion, can bring within
-  // d_hat.
-  std::vector<ContactCandidate> near(const Model& model, const Vertices& start, const Vertices& end,
-                                     double d_hat, std::vector<ContactCandidate>* ccd = nullptr,
+  // within_reach(mesh.vertex_body, find(mesh, start, end, d_hat), start, end, d_hat, ccd,
+  // ccd_rescaling), the same pairs in the same order, without testing most pairs of one body.
+  // Each such kept pair whose box overlaps is measured where it was kept, once per keep; its
+  // vertices have since moved, and move on the path, by at most their displacements in their
+  // body, so a pair that distance keeps beyond reach (and, with `ccd`, short of d_hat /
+  // ccd_rescaling) is passed over without a distance. Most of a soft finger's kept pairs are the
+  // two faces of a wall or rib 1.5-2.5 mm apart, which only deformation, never the finger's
+  // motion, can bring within d_hat.
+  std::vector<ContactCandidate> near(const CollisionMesh& mesh, const Vertices& start,
+                                     const Vertices& end, double d_hat,
+                                     std::vector<ContactCandidate>* ccd = nullptr,
                                      double ccd_rescaling = 0.0);
 
   // How many calls queried the trees for the pairs of two bodies (the others reused the kept
@@ -109,23 +111,23 @@ class ContactBroadPhase {
   static constexpr double kSkin = 1.0;
   // Each vertex's swept box, and the face and edge boxes; keeps the pairs again when the kept
   // ones no longer cover the call.
-  void prepare(const Model& model, const Vertices& start, const Vertices& end, double d_hat);
+  void prepare(const CollisionMesh& mesh, const Vertices& start, const Vertices& end, double d_hat);
   // Whether each body's own pairs cover the call: each of its vertices' boxes, moved back by the
   // body's common motion since they were kept, lies inside its box kept for them. Marks the
   // bodies whose own do not (deformed_).
-  bool own_pairs_cover(const Model& model, const Vertices& start, const Vertices& end,
+  bool own_pairs_cover(const CollisionMesh& mesh, const Vertices& start, const Vertices& end,
                        double d_hat);
   // The kept pairs whose boxes overlap now, in order, but those skip(i) passes over (asked only
   // of the overlapping ones).
   template <typename Skip>
   std::vector<ContactCandidate> overlapping(Skip&& skip);
-  void keep(const Model& model, const Vertices& start, double d_hat);
+  void keep(const CollisionMesh& mesh, const Vertices& start, double d_hat);
   // kept_ from the pairs of two bodies and each body's own.
   void merge_kept();
 
   PrimitiveTrees faces_;
   PrimitiveTrees edges_;
-  const Model* kept_model_ = nullptr;
+  const CollisionMesh* kept_mesh_ = nullptr;
   // Scratch of a keep: the pairs of two bodies, and per body its own (none for a rigid one).
   KeptPairs two_bodies_;
   std::vector<KeptPairs> own_;
@@ -156,9 +158,9 @@ class ContactBroadPhase {
   std::vector<Aabb> body_motion_;
 };
 
-// The FEM bodies' own pairs within d_hat at rest, point-triangle then edge-edge, each sorted:
-// what Model keeps in CollisionMesh.
+// The deforming bodies' own pairs within d_hat at rest, point-triangle then edge-edge, each
+// sorted: what the model keeps in the mesh (CollisionMesh::point_triangle_near_at_rest).
 std::pair<std::vector<std::array<int, 4>>, std::vector<std::array<int, 4>>> self_pairs_near_at_rest(
-    const Model& model);
+    const CollisionMesh& mesh, double d_hat);
 
 }  // namespace grip::solver

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "solver/contact/bvh.hpp"
-#include "solver/model.hpp"
+#include "solver/contact/collision_mesh.hpp"
 
 namespace grip::solver {
 
@@ -16,7 +16,7 @@ class PrimitiveTrees {
  public:
   // boxes[i] and first_vertex[i]: primitive i's swept box and one of its collision vertices.
   // The trees keep their storage from update to update.
-  void update(const Model& model, std::span<const Aabb> boxes,
+  void update(const CollisionMesh& mesh, std::span<const Aabb> boxes,
               const std::vector<int>& first_vertex);
 
   const Aabb& box(int i) const { return boxes_[static_cast<std::size_t>(i)]; }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "solver/body/body.hpp"
 #include "solver/kernels/accd.hpp"
 
 namespace grip::solver {
@@ -35,7 +34,7 @@ double collision_free_fraction(const std::vector<ContactCandidate>& candidates,
 
 bool halve_until_no_inversion(const Model& model, const Eigen::VectorXd& q,
                               const Eigen::VectorXd& p, double& alpha, int& halvings) {
-  while (min_volume_ratio(model, q + alpha * p) <= 0.0) {
+  while (model.min_volume_ratio(q + alpha * p) <= 0.0) {
     alpha *= 0.5;
     ++halvings;
     if (alpha < 1e-12) return false;

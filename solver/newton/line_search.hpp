@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "solver/contact/candidates.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "solver/newton/step_targets.hpp"
 #include "solver/potential/incremental_potential.hpp"
 

@@ -2,10 +2,9 @@
 
 #include <cmath>
 
-#include "solver/body/body.hpp"
 #include "solver/contact/candidates.hpp"
-#include "solver/contact/friction_lag.hpp"
 #include "solver/newton/line_search.hpp"
+#include "solver/potential/friction_lag.hpp"
 
 namespace grip::solver {
 namespace {
@@ -26,7 +25,7 @@ constexpr double kStandardGravity = 9.81;  // m/s^2
 double max_vertex_displacement(const Model& model, const Eigen::VectorXd& dq) {
   double largest = 0.0;
   for (const BodyModel& body : model.bodies()) {
-    largest = std::max(largest, max_displacement(body, dq));
+    largest = std::max(largest, body.kind->max_displacement(body.local, dq));
   }
   return largest;
 }
@@ -47,15 +46,14 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
   const double h = step.h;
   Eigen::VectorXd q_tilde = state.q + h * state.v;
   for (const BodyModel& body : model_.bodies()) {
-    add_gravity(body, state.gravity, h, q_tilde);
-    step.standard_weight += body_mass(body) * kStandardGravity;
+    body.kind->add_gravity(body.local, state.gravity, h, q_tilde);
+    step.standard_weight += body.kind->mass(body.local) * kStandardGravity;
   }
   // Driven bodies: their DOFs at their scripts' poses at the end of the step.
   Eigen::VectorXd q_drive = state.q;
   for (std::size_t b = 0; b < model_.bodies().size(); ++b) {
-    if (is_driven(model_.bodies()[b])) {
-      set_drive_target(model_.bodies()[b], step.targets.pose_target[b], q_drive);
-    }
+    const BodyModel& body = model_.bodies()[b];
+    body.kind->set_drive_target(body.local, step.targets.pose_target[b], q_drive);
   }
   potential_.begin_step(state.q, q_tilde, std::move(q_drive), start, state.kappa, h);
   const std::vector<ContactCandidate>& candidates = near(step, start);
@@ -67,7 +65,7 @@ void NewtonSolver::begin_step(const State& state, const Vertices& start, NewtonS
 const std::vector<ContactCandidate>& NewtonSolver::near(NewtonStep& step, const Vertices& x) {
   if (!step.near) {
     const StageTimer timer(stages_.broad_phase);
-    step.near = broad_phase_.near(model_, x, x, model_.sim().d_hat);
+    step.near = broad_phase_.near(model_.collision(), x, x, model_.sim().d_hat);
   }
   return *step.near;
 }
@@ -295,7 +293,8 @@ bool NewtonSolver::filter_step(const State& state, NewtonStep& step, const Syste
   std::vector<ContactCandidate> reachable, watched;
   {
     const StageTimer timer(stages_.broad_phase);
-    reachable = broad_phase_.near(model_, system.x, x_end, sim.d_hat, &watched, sim.ccd_rescaling);
+    reachable = broad_phase_.near(model_.collision(), system.x, x_end, sim.d_hat, &watched,
+                                  sim.ccd_rescaling);
   }
   {
     const StageTimer timer(stages_.ccd);

@@ -12,15 +12,15 @@
 #include <vector>
 
 #include "solver/contact/candidates.hpp"
-#include "solver/diagnostics.hpp"
-#include "solver/failure.hpp"
 #include "solver/linear/linear_system_solver.hpp"
 #include "solver/linear/sparse_assembly.hpp"
 #include "solver/linear/sparse_cholesky.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
+#include "solver/newton/diagnostics.hpp"
+#include "solver/newton/failure.hpp"
 #include "solver/newton/step_targets.hpp"
 #include "solver/potential/incremental_potential.hpp"
-#include "solver/state.hpp"
+#include "solver/scene/state.hpp"
 
 namespace grip::solver {
 

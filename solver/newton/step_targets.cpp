@@ -1,23 +1,36 @@
 #include "solver/newton/step_targets.hpp"
 
-#include "solver/body/body.hpp"
-#include "solver/body/kinematic_body.hpp"
+#include "solver/body/kinematic_motion.hpp"
 
 namespace grip::solver {
 namespace {
 
-// Kinematic collision vertices at the poses `start` and `target` (zero rows elsewhere).
-void kinematic_vertices(const Model& model, const std::vector<Pose>& start,
+// Body b's collision vertices: rows [first, first + vertices.size()) of a collision array.
+struct CollisionRange {
+  Eigen::Index first;
+  std::span<const int> vertices;  // their indices among the body's vertices
+};
+
+CollisionRange collision_range(const CollisionMesh& mesh, int b) {
+  const int first = mesh.body_first_vertex[b], end = mesh.body_first_vertex[b + 1];
+  return {first, {mesh.vertex_local.data() + first, static_cast<std::size_t>(end - first)}};
+}
+
+// The collision vertices of bodies without DOFs at the poses `start` and `target` (zero rows
+// elsewhere).
+void kinematic_vertices(const Model& model, const State& state, const std::vector<Pose>& start,
                         const std::vector<Pose>& target, StepTargets& targets) {
   const CollisionMesh& mesh = model.collision();
   targets.kinematic_start.setZero(mesh.size(), 3);
   targets.kinematic_target.setZero(mesh.size(), 3);
-  for (int i = 0; i < mesh.size(); ++i) {
-    const int b = mesh.vertex_body[i];
-    if (!is_kinematic(model.bodies()[b])) continue;
-    const Eigen::Vector3d rest = model.bodies()[b].rest.row(mesh.vertex_local[i]);
-    targets.kinematic_start.row(i) = kinematic::apply(start[b], rest);
-    targets.kinematic_target.row(i) = kinematic::apply(target[b], rest);
+  for (int b = 0; b < static_cast<int>(model.bodies().size()); ++b) {
+    const BodyModel& body = model.bodies()[b];
+    if (body.has_dofs()) continue;
+    const CollisionRange range = collision_range(mesh, b);
+    body.kind->vertex_positions(body.local, state.q, start[b], range.vertices,
+                                targets.kinematic_start, range.first);
+    body.kind->vertex_positions(body.local, state.q, target[b], range.vertices,
+                                targets.kinematic_target, range.first);
   }
 }
 
@@ -30,14 +43,15 @@ StepTargets step_targets(const Model& model, const State& state, double h) {
   targets.pose_target.resize(body_count);
   for (int b = 0; b < body_count; ++b) {
     targets.pose_target[b] =
-        is_scripted(model.bodies()[b])
+        model.bodies()[b].scripted()
             ? kinematic::advance(state.scripts[b], state.poses[b], state.time + h, h)
             : state.poses[b];
   }
-  kinematic_vertices(model, state.poses, targets.pose_target, targets);
+  kinematic_vertices(model, state, state.poses, targets.pose_target, targets);
   targets.prescribed_target = state.q;
   for (const PinnedVertex& pin : model.pins()) {
-    const int o = model.bodies()[pin.body].dof_offset + 3 * pin.vertex;
+    const BodyModel& body = model.bodies()[pin.body];
+    const int o = body.kind->vertex_block(body.local, pin.vertex);
     targets.prescribed_target.segment<3>(o) =
         kinematic::apply(targets.pose_target[pin.kinematic_body], pin.offset);
   }
@@ -46,7 +60,7 @@ StepTargets step_targets(const Model& model, const State& state, double h) {
 
 StepTargets targets_at_rest(const Model& model, const State& state) {
   StepTargets now;
-  kinematic_vertices(model, state.poses, state.poses, now);
+  kinematic_vertices(model, state, state.poses, state.poses, now);
   return now;
 }
 
@@ -54,13 +68,17 @@ Vertices collision_positions(const Model& model, const Eigen::VectorXd& q,
                              const StepTargets& targets, double progress) {
   const CollisionMesh& mesh = model.collision();
   Vertices x(mesh.size(), 3);
-  for (int i = 0; i < mesh.size(); ++i) {
-    const BodyModel& body = model.bodies()[mesh.vertex_body[i]];
-    if (is_kinematic(body)) {
+  for (int b = 0; b < static_cast<int>(model.bodies().size()); ++b) {
+    const BodyModel& body = model.bodies()[b];
+    const CollisionRange range = collision_range(mesh, b);
+    if (body.has_dofs()) {
+      body.kind->vertex_positions(body.local, q, Pose{}, range.vertices, x, range.first);
+      continue;
+    }
+    for (Eigen::Index i = range.first;
+         i < range.first + static_cast<Eigen::Index>(range.vertices.size()); ++i) {
       x.row(i) = (1.0 - progress) * targets.kinematic_start.row(i) +
                  progress * targets.kinematic_target.row(i);
-    } else {
-      x.row(i) = vertex_position(body, q, Pose{}, mesh.vertex_local[i]);
     }
   }
   return x;

@@ -1,12 +1,12 @@
 #pragma once
-// What a step is heading for: the start state, and where kinematic bodies and pinned vertices
+// What a step is heading for: the start state, and where bodies without DOFs and pinned vertices
 // must be at its end. Prescribed motion is applied progressively (progress 0 -> 1) so that CCD
 // can stop it short of a contact and Newton can make room before it goes on.
 #include <Eigen/Core>
 #include <vector>
 
-#include "solver/model.hpp"
-#include "solver/state.hpp"
+#include "solver/model/model.hpp"
+#include "solver/scene/state.hpp"
 
 namespace grip::solver {
 

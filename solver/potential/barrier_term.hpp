@@ -4,7 +4,7 @@
 // edge-edge pair (1 for point-triangle). kappa is a stiffness (N/m).
 #include <Eigen/Core>
 
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "solver/potential/potential_term.hpp"
 
 namespace grip::solver {

@@ -1,9 +1,9 @@
 #pragma once
 // The incremental potential's per-body terms: inertia, 1/2 |x - x_tilde|_M^2 about the step's
 // inertia target, elasticity (stable Neo-Hookean for FEM bodies, the orthogonality energy
-// of affine ones) with FEM bodies' Rayleigh damping, and the drives of driven bodies. Kinematic
-// bodies have none.
-#include "solver/model.hpp"
+// of affine ones) with FEM bodies' Rayleigh damping, and the drives of driven bodies. Each body's
+// kind computes its part (BodySubsystem); a kind without such a part adds nothing.
+#include "solver/model/model.hpp"
 #include "solver/potential/potential_term.hpp"
 
 namespace grip::solver {
@@ -45,7 +45,7 @@ class DriveTerm : public PotentialTerm {
 // step's start. K is lagged like friction's normal forces, so damping is a convex quadratic
 // within the step; a rigid motion of an unstressed body lies in K's null space and is not
 // damped. One term for both, so that a tet's elastic and damping Hessians are summed before
-// they are scattered (fem::add_elastic_derivatives).
+// they are scattered (BodySubsystem::add_elastic_derivatives).
 class ElasticityTerm : public PotentialTerm {
  public:
   explicit ElasticityTerm(const Model& model) : model_(model) {}

@@ -6,7 +6,7 @@
 #include <array>
 #include <vector>
 
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "solver/potential/potential_term.hpp"
 
 namespace grip::solver {

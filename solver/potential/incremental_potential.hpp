@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "solver/contact/candidates.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "solver/potential/barrier_term.hpp"
 #include "solver/potential/body_terms.hpp"
 #include "solver/potential/friction_term.hpp"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "solver/contact/candidates.hpp"
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace grip::solver {
 

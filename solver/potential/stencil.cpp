@@ -1,7 +1,5 @@
 #include "solver/potential/stencil.hpp"
 
-#include "solver/body/body.hpp"
-
 namespace grip::solver {
 namespace {
 
@@ -17,7 +15,7 @@ Stencil::Stencil(const Model& model, const std::array<int, 4>& vertex) {
   for (int i = 0; i < 4; ++i) {
     const BodyModel& body = model.bodies()[mesh.vertex_body[vertex[i]]];
     local[i] = -1;
-    const int offset = vertex_block(body, mesh.vertex_local[vertex[i]]);
+    const int offset = body.kind->vertex_block(body.local, mesh.vertex_local[vertex[i]]);
     if (offset < 0) continue;
     for (int b = 0; b < blocks_; ++b) {
       if (block_offset_[b] == offset) local[i] = b;
@@ -25,7 +23,7 @@ Stencil::Stencil(const Model& model, const std::array<int, 4>& vertex) {
     if (local[i] < 0) {
       local[i] = blocks_;
       block_offset_[blocks_] = offset;
-      block_size_[blocks_] = block_size(body);
+      block_size_[blocks_] = body.kind->block_size();
       dofs += block_size_[blocks_];
       ++blocks_;
     }
@@ -37,7 +35,7 @@ Stencil::Stencil(const Model& model, const std::array<int, 4>& vertex) {
     for (int b = 0; b < local[i]; ++b) column += block_size_[b];
     const BodyModel& body = model.bodies()[mesh.vertex_body[vertex[i]]];
     jacobian_.block(3 * i, column, 3, block_size_[local[i]]) =
-        vertex_jacobian(body, mesh.vertex_local[vertex[i]]);
+        body.kind->vertex_jacobian(body.local, mesh.vertex_local[vertex[i]]);
   }
 }
 

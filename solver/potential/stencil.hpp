@@ -7,7 +7,7 @@
 #include <array>
 #include <vector>
 
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 namespace grip::solver {
 

@@ -3,7 +3,7 @@
 #include <Eigen/Core>
 #include <array>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace grip::solver {
 

@@ -240,6 +240,10 @@ std::string Table::string_or(std::string_view key, std::string_view fallback) co
 
 std::string Table::choice(std::string_view key,
                           std::initializer_list<std::string_view> allowed) const {
+  return choice(key, std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+std::string Table::choice(std::string_view key, std::span<const std::string_view> allowed) const {
   std::string value = string(key);
   if (std::find(allowed.begin(), allowed.end(), value) != allowed.end()) return value;
   std::string list;

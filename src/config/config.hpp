@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -49,6 +50,7 @@ class Table {
   std::string string_or(std::string_view key, std::string_view fallback) const;
   // A string that must be one of `allowed`; the error lists them.
   std::string choice(std::string_view key, std::initializer_list<std::string_view> allowed) const;
+  std::string choice(std::string_view key, std::span<const std::string_view> allowed) const;
   std::string choice_or(std::string_view key, std::initializer_list<std::string_view> allowed,
                         std::string_view fallback) const;
   std::array<double, 3> vec3(std::string_view key) const;

@@ -4,7 +4,7 @@
 // Surface shapes come from src/geometry/primitives.hpp.
 #include <string>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 #include "src/geometry/mesh.hpp"
 
 namespace grip::scene {

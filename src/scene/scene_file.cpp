@@ -5,7 +5,8 @@
 #include <map>
 #include <numbers>
 
-#include "solver/model.hpp"
+#include "solver/body/body_registry.hpp"
+#include "solver/model/model.hpp"
 #include "src/config/config.hpp"
 #include "src/config/parameter_table.hpp"
 #include "src/geometry/mesh_io.hpp"
@@ -77,7 +78,7 @@ void check_tet_count(const Table& body, double resolution, double tets, double m
 void read_shape(const Table& body, const std::filesystem::path& scene_dir, double max_tets,
                 solver::BodyDescription& out) {
   const std::string shape = body.choice("shape", {"box", "sphere", "cylinder", "mesh"});
-  const bool soft = out.type == solver::BodyType::kFem;
+  const bool soft = solver::body_type_info(out.type).soft;
   // A sphere of n segments has about n^2 / 2 vertices: 1,024 makes half a million.
   const int segments = body.count_or("segments", 24, 6, 1024);
   double resolution = 0.0;
@@ -141,6 +142,17 @@ void read_shape(const Table& body, const std::filesystem::path& scene_dir, doubl
   }
 }
 
+// The body's type by the name its `type` key gives (the solver's body registry lists them).
+const solver::BodyTypeInfo& body_type(const Table& body) {
+  std::vector<std::string_view> names;
+  for (const solver::BodyTypeInfo& info : solver::body_types()) names.push_back(info.name);
+  const std::string name = body.choice("type", names);
+  for (const solver::BodyTypeInfo& info : solver::body_types()) {
+    if (info.name == name) return info;
+  }
+  return solver::body_types().front();  // choice() admits only the names above
+}
+
 solver::BodyDescription read_body(const Table& body, const std::filesystem::path& scene_dir,
                                   double max_tets) {
   body.allow({"name",     "type",
@@ -156,16 +168,14 @@ solver::BodyDescription read_body(const Table& body, const std::filesystem::path
               "pin",      "keyframe"});
   solver::BodyDescription out;
   out.name = body.string("name");
-  const std::string type = body.choice("type", {"kinematic", "affine", "fem"});
-  out.type = type == "kinematic" ? solver::BodyType::kKinematic
-             : type == "affine"  ? solver::BodyType::kAffine
-                                 : solver::BodyType::kFem;
+  const solver::BodyTypeInfo& kind = body_type(body);
+  out.type = kind.type;
   read_shape(body, scene_dir, max_tets, out);
   out.pose.position = vec(body.vec3_or("position", {0, 0, 0}));
   out.pose.rotation = rotation_from_degrees(vec(body.vec3_or("rotation", {0, 0, 0})));
   const Eigen::Vector3d velocity = vec(body.vec3_or("velocity", {0, 0, 0}));
   const Eigen::Vector3d angular = vec(body.vec3_or("angular_velocity", {0, 0, 0}));
-  if (out.type == solver::BodyType::kKinematic) {
+  if (kind.scripted) {
     out.script.velocity = velocity;
     out.script.angular_velocity = angular;
     for (const Table& key : body.tables("keyframe")) {
@@ -187,7 +197,7 @@ solver::BodyDescription read_body(const Table& body, const std::filesystem::path
   out.material.density = positive(body, "density", out.material.density);
   out.material.friction = body.number_or("friction", out.material.friction);
   if (out.material.friction < 0) body.fail("friction", "must be >= 0");
-  if (out.type == solver::BodyType::kFem) {
+  if (kind.soft) {
     out.material.youngs = positive(body, "youngs", out.material.youngs);
     out.material.poisson = body.number_or("poisson", out.material.poisson);
     if (!(out.material.poisson > -1 && out.material.poisson < 0.5)) {
@@ -200,7 +210,7 @@ solver::BodyDescription read_body(const Table& body, const std::filesystem::path
       if (body.has(key)) body.fail(key, "applies to FEM bodies only (type = \"fem\")");
     }
   }
-  if (out.type == solver::BodyType::kAffine) {
+  if (kind.orthogonality) {
     out.orthogonality_stiffness =
         positive(body, "orthogonality_stiffness", out.orthogonality_stiffness);
   } else if (body.has("orthogonality_stiffness")) {
@@ -238,10 +248,12 @@ SceneFile load_scene_file(const std::filesystem::path& file, double max_tets) {
     for (const Table& pin : bodies[b].tables("pin")) {
       pin.allow({"body", "min", "max"});
       solver::BodyDescription& body = out.scene.bodies[b];
-      if (body.type != solver::BodyType::kFem) pin.fail("body", "pins apply to FEM bodies only");
+      if (!solver::body_type_info(body.type).soft) {
+        pin.fail("body", "pins apply to FEM bodies only");
+      }
       solver::Pin p;
       p.kinematic_body = body_index(pin, "body", pin.string("body"));
-      if (out.scene.bodies[p.kinematic_body].type != solver::BodyType::kKinematic) {
+      if (!solver::body_type_info(out.scene.bodies[p.kinematic_body].type).scripted) {
         pin.fail("body", "must name a kinematic body");
       }
       const Eigen::Vector3d lo = vec(pin.vec3("min")), hi = vec(pin.vec3("max"));

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 #include "src/geometry/tetrahedralize.hpp"
 
 namespace grip::scene {

@@ -2,7 +2,7 @@
 // The IPC solver's settings (solver::SimParameters) as one parameter table: a scene file's
 // [sim] table and a job file's [physics] table read them, grip trial offers them as options, a
 // dataset's provenance lists them and the docs' tables are made from them (docs/scene-format.md).
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 #include "src/config/config.hpp"
 #include "src/config/parameter.hpp"
 

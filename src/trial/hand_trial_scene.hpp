@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "solver/environment.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "src/geometry/mesh.hpp"
 #include "src/geometry/signed_distance.hpp"
 #include "src/grippers/hand_model.hpp"

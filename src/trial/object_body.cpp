@@ -40,7 +40,9 @@ void ObjectBody::bind(std::shared_ptr<const solver::Model> model) {
   model_ = std::move(model);
   if (soft_) {
     const solver::BodyModel& body = model_->bodies()[0];
-    rest_center_ = (body.vertex_mass.transpose() * body.rest).transpose() / body.vertex_mass.sum();
+    const Eigen::VectorXd vertex_mass = body.kind->vertex_masses(body.local);
+    const solver::Vertices rest = body.kind->rest_vertices(body.local);
+    rest_center_ = (vertex_mass.transpose() * rest).transpose() / vertex_mass.sum();
   }
 }
 
@@ -54,7 +56,7 @@ std::array<double, 12> ObjectBody::pose(const solver::Environment& environment) 
     const solver::BodyModel& body = model_->bodies()[0];
     const solver::Vector12d q = environment.dofs().segment<12>(body.dof_offset);
     a = solver::kernels::affine_body_matrix(q);
-    t = q.head<3>() - a * body.center_of_mass_offset;
+    t = q.head<3>() - a * body.kind->center_of_mass_offset(body.local);
   }
   std::array<double, 12> pose;
   for (int r = 0; r < 3; ++r) {

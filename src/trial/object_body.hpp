@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "solver/environment.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "src/geometry/mesh.hpp"
 #include "src/geometry/signed_distance.hpp"
 #include "src/metrics/distance_metrics.hpp"

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 #include "src/geometry/mesh.hpp"
 
 namespace grip::trial {

@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 
 #include "io/candidate_record.hpp"
-#include "solver/diagnostics.hpp"
+#include "solver/newton/diagnostics.hpp"
 #include "src/geometry/mesh.hpp"
 #include "src/metrics/distance_metrics.hpp"
 

@@ -7,7 +7,7 @@
 #include <array>
 #include <cstdint>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 #include "src/config/parameter.hpp"
 
 namespace grip::trial {

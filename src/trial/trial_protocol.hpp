@@ -15,7 +15,7 @@
 
 #include "solver/environment.hpp"
 #include "solver/linear/linear_system_solver.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "src/geometry/mesh.hpp"
 #include "src/metrics/distance_metrics.hpp"
 #include "src/trial/trial_outcome.hpp"

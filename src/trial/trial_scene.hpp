@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "io/gripper_record.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "src/synth/candidate.hpp"
 #include "src/trial/trial_parameters.hpp"
 

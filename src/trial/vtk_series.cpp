@@ -25,10 +25,10 @@ void write_frame(const std::filesystem::path& file, const solver::Model& model,
   std::vector<double> stress;
   int point_offset = 0;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const bool fem = bodies[b].type == solver::BodyType::kFem;
-    if (fem) {
-      for (std::size_t t = 0; t < bodies[b].tets.size(); ++t) {
-        for (int v : bodies[b].tets[t].vertices) connectivity.push_back(point_offset + v);
+    const std::span<const std::array<int, 4>> tets = bodies[b].kind->tets(bodies[b].local);
+    if (!tets.empty()) {
+      for (std::size_t t = 0; t < tets.size(); ++t) {
+        for (int v : tets[t]) connectivity.push_back(point_offset + v);
         offsets.push_back(static_cast<int>(connectivity.size()));
         types.push_back(kVtkTetra);
         body_of_cell.push_back(static_cast<int>(b));

@@ -93,6 +93,42 @@ class CheckLayeringTest(unittest.TestCase):
         self.assertIn('farm/planted.hpp:2: #include "tests/farm/farm_test_job.hpp": '
                       "only tests/ may include tests/", out)
 
+    def test_an_include_cycle_between_solver_folders_fails(self):
+        # solver/potential includes solver/contact; an include back closes a cycle.
+        self.write("solver/contact/planted.hpp",
+                   '#pragma once\n#include "solver/potential/stencil.hpp"\n')
+        code, out = self.run_check()
+        self.assertEqual(code, 1, out)
+        self.assertIn('solver/contact/planted.hpp:2: #include "solver/potential/stencil.hpp": '
+                      "module solver/contact may not include module solver/potential", out)
+        self.assertRegex(out, r"include cycle between modules: solver/contact -> "
+                              r"solver/potential -> solver/contact \(solver/contact/planted.hpp:2, "
+                              r"solver/potential/[a-z_]+\.(c|h)pp:\d+\)")
+
+    def test_a_folder_of_a_target_is_checked_on_its_own_edges(self):
+        # The model is above the bodies: a body kind may not include it, although both folders
+        # build grip_solver.
+        self.write("solver/body/planted.cpp", '#include "solver/model/model.hpp"\n')
+        code, out = self.run_check()
+        self.assertEqual(code, 1, out)
+        self.assertIn('solver/body/planted.cpp:1: #include "solver/model/model.hpp": '
+                      "module solver/body may not include module solver/model", out)
+
+    def test_listing_a_module_allows_only_its_own_targets_folders(self):
+        # src/metrics lists solver/kernels alone: the solver's other folders stay closed to it.
+        self.write("src/metrics/planted.cpp", '#include "solver/model/model.hpp"\n')
+        code, out = self.run_check()
+        self.assertEqual(code, 1, out)
+        self.assertIn('src/metrics/planted.cpp:1: #include "solver/model/model.hpp": '
+                      "module src/metrics may not include module solver/model", out)
+
+    def test_a_cycle_through_a_targets_folders_in_the_table_is_refused(self):
+        # src/scene lists solver, and so every folder grip_solver builds: solver/scene among them.
+        self.edit("docs/architecture.md", "solver/scene      grip_solver          -",
+                  "solver/scene      grip_solver          src/scene")
+        code, _ = self.run_check()
+        self.assertEqual(code, 2)
+
     def test_a_cycle_in_the_table_is_refused(self):
         self.edit("docs/architecture.md", "src/config        grip_config          -",
                   "src/config        grip_config          src/scene")

@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "scene_builders.hpp"
-#include "solver/body/body.hpp"
 #include "solver/contact/bvh.hpp"
 #include "solver/contact/candidates.hpp"
 #include "solver/kernels/accd.hpp"
@@ -246,28 +245,30 @@ long expect_kept_finds_what_fresh_finds(const SceneDescription& scene) {
     for (int v = 0; v < rest.rows(); ++v) {
       const int body = vertex_body[v];
       if (frame % 4 == 3) continue;
-      if (frame % 4 == 2 && is_kinematic(model->bodies()[body])) continue;
+      if (frame % 4 == 2 && !model->bodies()[body].has_dofs()) continue;
       end.row(v) += motion[body].transpose();
-      if (model->bodies()[body].type == BodyType::kFem) {
+      if (model->bodies()[body].deforms()) {
         end.row(v) += 0.2 * Eigen::RowVector3d(jitter(rng), jitter(rng), jitter(rng));
       }
     }
     const double d_hat = frame % 5 == 4 ? 3e-3 : 1.5e-3;
-    const std::vector<ContactCandidate> fresh = find_contact_candidates(*model, start, end, d_hat);
-    expect_same(kept.find(*model, start, end, d_hat), fresh);
+    const std::vector<ContactCandidate> fresh =
+        find_contact_candidates(model->collision(), start, end, d_hat);
+    expect_same(kept.find(model->collision(), start, end, d_hat), fresh);
     EXPECT_EQ(as_sorted(fresh), brute_force(*model, start, end, d_hat)) << "frame " << frame;
     expect_in_mesh_order(*model, fresh);
     dropped += expect_within_reach_keeps_what_comes_near(vertex_body, fresh, start, end, d_hat);
     // near() is within_reach of what a fresh broad phase finds, both lists, in order.
     std::vector<ContactCandidate> watched, fresh_watched;
-    expect_same(screening.near(*model, start, end, d_hat, &watched, 0.1),
+    expect_same(screening.near(model->collision(), start, end, d_hat, &watched, 0.1),
                 within_reach(vertex_body, fresh, start, end, d_hat, &fresh_watched, 0.1));
     expect_same(watched, fresh_watched);
-    expect_same(screening.near(*model, end, end, d_hat),
-                within_reach(vertex_body, find_contact_candidates(*model, end, end, d_hat), end,
-                             end, d_hat));
-    expect_same(kept.find(*model, end, end, d_hat),
-                find_contact_candidates(*model, end, end, d_hat));
+    expect_same(
+        screening.near(model->collision(), end, end, d_hat),
+        within_reach(vertex_body, find_contact_candidates(model->collision(), end, end, d_hat), end,
+                     end, d_hat));
+    expect_same(kept.find(model->collision(), end, end, d_hat),
+                find_contact_candidates(model->collision(), end, end, d_hat));
     calls += 2;
     nonempty += fresh.empty() ? 0 : 1;
     start = end;
@@ -315,12 +316,13 @@ TEST(ContactBroadPhase, KeepsTheOwnPairsOfABodyAgainOnlyWhenItDeforms) {
   const double d_hat = 1.5e-3;
   ContactBroadPhase kept;
   const auto expect_fresh = [&](const Vertices& end) {
-    expect_same(kept.find(*model, start, end, d_hat),
-                find_contact_candidates(*model, start, end, d_hat));
+    expect_same(kept.find(model->collision(), start, end, d_hat),
+                find_contact_candidates(model->collision(), start, end, d_hat));
     std::vector<ContactCandidate> watched, fresh_watched;
-    expect_same(kept.near(*model, start, end, d_hat, &watched, 0.1),
-                within_reach(vertex_body, find_contact_candidates(*model, start, end, d_hat), start,
-                             end, d_hat, &fresh_watched, 0.1));
+    expect_same(
+        kept.near(model->collision(), start, end, d_hat, &watched, 0.1),
+        within_reach(vertex_body, find_contact_candidates(model->collision(), start, end, d_hat),
+                     start, end, d_hat, &fresh_watched, 0.1));
     expect_same(watched, fresh_watched);
   };
   int calls = 0;

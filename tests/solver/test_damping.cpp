@@ -8,7 +8,6 @@
 #include <random>
 #include <vector>
 
-#include "solver/body/fem_body.hpp"
 #include "tests/solver/scene_builders.hpp"
 
 namespace grip::solver {
@@ -35,7 +34,10 @@ struct DampedJelly {
   Eigen::VectorXd jittered(const Eigen::VectorXd& from = {}) {
     Eigen::VectorXd q(model->dof_count());
     for (Eigen::Index i = 0; i < q.size(); ++i) {
-      q[i] = (from.size() > 0 ? from[i] : body().rest(i / 3, i % 3)) + jitter(random);
+      q[i] = (from.size() > 0
+                  ? from[i]
+                  : body().kind->rest_vertex(body().local, static_cast<int>(i / 3))[i % 3]) +
+             jitter(random);
     }
     return q;
   }
@@ -47,20 +49,20 @@ TEST(Damping, DerivativesMatchFiniteDifferences) {
   const Eigen::VectorXd q_start = jelly.jittered();
   const Eigen::VectorXd q = jelly.jittered(q_start);
   std::vector<Matrix12d> stiffness;
-  fem::tet_stiffness(body, q_start, stiffness);
+  body.kind->damping_stiffness(body.local, q_start, stiffness);
   const double h = 0.01;
-  const fem::StepDamping damping{q_start, stiffness, h};
+  const StepDamping damping{q_start, stiffness, h};
   // Elasticity and damping, as the elasticity term sums them per tet.
   const auto energy = [&](const Eigen::VectorXd& at) {
     double sum = 0.0;
-    fem::add_elastic_energy(body, at, sum);
-    fem::add_damping_energy(body, at, q_start, stiffness, h, sum);
+    body.kind->add_elastic_energy(body.local, at, sum);
+    body.kind->add_damping_energy(body.local, at, damping, sum);
     return sum;
   };
   const auto derivatives = [&](const Eigen::VectorXd& at, Eigen::VectorXd& gradient,
                                std::vector<Eigen::Triplet<double>>& triplets) {
     gradient = Eigen::VectorXd::Zero(at.size());
-    fem::add_elastic_derivatives(body, at, 1.0, &damping, gradient, &triplets);
+    body.kind->add_elastic_derivatives(body.local, at, 1.0, &damping, gradient, &triplets);
   };
   Eigen::VectorXd gradient;
   std::vector<Eigen::Triplet<double>> triplets;
@@ -72,7 +74,8 @@ TEST(Damping, DerivativesMatchFiniteDifferences) {
   // The damping alone: its energy, and the elastic Hessian subtracted from the sum.
   std::vector<Eigen::Triplet<double>> elastic_triplets;
   Eigen::VectorXd elastic_gradient = Eigen::VectorXd::Zero(q.size());
-  fem::add_elastic_derivatives(body, q, 1.0, nullptr, elastic_gradient, &elastic_triplets);
+  body.kind->add_elastic_derivatives(body.local, q, 1.0, nullptr, elastic_gradient,
+                                     &elastic_triplets);
   Eigen::SparseMatrix<double> elastic_lower(q.size(), q.size());
   elastic_lower.setFromTriplets(elastic_triplets.begin(), elastic_triplets.end());
   const Eigen::MatrixXd elastic_dense(elastic_lower);
@@ -80,7 +83,7 @@ TEST(Damping, DerivativesMatchFiniteDifferences) {
       hessian - Eigen::MatrixXd(elastic_dense.selfadjointView<Eigen::Lower>());
   const auto damping_energy = [&](const Eigen::VectorXd& at) {
     double sum = 0.0;
-    fem::add_damping_energy(body, at, q_start, stiffness, h, sum);
+    body.kind->add_damping_energy(body.local, at, damping, sum);
     return sum;
   };
   const double step = 1e-6;
@@ -101,8 +104,8 @@ TEST(Damping, DerivativesMatchFiniteDifferences) {
     std::vector<Eigen::Triplet<double>> unused;
     derivatives(plus, g_plus, unused);
     derivatives(minus, g_minus, unused);
-    fem::add_elastic_derivatives(body, plus, 1.0, nullptr, e_plus, nullptr);
-    fem::add_elastic_derivatives(body, minus, 1.0, nullptr, e_minus, nullptr);
+    body.kind->add_elastic_derivatives(body.local, plus, 1.0, nullptr, e_plus, nullptr);
+    body.kind->add_elastic_derivatives(body.local, minus, 1.0, nullptr, e_minus, nullptr);
     const Eigen::VectorXd column = ((g_plus - e_plus) - (g_minus - e_minus)) / (2 * step);
     EXPECT_LT((damping_hessian.col(i) - column).norm(), 1e-6 * std::max(1.0, column.norm())) << i;
   }
@@ -117,14 +120,15 @@ TEST(Damping, AtTheStepsStartTheElasticHessianIsTheDampingsStiffness) {
   const BodyModel& body = jelly.body();
   const Eigen::VectorXd q_start = jelly.jittered();
   std::vector<Matrix12d> stiffness;
-  fem::tet_stiffness(body, q_start, stiffness);
+  body.kind->damping_stiffness(body.local, q_start, stiffness);
   const double h = 0.01;
-  const fem::StepDamping damping{q_start, stiffness, h};
+  const StepDamping damping{q_start, stiffness, h};
   Eigen::VectorXd damped = Eigen::VectorXd::Zero(q_start.size());
   Eigen::VectorXd undamped = Eigen::VectorXd::Zero(q_start.size());
   std::vector<Eigen::Triplet<double>> damped_triplets, undamped_triplets;
-  fem::add_elastic_derivatives(body, q_start, 1.0, &damping, damped, &damped_triplets);
-  fem::add_elastic_derivatives(body, q_start, 1.0, nullptr, undamped, &undamped_triplets);
+  body.kind->add_elastic_derivatives(body.local, q_start, 1.0, &damping, damped, &damped_triplets);
+  body.kind->add_elastic_derivatives(body.local, q_start, 1.0, nullptr, undamped,
+                                     &undamped_triplets);
   EXPECT_EQ(damped, undamped);
   ASSERT_EQ(damped_triplets.size(), undamped_triplets.size());
   const double c = body.material.damping / h;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "solver/contact/candidates.hpp"
-#include "solver/contact/friction_lag.hpp"
 #include "solver/newton/step_targets.hpp"
+#include "solver/potential/friction_lag.hpp"
 #include "solver/potential/incremental_potential.hpp"
 #include "tests/solver/scene_builders.hpp"
 
@@ -51,7 +51,7 @@ TEST(PotentialGradient, TheGradientAloneIsTheDerivativesGradientBitForBit) {
   Eigen::VectorXd q_tilde = state.q + h * state.v;
   potential.begin_step(state.q, q_tilde, state.q, start, state.kappa, h);
   const std::vector<ContactCandidate> candidates =
-      find_contact_candidates(model, start, start, model.sim().d_hat);
+      find_contact_candidates(model.collision(), start, start, model.sim().d_hat);
   std::vector<FrictionContact> friction =
       lag_friction(potential.barrier(), start, candidates, false);
   ASSERT_FALSE(friction.empty());
@@ -63,16 +63,16 @@ TEST(PotentialGradient, TheGradientAloneIsTheDerivativesGradientBitForBit) {
   std::uniform_real_distribution<double> jitter(-5e-5, 5e-5);
   Eigen::VectorXd moved_q = state.q;
   for (const BodyModel& body : model.bodies()) {
-    if (body.type == BodyType::kKinematic) continue;
-    // An affine body moves only in its translation (its first 3 DOFs), so that its deformation
-    // stays at the identity's.
-    const int dofs = body.type == BodyType::kAffine ? 3 : body.dof_count;
+    if (!body.has_dofs()) continue;
+    // A body that keeps its shape (an affine one) moves only in its translation (its first 3
+    // DOFs), so that its deformation stays at the identity's.
+    const int dofs = body.deforms() ? body.dof_count : 3;
     for (int i = 0; i < dofs; ++i) moved_q[body.dof_offset + i] += jitter(random);
   }
   for (const Eigen::VectorXd& at : {state.q, moved_q}) {
     const Vertices x = collision_positions(model, at, targets_at_rest(model, state), 1.0);
     const std::vector<ContactCandidate> near =
-        find_contact_candidates(model, x, x, model.sim().d_hat);
+        find_contact_candidates(model.collision(), x, x, model.sim().d_hat);
     Eigen::VectorXd full, alone;
     std::vector<Eigen::Triplet<double>> hessian;
     potential.derivatives(at, x, near, full, hessian);

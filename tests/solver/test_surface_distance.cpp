@@ -25,7 +25,7 @@ double distance_over_all_pairs(const Environment& env, const std::vector<int>& b
     return std::find(bodies.begin(), bodies.end(), vertex_body[v]) != bodies.end();
   };
   double nearest_sq = std::numeric_limits<double>::infinity();
-  for (const ContactCandidate& c : find_contact_candidates(env.model(), x, x, search)) {
+  for (const ContactCandidate& c : find_contact_candidates(env.model().collision(), x, x, search)) {
     const int a = c.vertex[0], b = c.vertex[c.edge_edge ? 2 : 1];
     if (!((in_set(a) && vertex_body[b] == other) || (in_set(b) && vertex_body[a] == other))) {
       continue;

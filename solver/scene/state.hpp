@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace grip::solver {
 

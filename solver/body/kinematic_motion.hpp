@@ -1,11 +1,10 @@
 #pragma once
-// A body that follows a script: a gripper link, a jaw, the ground. It has no DOFs; its state is
-// a pose (and the velocity of its frame over the last step), and its rest vertices are in the
-// body frame of the description.
+// Scripted motion of a pose: where a script puts a body frame (a kinematic body, a driven body's
+// drive target), a point in that frame, and a rigid move of the frame.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace grip::solver::kinematic {
 

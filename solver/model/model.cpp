@@ -1,11 +1,10 @@
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
 
-#include "solver/body/body.hpp"
 #include "solver/contact/candidates.hpp"
 #include "solver/linear/block_ordering.hpp"
 #include "solver/linear/sparse_cholesky.hpp"
@@ -21,14 +20,15 @@ void check_surface(const BodyDescription& body) {
   }
 }
 
-// Blocks of the Newton matrix: one per FEM vertex (3 DOFs) and per affine body (12), coupled
-// by the tets; a pinned vertex is solved for by an identity row, so it couples to nothing.
+// Blocks of the Newton matrix: as each kind reports them (3 DOFs per FEM vertex, 12 per affine
+// body), coupled by the elements it reports (tets); a pinned vertex is solved for by an
+// identity row, so it couples to nothing.
 BlockGraph block_graph(const Model& model) {
   BlockGraph graph;
   std::vector<int> first_block;  // per body
   for (const BodyModel& body : model.bodies()) {
     first_block.push_back(static_cast<int>(graph.block_offset.size()));
-    const int size = block_size(body);
+    const int size = body.kind->block_size();
     for (int d = 0; d < body.dof_count; d += size)
       graph.block_offset.push_back(body.dof_offset + d);
   }
@@ -37,15 +37,11 @@ BlockGraph block_graph(const Model& model) {
   const std::vector<char>& prescribed = model.prescribed();
   for (std::size_t b = 0; b < model.bodies().size(); ++b) {
     const BodyModel& body = model.bodies()[b];
-    auto free = [&](int v) { return !prescribed[body.dof_offset + 3 * v]; };
-    for (const FemTet& tet : body.tets) {
-      for (int i : tet.vertices) {
-        for (int j : tet.vertices) {
-          if (i != j && free(i) && free(j))
-            graph.neighbours[first_block[b] + i].push_back(first_block[b] + j);
-        }
-      }
-    }
+    const int size = body.kind->block_size();
+    auto free = [&](int block) { return !prescribed[body.dof_offset + size * block]; };
+    body.kind->couple_blocks(body.local, [&](int i, int j) {
+      if (free(i) && free(j)) graph.neighbours[first_block[b] + i].push_back(first_block[b] + j);
+    });
   }
   return graph;
 }
@@ -57,12 +53,12 @@ std::shared_ptr<const Model> Model::build(const SceneDescription& scene) {
   model->scene_ = scene;
   model->sim_ = scene.sim;
   model->build_bodies();
+  model->build_collision_mesh();
   model->build_pair_friction();
   model->build_untouching();
   model->build_pins();
   model->ordering_ =
       std::make_shared<const std::vector<int>>(nested_dissection_ordering(block_graph(*model)));
-  model->build_collision_mesh();
   model->build_rest_proximity();
   return model;
 }
@@ -96,55 +92,42 @@ std::size_t Model::contact_free_factor_bytes() const {
   return symbolic_factor_bytes(dof_count_, outer, inner, *ordering_);
 }
 
-void Model::build_bodies() {
-  int dofs = 0;
-  for (const BodyDescription& body : scene_.bodies) {
-    check_surface(body);
-    BodyModel b;
-    b.name = body.name;
-    b.type = body.type;
-    b.material = body.material;
-    b.dof_offset = dofs;
-    build_body(body, b);
-    if (body.drive_stiffness != 0.0) {
-      if (body.type != BodyType::kAffine || !(body.drive_stiffness > 0.0)) {
-        invalid_body(body, "drive_stiffness must be > 0, and only an affine body is driven");
-      }
-      b.drive_stiffness = body.drive_stiffness;
-    }
-    dofs += b.dof_count;
-    bodies_.push_back(std::move(b));
+double Model::min_volume_ratio(const Eigen::VectorXd& q) const {
+  double ratio = 1.0;
+  for (const BodyModel& body : bodies_) {
+    ratio = std::min(ratio, body.kind->min_volume_ratio(body.local, q));
   }
-  dof_count_ = dofs;
+  return ratio;
 }
 
-void Model::build_untouching() {
-  const std::size_t body_count = bodies_.size();
-  untouching_.assign(body_count, 0);
-  for (std::size_t b = 0; b < body_count; ++b) {
-    untouching_[b] = is_kinematic(bodies_[b]) || scene_.bodies[b].collision_group >= 0;
+// Each body into its kind, and the DOF layout: each body's DOFs after those of the bodies before
+// it, as many as its kind reports.
+void Model::build_bodies() {
+  int dofs = 0;
+  for (int index = 0; index < static_cast<int>(scene_.bodies.size()); ++index) {
+    const BodyDescription& body = scene_.bodies[index];
+    check_surface(body);
+    const BodyRegistry::Entry entry = kinds_.add(body, index);
+    entry.kind->set_dof_offset(entry.local, dofs);
+    const int count = entry.kind->dof_count(entry.local);
+    bodies_.push_back({body.name, body.material, dofs, count, entry.kind, entry.local});
+    dofs += count;
   }
-  for (std::size_t a = 0; a < body_count; ++a) {
-    for (std::size_t b = 0; b < body_count; ++b) {
-      if (untouching_[a] && untouching_[b] && may_touch(static_cast<int>(a), static_cast<int>(b))) {
-        for (std::size_t c = 0; c < body_count; ++c) untouching_[c] = is_kinematic(bodies_[c]);
-        return;
-      }
-    }
-  }
+  dof_count_ = dofs;
 }
 
 // Which pairs may touch, and with what friction.
 void Model::build_pair_friction() {
   const int body_count = static_cast<int>(scene_.bodies.size());
-  pair_friction_.assign(static_cast<std::size_t>(body_count) * body_count, -1.0);
+  std::vector<double>& friction = collision_.friction;
+  friction.assign(static_cast<std::size_t>(body_count) * body_count, -1.0);
   for (int a = 0; a < body_count; ++a) {
     for (int b = 0; b < body_count; ++b) {
-      if (is_kinematic(bodies_[a]) && is_kinematic(bodies_[b])) continue;
-      if (a == b && !can_self_collide(bodies_[a].type)) continue;
+      if (!bodies_[a].has_dofs() && !bodies_[b].has_dofs()) continue;
+      if (a == b && !bodies_[a].deforms()) continue;  // only a deforming body touches itself
       const int group = scene_.bodies[a].collision_group;
       if (a != b && group >= 0 && group == scene_.bodies[b].collision_group) continue;
-      pair_friction_[a * body_count + b] =
+      friction[a * body_count + b] =
           std::sqrt(scene_.bodies[a].material.friction * scene_.bodies[b].material.friction);
     }
   }
@@ -154,7 +137,24 @@ void Model::build_pair_friction() {
     }
     if (c.friction < 0) throw std::invalid_argument("contact friction must be >= 0");
     for (const auto& [a, b] : {std::pair{c.body_a, c.body_b}, std::pair{c.body_b, c.body_a}}) {
-      if (pair_friction_[a * body_count + b] >= 0) pair_friction_[a * body_count + b] = c.friction;
+      if (friction[a * body_count + b] >= 0) friction[a * body_count + b] = c.friction;
+    }
+  }
+}
+
+void Model::build_untouching() {
+  const std::size_t body_count = bodies_.size();
+  std::vector<char>& untouching = collision_.untouching;
+  untouching.assign(body_count, 0);
+  for (std::size_t b = 0; b < body_count; ++b) {
+    untouching[b] = !bodies_[b].has_dofs() || scene_.bodies[b].collision_group >= 0;
+  }
+  for (std::size_t a = 0; a < body_count; ++a) {
+    for (std::size_t b = 0; b < body_count; ++b) {
+      if (untouching[a] && untouching[b] && may_touch(static_cast<int>(a), static_cast<int>(b))) {
+        for (std::size_t c = 0; c < body_count; ++c) untouching[c] = !bodies_[c].has_dofs();
+        return;
+      }
     }
   }
 }
@@ -165,12 +165,11 @@ void Model::build_pins() {
   prescribed_.assign(dof_count_, 0);
   for (int index = 0; index < body_count; ++index) {
     const BodyDescription& body = scene_.bodies[index];
-    if (!body.pins.empty() && body.type != BodyType::kFem) {
-      invalid_body(body, "only FEM bodies have pins");
-    }
+    const BodyModel& b = bodies_[index];
+    if (!body.pins.empty() && !b.deforms()) invalid_body(body, "only FEM bodies have pins");
     for (const Pin& pin : body.pins) {
       if (pin.kinematic_body < 0 || pin.kinematic_body >= body_count ||
-          !is_kinematic(bodies_[pin.kinematic_body])) {
+          bodies_[pin.kinematic_body].has_dofs()) {
         invalid_body(body, "is pinned to something that is not a kinematic body");
       }
       const BodyDescription& mount = scene_.bodies[pin.kinematic_body];
@@ -178,19 +177,19 @@ void Model::build_pins() {
       for (int v : pin.vertices) {
         if (v < 0 || v >= body.vertices.rows())
           invalid_body(body, "pins a vertex it does not have");
-        const BodyModel& b = bodies_[index];
-        const Eigen::Vector3d world = b.rest.row(v);
+        // A deforming body's rest vertices are its world positions at the start.
+        const Eigen::Vector3d world = b.kind->rest_vertex(b.local, v);
         pins_.push_back(
             {index, v, pin.kinematic_body, mount_r.transpose() * (world - mount.pose.position)});
-        for (int k = 0; k < 3; ++k) prescribed_[b.dof_offset + 3 * v + k] = 1;
+        for (int k = 0; k < 3; ++k) prescribed_[b.kind->vertex_block(b.local, v) + k] = 1;
       }
-      pair_friction_[index * body_count + pin.kinematic_body] = -1.0;
-      pair_friction_[pin.kinematic_body * body_count + index] = -1.0;
+      collision_.friction[index * body_count + pin.kinematic_body] = -1.0;
+      collision_.friction[pin.kinematic_body * body_count + index] = -1.0;
     }
   }
 }
 
-// The collision mesh: every surface vertex, edge and face of every body.
+// The collision mesh: every surface vertex, edge and face of every body, body after body.
 void Model::build_collision_mesh() {
   CollisionMesh& mesh = collision_;
   for (int index = 0; index < static_cast<int>(scene_.bodies.size()); ++index) {
@@ -215,21 +214,22 @@ void Model::build_collision_mesh() {
         if (edge_seen.emplace(std::pair{a, b}, 0).second) mesh.edges.push_back({a, b});
       }
     }
+    mesh.body_first_vertex.push_back(mesh.size());
+  }
+  mesh.rest.resize(mesh.size(), 3);
+  for (int v = 0; v < mesh.size(); ++v) {
+    const BodyModel& body = bodies_[mesh.vertex_body[v]];
+    mesh.rest.row(v) = body.kind->rest_vertex(body.local, mesh.vertex_local[v]).transpose();
   }
 }
 
 void Model::build_rest_proximity() {
-  const bool any_self_contact = std::any_of(
-      bodies_.begin(), bodies_.end(), [](const BodyModel& b) { return can_self_collide(b.type); });
+  const bool any_self_contact =
+      std::any_of(bodies_.begin(), bodies_.end(), [](const BodyModel& b) { return b.deforms(); });
   if (!any_self_contact) return;
-  auto [point_triangle, edge_edge] = self_pairs_near_at_rest(*this);
+  auto [point_triangle, edge_edge] = self_pairs_near_at_rest(collision_, sim_.d_hat);
   collision_.point_triangle_near_at_rest = std::move(point_triangle);
   collision_.edge_edge_near_at_rest = std::move(edge_edge);
-}
-
-bool CollisionMesh::near_at_rest(bool edge_edge, const std::array<int, 4>& pair) const {
-  const auto& pairs = edge_edge ? edge_edge_near_at_rest : point_triangle_near_at_rest;
-  return std::binary_search(pairs.begin(), pairs.end(), pair);
 }
 
 }  // namespace grip::solver

@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "solver/contact/contact_forces.hpp"
+#include "solver/potential/contact_forces.hpp"
 
 namespace grip::solver {
 

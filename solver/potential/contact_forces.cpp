@@ -1,4 +1,4 @@
-#include "solver/contact/contact_forces.hpp"
+#include "solver/potential/contact_forces.hpp"
 
 #include <algorithm>
 #include <map>

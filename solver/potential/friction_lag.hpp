@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "solver/contact/candidates.hpp"
-#include "solver/model.hpp"
+#include "solver/model/model.hpp"
 #include "solver/potential/barrier_term.hpp"
 #include "solver/potential/friction_term.hpp"
 

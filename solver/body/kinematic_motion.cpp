@@ -1,4 +1,4 @@
-#include "solver/body/kinematic_body.hpp"
+#include "solver/body/kinematic_motion.hpp"
 
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "solver/contact/friction_lag.hpp"
+#include "solver/potential/friction_lag.hpp"
 
 #include "solver/contact/contact_frame.hpp"
 
