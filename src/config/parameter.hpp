@@ -40,12 +40,12 @@ struct Range {
 // One row. Exactly one of `real` and `count` is set.
 template <class Group>
 struct Parameter {
-  std::string_view key;  // as a file writes it; the option is --key with '_' as '-'
+  std::string_view key = {};  // as a file writes it; the option is --key with '_' as '-'
   double Group::*real = nullptr;
   int Group::*count = nullptr;
   Range range;
-  std::string_view unit;  // SI ("m/s", "N"); "" for a pure number
-  std::string_view doc;   // one line: what the value does
+  std::string_view unit = {};  // SI ("m/s", "N"); "" for a pure number
+  std::string_view doc = {};   // one line: what the value does
   // A real that may be "auto" instead of a number (kappa): the flag that word sets.
   bool Group::*automatic = nullptr;
   // Where a job file sets it when not in the group's own table ("outputs": the frame counts).
