@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "solver/engine/engine.hpp"
 #include "solver/linear/linear_system_solver.hpp"
 #include "solver/model/model.hpp"
 #include "solver/newton/diagnostics.hpp"
@@ -21,10 +22,12 @@
 
 namespace grip::solver {
 
-class Environment {
+// The CPU engine's environment (EnvironmentHandle): its state on the host, its Newton systems
+// solved by CHOLMOD (or an attached LinearSystemSolver).
+class Environment final : public EnvironmentHandle {
  public:
   explicit Environment(std::shared_ptr<const Model> model);
-  ~Environment();
+  ~Environment() override;
   Environment(Environment&&) noexcept;
 
   // Before the first step: moves a body rigidly by `motion` from where it is (in a fresh
@@ -32,7 +35,7 @@ class Environment {
   // they are. Environments of one model
   // start apart this way, e.g. a gripper at each candidate's pose. A pinned FEM body and its
   // mount must be moved together. Throws std::logic_error after the first step.
-  void place(int body, const Eigen::Isometry3d& motion);
+  void place(int body, const Eigen::Isometry3d& motion) override;
 
   // Advances one time step; false when the environment failed (now or before).
   bool step();
@@ -53,55 +56,55 @@ class Environment {
   const StepPolicy& policy() const { return policy_; }
 
   // Between steps, the caller may redirect gravity and change kinematic scripts.
-  void set_gravity(const Eigen::Vector3d& gravity) { state_.gravity = gravity; }
-  void set_script(int body, const Script& script);
+  void set_gravity(const Eigen::Vector3d& gravity) override { state_.gravity = gravity; }
+  void set_script(int body, const Script& script) override;
   // Between steps: holds a dynamic body still where it is, as a fixture would, until release()
   // (a trial's object while the fingers close on it): an affine body whole, an FEM body by the
   // four vertices of its tet nearest its centre of mass, so that it still deforms around them.
   // The held DOFs' velocities are zeroed. Throws std::invalid_argument for a kinematic body.
-  void hold(int body);
-  void release(int body);
+  void hold(int body) override;
+  void release(int body) override;
 
   // Newton systems of at least `min_dofs` rows (all DOFs, prescribed ones included) are solved
   // by `solver` instead of the environment's own sparse Cholesky; a failure of `solver` fails
   // the environment with its reason. Null detaches it. The solver must not serve environments
   // that step at the same time (on other threads).
-  void use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, int min_dofs);
+  void use_linear_solver(std::shared_ptr<LinearSystemSolver> solver, int min_dofs) override;
 
-  const Model& model() const { return *model_; }
-  double time() const { return state_.time; }
-  bool failed() const { return failure_code_ != Failure::kNone; }
+  const Model& model() const override { return *model_; }
+  double time() const override { return state_.time; }
+  bool failed() const override { return failure_code_ != Failure::kNone; }
   // Why the environment failed: the code to decide on, and a message for people.
-  Failure failure_code() const { return failure_code_; }
-  const std::string& failure() const { return failure_; }
-  const StepDiagnostics& last_step() const { return diagnostics_; }
-  const EnvironmentStatistics& statistics() const { return statistics_; }
+  Failure failure_code() const override { return failure_code_; }
+  const std::string& failure() const override { return failure_; }
+  const StepDiagnostics& last_step() const override { return diagnostics_; }
+  const EnvironmentStatistics& statistics() const override { return statistics_; }
   // Where the steps' time went, by stage of the Newton iteration.
-  const StageSeconds& stage_seconds() const { return newton_.stages(); }
+  const StageSeconds& stage_seconds() const override { return newton_.stages(); }
   // How the steps' Newton systems were solved.
-  const LinearSolveCounts& linear_solves() const { return newton_.linear_solves(); }
+  const LinearSolveCounts& linear_solves() const override { return newton_.linear_solves(); }
 
   const State& state() const { return state_; }
-  const Eigen::VectorXd& dofs() const { return state_.q; }
+  const Eigen::VectorXd& dofs() const override { return state_.q; }
   const Eigen::VectorXd& velocities() const { return state_.v; }
   // World positions of the collision vertices (one row each).
-  Vertices collision_positions() const;
+  Vertices collision_positions() const override;
   // World positions of all vertices of one body (FEM: every vertex, including interior ones).
-  Vertices body_vertices(int body) const;
+  Vertices body_vertices(int body) const override;
   // Centre of mass (the frame origin for kinematic bodies), its velocity, and the body's
   // rotation (affine: the rotation nearest its affine matrix; FEM: the best-fit rotation of its
   // vertices against the rest shape; kinematic: its pose).
-  Eigen::Vector3d center_of_mass(int body) const;
-  Eigen::Vector3d center_of_mass_velocity(int body) const;
-  Eigen::Matrix3d rotation(int body) const;
+  Eigen::Vector3d center_of_mass(int body) const override;
+  Eigen::Vector3d center_of_mass_velocity(int body) const override;
+  Eigen::Matrix3d rotation(int body) const override;
   // The smallest det F over the tets of every FEM body (1 without FEM).
-  double min_volume_ratio() const;
+  double min_volume_ratio() const override;
   // The exact distance between the surfaces of `bodies` and of body `other` now, if it is below
   // `search` (m); infinity otherwise. The broad phase's cost grows with `search`.
-  double surface_distance(const std::vector<int>& bodies, int other, double search) const;
+  double surface_distance(const std::vector<int>& bodies, int other, double search) const override;
   // The contact forces on every collision vertex at the current state (between steps); the
   // pairs come from the broad phase the environment keeps.
-  VertexContactForces vertex_contact_forces();
+  VertexContactForces vertex_contact_forces() override;
 
  private:
   // A step of dt is taken as parts: one part normally; a part that fails is rolled back to its

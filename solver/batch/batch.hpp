@@ -12,49 +12,43 @@
 
 #include <tbb/task_arena.h>
 
+#include "solver/engine/engine.hpp"
 #include "solver/environment.hpp"
 
 namespace grip::solver {
 
-// What one batch step cost: rounds of Newton iterations, and per round how many environments
-// iterated and how many sat frozen (converged this step, while others still iterated).
-struct BatchStepReport {
-  int stepped = 0;  // environments that took part in the step
-  int rounds = 0;
-  long iterations = 0;  // environment-iterations over all rounds
-  long frozen = 0;      // environment-rounds spent frozen
-  int failed = 0;       // environments that failed in this step
-};
-
-class Batch {
+// The CPU engine: its environments (solver::Environment) stepped on a TBB arena.
+class Batch final : public Engine {
  public:
   // threads = 0: all the machine's cores.
   explicit Batch(int threads = 0);
 
   // Adds an environment of `model` and returns its index. Take it with environment(i) to place
   // bodies, set gravity and scripts between steps.
-  int add(std::shared_ptr<const Model> model);
-  Environment& environment(int index) { return *environments_.at(static_cast<std::size_t>(index)); }
-  const Environment& environment(int index) const {
+  int add(std::shared_ptr<const Model> model) override;
+  Environment& environment(int index) override {
     return *environments_.at(static_cast<std::size_t>(index));
   }
-  int size() const { return static_cast<int>(environments_.size()); }
-  int threads() const { return threads_; }
+  const Environment& environment(int index) const override {
+    return *environments_.at(static_cast<std::size_t>(index));
+  }
+  int size() const override { return static_cast<int>(environments_.size()); }
+  int threads() const override { return threads_; }
 
   // Takes an environment out of further steps (its trial is over); it keeps its state.
-  void retire(int index) { active_.at(static_cast<std::size_t>(index)) = 0; }
+  void retire(int index) override { active_.at(static_cast<std::size_t>(index)) = 0; }
   // Not retired and not failed.
-  bool active(int index) const;
-  bool any_active() const;
+  bool active(int index) const override;
+  bool any_active() const override;
 
   // The step policy of every environment, present and future (StepPolicy). By default an
   // environment whose Newton converged is frozen for the rest of the step; without
   // freeze_converged every environment keeps iterating until all have converged (one global
   // convergence test, as a monolithic solver of all environments would have).
-  void set_policy(const StepPolicy& policy);
+  void set_policy(const StepPolicy& policy) override;
 
   // One time step (each environment's own dt) of every active environment.
-  BatchStepReport step();
+  BatchStepReport step() override;
 
  private:
   int threads_;

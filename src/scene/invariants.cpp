@@ -9,7 +9,7 @@
 
 namespace grip::scene {
 
-int count_intersections(const solver::Environment& environment) {
+int count_intersections(const solver::EnvironmentHandle& environment) {
   const solver::Model& model = environment.model();
   const solver::CollisionMesh& mesh = model.collision();
   geometry::Triangles faces(static_cast<Eigen::Index>(mesh.faces.size()), 3);
@@ -25,7 +25,8 @@ int count_intersections(const solver::Environment& environment) {
                                        [&](int a, int b) { return model.may_touch(a, b); });
 }
 
-std::optional<std::pair<int, int>> find_contained_body(const solver::Environment& environment) {
+std::optional<std::pair<int, int>> find_contained_body(
+    const solver::EnvironmentHandle& environment) {
   const solver::Model& model = environment.model();
   const solver::CollisionMesh& mesh = model.collision();
   const geometry::Vertices positions = environment.collision_positions();

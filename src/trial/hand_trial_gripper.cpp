@@ -43,14 +43,14 @@ class HandTrialGripper final : public SceneTrialGripper<HandTrialScene> {
     return scene_.fingers()[static_cast<std::size_t>(finger)].bodies;
   }
 
-  std::vector<double> place(solver::Environment& environment, std::size_t k) const override {
+  std::vector<double> place(solver::EnvironmentHandle& environment, std::size_t k) const override {
     for (std::size_t h = 0; h < grasps_[k].size(); ++h) {
       scene_.place(environment, grasps_[k][h], static_cast<int>(h));
     }
     return paths_[k].travel;
   }
 
-  void place_finger(solver::Environment& environment, std::size_t k, int finger, double from,
+  void place_finger(solver::EnvironmentHandle& environment, std::size_t k, int finger, double from,
                     double to) const override {
     const Eigen::VectorXd& direction = paths_[k].direction[static_cast<std::size_t>(finger)];
     const HandTrialGrasp& grasp = finger_grasp(k, finger);
@@ -60,7 +60,7 @@ class HandTrialGripper final : public SceneTrialGripper<HandTrialScene> {
                         scene_.finger_joints(start, direction, finger, to));
   }
 
-  void move_finger(solver::Environment& environment, std::size_t k, int finger, double travel,
+  void move_finger(solver::EnvironmentHandle& environment, std::size_t k, int finger, double travel,
                    double speed) const override {
     const Eigen::VectorXd& direction = paths_[k].direction[static_cast<std::size_t>(finger)];
     const double next = travel + speed * scene_.parameters().sim.dt;
@@ -69,7 +69,7 @@ class HandTrialGripper final : public SceneTrialGripper<HandTrialScene> {
                        scene_.finger_joints(grasp.joints, direction, finger, next));
   }
 
-  void hold_finger(solver::Environment& environment, int finger) const override {
+  void hold_finger(solver::EnvironmentHandle& environment, int finger) const override {
     scene_.hold_finger(environment, finger);
   }
 

@@ -174,7 +174,7 @@ void HandTrialScene::check(const HandTrialGrasp& grasp, int h) const {
   }
 }
 
-void HandTrialScene::place(solver::Environment& environment, const HandTrialGrasp& grasp,
+void HandTrialScene::place(solver::EnvironmentHandle& environment, const HandTrialGrasp& grasp,
                            int h) const {
   check(grasp, h);
   const HandLinks& links = links_[static_cast<std::size_t>(h)];
@@ -277,8 +277,9 @@ double HandTrialScene::closing_travel(const Eigen::VectorXd& start,
   return std::isinf(travel) ? 0.0 : travel;
 }
 
-void HandTrialScene::move_finger(solver::Environment& environment, const Eigen::Isometry3d& pose,
-                                 int finger, const Eigen::VectorXd& joints) const {
+void HandTrialScene::move_finger(solver::EnvironmentHandle& environment,
+                                 const Eigen::Isometry3d& pose, int finger,
+                                 const Eigen::VectorXd& joints) const {
   const HandFinger& f = fingers_.at(static_cast<std::size_t>(finger));
   const std::vector<Eigen::Isometry3d> poses = kinematics(f.hand).link_poses(pose, joints);
   // One keyframe: the pose the link reaches at the end of the step (and holds after it).
@@ -293,9 +294,9 @@ void HandTrialScene::move_finger(solver::Environment& environment, const Eigen::
   }
 }
 
-void HandTrialScene::place_finger(solver::Environment& environment, const Eigen::Isometry3d& pose,
-                                  int finger, const Eigen::VectorXd& from,
-                                  const Eigen::VectorXd& to) const {
+void HandTrialScene::place_finger(solver::EnvironmentHandle& environment,
+                                  const Eigen::Isometry3d& pose, int finger,
+                                  const Eigen::VectorXd& from, const Eigen::VectorXd& to) const {
   const HandFinger& f = fingers_.at(static_cast<std::size_t>(finger));
   const std::vector<Eigen::Isometry3d> now = kinematics(f.hand).link_poses(pose, from);
   const std::vector<Eigen::Isometry3d> next = kinematics(f.hand).link_poses(pose, to);
@@ -307,13 +308,13 @@ void HandTrialScene::place_finger(solver::Environment& environment, const Eigen:
   }
 }
 
-void HandTrialScene::hold_finger(solver::Environment& environment, int finger) const {
+void HandTrialScene::hold_finger(solver::EnvironmentHandle& environment, int finger) const {
   for (int body : fingers_.at(static_cast<std::size_t>(finger)).bodies) {
     environment.set_script(body, solver::Script{});
   }
 }
 
-geometry::Vertices HandTrialScene::hand_vertices(const solver::Environment& environment,
+geometry::Vertices HandTrialScene::hand_vertices(const solver::EnvironmentHandle& environment,
                                                  int h) const {
   Eigen::Index rows = 0;
   std::vector<geometry::Vertices> links;
@@ -331,7 +332,8 @@ geometry::Vertices HandTrialScene::hand_vertices(const solver::Environment& envi
   return vertices;
 }
 
-geometry::Vertices HandTrialScene::surface_vertices(const solver::Environment& environment) const {
+geometry::Vertices HandTrialScene::surface_vertices(
+    const solver::EnvironmentHandle& environment) const {
   if (hands_.size() == 1) return hand_vertices(environment, 0);
   const geometry::Vertices right = hand_vertices(environment, 0);
   const geometry::Vertices left = hand_vertices(environment, 1);
@@ -341,12 +343,12 @@ geometry::Vertices HandTrialScene::surface_vertices(const solver::Environment& e
 }
 
 metrics::DistanceMetrics HandTrialScene::grasp_distances(
-    const solver::Environment& environment) const {
+    const solver::EnvironmentHandle& environment) const {
   return object_.distances(environment, hand_points_->positions(surface_vertices(environment)));
 }
 
 std::vector<metrics::DistanceMetrics> HandTrialScene::gripper_distances(
-    const solver::Environment& environment) const {
+    const solver::EnvironmentHandle& environment) const {
   std::vector<metrics::DistanceMetrics> distances;
   for (std::size_t h = 0; h < each_hand_points_.size(); ++h) {
     distances.push_back(object_.distances(environment, each_hand_points_[h].positions(hand_vertices(

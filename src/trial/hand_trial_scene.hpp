@@ -10,7 +10,7 @@
 
 #include <Eigen/Geometry>
 
-#include "solver/environment.hpp"
+#include "solver/engine/engine.hpp"
 #include "solver/model/model.hpp"
 #include "src/geometry/mesh.hpp"
 #include "src/geometry/signed_distance.hpp"
@@ -92,7 +92,7 @@ class HandTrialScene final : public TrialScene {
 
   // Moves hand h's links of a fresh environment to the candidate's pose and joints
   // (Environment::place), holds them still and turns gravity off. Throws as check() does.
-  void place(solver::Environment& environment, const HandTrialGrasp& grasp, int h = 0) const;
+  void place(solver::EnvironmentHandle& environment, const HandTrialGrasp& grasp, int h = 0) const;
 
   // The finger's closing direction in its hand's joint space at `grasp`, its hand's candidate
   // (zero outside its degrees of freedom), scaled so that its fastest pushed point moves 1 m per
@@ -112,13 +112,13 @@ class HandTrialScene final : public TrialScene {
 
   // Scripts the finger's links to reach joint values `joints` (only the finger's own are read)
   // at the end of the next step, or holds them where they are.
-  void move_finger(solver::Environment& environment, const Eigen::Isometry3d& pose, int finger,
-                   const Eigen::VectorXd& joints) const;
-  void hold_finger(solver::Environment& environment, int finger) const;
+  void move_finger(solver::EnvironmentHandle& environment, const Eigen::Isometry3d& pose,
+                   int finger, const Eigen::VectorXd& joints) const;
+  void hold_finger(solver::EnvironmentHandle& environment, int finger) const;
   // Before the first step: moves the finger's links from where joint values `from` put them to
   // where `to` does.
-  void place_finger(solver::Environment& environment, const Eigen::Isometry3d& pose, int finger,
-                    const Eigen::VectorXd& from, const Eigen::VectorXd& to) const;
+  void place_finger(solver::EnvironmentHandle& environment, const Eigen::Isometry3d& pose,
+                    int finger, const Eigen::VectorXd& from, const Eigen::VectorXd& to) const;
 
   // The hand's surface: every link with a surface in link order, each link's vertices in its
   // mesh's order (hand after hand). rest_surface() has the joints at 0 in the hand frame (the
@@ -129,23 +129,23 @@ class HandTrialScene final : public TrialScene {
   const geometry::SurfaceMesh& hand_rest_surface(int h) const {
     return hand_rest_surfaces_.at(static_cast<std::size_t>(h));
   }
-  geometry::Vertices surface_vertices(const solver::Environment& environment) const;
+  geometry::Vertices surface_vertices(const solver::EnvironmentHandle& environment) const;
 
   // The object's pose as a row-major 3x4 [A | t], world from object frame (A: the affine
   // body's matrix; a soft object's best-fit rotation).
-  std::array<double, 12> object_pose(const solver::Environment& environment) const {
+  std::array<double, 12> object_pose(const solver::EnvironmentHandle& environment) const {
     return object_.pose(environment);
   }
 
   // D1/D2 now: the object's signed distance (its current surface) at the D1/D2 points, which
   // are sampled once on the rest surface of the hands' links and follow them; and per hand, from
   // points sampled on its own links (empty for one hand).
-  metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const;
+  metrics::DistanceMetrics grasp_distances(const solver::EnvironmentHandle& environment) const;
   std::vector<metrics::DistanceMetrics> gripper_distances(
-      const solver::Environment& environment) const;
+      const solver::EnvironmentHandle& environment) const;
 
   // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
-  Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const {
+  Eigen::VectorXd body_stress(const solver::EnvironmentHandle& environment, int body) const {
     return body == object_body() ? object_.stress(environment) : Eigen::VectorXd();
   }
 
@@ -160,7 +160,7 @@ class HandTrialScene final : public TrialScene {
 
   const HandLinks& links_of(int finger) const;
   // Hand h's surface vertices now, the rows of surface_vertices() it takes.
-  geometry::Vertices hand_vertices(const solver::Environment& environment, int h) const;
+  geometry::Vertices hand_vertices(const solver::EnvironmentHandle& environment, int h) const;
 
   std::vector<grippers::HandModel> hands_;
   std::string name_;

@@ -46,7 +46,7 @@ void ObjectBody::bind(std::shared_ptr<const solver::Model> model) {
   }
 }
 
-std::array<double, 12> ObjectBody::pose(const solver::Environment& environment) const {
+std::array<double, 12> ObjectBody::pose(const solver::EnvironmentHandle& environment) const {
   Eigen::Matrix3d a;
   Eigen::Vector3d t;
   if (soft_) {
@@ -66,7 +66,7 @@ std::array<double, 12> ObjectBody::pose(const solver::Environment& environment) 
   return pose;
 }
 
-metrics::DistanceMetrics ObjectBody::distances(const solver::Environment& environment,
+metrics::DistanceMetrics ObjectBody::distances(const solver::EnvironmentHandle& environment,
                                                const geometry::Vertices& points) const {
   if (soft_) {
     // The deformed object: its signed distance is built on its current surface.
@@ -93,7 +93,7 @@ metrics::DistanceMetrics ObjectBody::distances(const solver::Environment& enviro
   return metrics::distance_metrics(*rigid_distance_, local);
 }
 
-Eigen::VectorXd ObjectBody::stress(const solver::Environment& environment) const {
+Eigen::VectorXd ObjectBody::stress(const solver::EnvironmentHandle& environment) const {
   if (!soft_) return {};
   const solver::Material& material = model_->bodies()[0].material;
   return metrics::von_mises_stress(rest_tets_, environment.body_vertices(0), material.youngs,

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "solver/environment.hpp"
+#include "solver/engine/engine.hpp"
 #include "solver/model/model.hpp"
 #include "src/geometry/mesh.hpp"
 #include "src/geometry/signed_distance.hpp"
@@ -32,12 +32,12 @@ class ObjectBody {
 
   // Row-major 3x4 [A | t], world from object frame (A: the affine body's matrix; a soft
   // object's best-fit rotation).
-  std::array<double, 12> pose(const solver::Environment& environment) const;
+  std::array<double, 12> pose(const solver::EnvironmentHandle& environment) const;
   // D1/D2 of world points against the object now (a soft object's current surface).
-  metrics::DistanceMetrics distances(const solver::Environment& environment,
+  metrics::DistanceMetrics distances(const solver::EnvironmentHandle& environment,
                                      const geometry::Vertices& points) const;
   // Von Mises stress per tet (Pa) of a soft object now; empty when rigid.
-  Eigen::VectorXd stress(const solver::Environment& environment) const;
+  Eigen::VectorXd stress(const solver::EnvironmentHandle& environment) const;
   // A soft object's rest tets; empty when rigid.
   const geometry::TetMesh& rest_tets() const { return rest_tets_; }
 

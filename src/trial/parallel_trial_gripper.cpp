@@ -31,7 +31,7 @@ class ParallelTrialGripper final : public SceneTrialGripper<ParallelTrialScene> 
     return finger_bodies_[finger];
   }
 
-  std::vector<double> place(solver::Environment& environment, std::size_t k) const override {
+  std::vector<double> place(solver::EnvironmentHandle& environment, std::size_t k) const override {
     std::vector<double> travel;
     for (std::size_t g = 0; g < grasps_[k].size(); ++g) {
       scene_.place(environment, grasps_[k][g], static_cast<int>(g));
@@ -41,19 +41,19 @@ class ParallelTrialGripper final : public SceneTrialGripper<ParallelTrialScene> 
     return travel;
   }
 
-  void place_finger(solver::Environment& environment, std::size_t k, int finger, double from,
+  void place_finger(solver::EnvironmentHandle& environment, std::size_t k, int finger, double from,
                     double to) const override {
     scene_.advance_jaw(environment, grasp(k, finger), finger, to - from);
   }
 
-  void move_finger(solver::Environment& environment, std::size_t k, int finger, double,
+  void move_finger(solver::EnvironmentHandle& environment, std::size_t k, int finger, double,
                    double speed) const override {
     solver::Script script;
     script.velocity = scene_.closing_velocity(grasp(k, finger), kJaws[finger % 2], speed);
     environment.set_script(scene_.jaws()[finger].jaw, script);
   }
 
-  void hold_finger(solver::Environment& environment, int finger) const override {
+  void hold_finger(solver::EnvironmentHandle& environment, int finger) const override {
     environment.set_script(scene_.jaws()[finger].jaw, solver::Script{});
   }
 

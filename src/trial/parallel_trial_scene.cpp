@@ -133,7 +133,7 @@ ParallelTrialScene::ParallelTrialScene(const TrialObject& object,
 
 ParallelTrialScene::~ParallelTrialScene() = default;
 
-void ParallelTrialScene::place(solver::Environment& environment, const ParallelGrasp& grasp,
+void ParallelTrialScene::place(solver::EnvironmentHandle& environment, const ParallelGrasp& grasp,
                                int g) const {
   for (int j = 0; j < 2; ++j) {
     const JawBodies& bodies = jaws_.at(static_cast<std::size_t>(2 * g + j));
@@ -146,8 +146,8 @@ void ParallelTrialScene::place(solver::Environment& environment, const ParallelG
   environment.set_gravity(Eigen::Vector3d::Zero());
 }
 
-void ParallelTrialScene::advance_jaw(solver::Environment& environment, const ParallelGrasp& grasp,
-                                     int jaw, double distance) const {
+void ParallelTrialScene::advance_jaw(solver::EnvironmentHandle& environment,
+                                     const ParallelGrasp& grasp, int jaw, double distance) const {
   const Eigen::Isometry3d motion(
       Eigen::Translation3d(closing_velocity(grasp, kJaws[jaw % 2], distance)));
   const JawBodies& bodies = jaws_.at(static_cast<std::size_t>(jaw));
@@ -162,7 +162,7 @@ Eigen::Vector3d ParallelTrialScene::closing_velocity(const ParallelGrasp& grasp,
 }
 
 geometry::Vertices ParallelTrialScene::surface_vertices(
-    const solver::Environment& environment) const {
+    const solver::EnvironmentHandle& environment) const {
   const Eigen::Index per_finger = surface_to_body_.size();
   geometry::Vertices vertices(static_cast<Eigen::Index>(jaws_.size()) * per_finger, 3);
   for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(jaws_.size()); ++j) {
@@ -179,13 +179,13 @@ int ParallelTrialScene::gripper_surface_vertex_count() const {
 }
 
 metrics::DistanceMetrics ParallelTrialScene::grasp_distances(
-    const solver::Environment& environment) const {
+    const solver::EnvironmentHandle& environment) const {
   return object_.distances(
       environment, finger_points_->positions(finger_vertices(environment, 0, gripper_count())));
 }
 
 std::vector<metrics::DistanceMetrics> ParallelTrialScene::gripper_distances(
-    const solver::Environment& environment) const {
+    const solver::EnvironmentHandle& environment) const {
   std::vector<metrics::DistanceMetrics> distances;
   if (!gripper_points_) return distances;
   for (int g = 0; g < gripper_count(); ++g) {
@@ -195,7 +195,7 @@ std::vector<metrics::DistanceMetrics> ParallelTrialScene::gripper_distances(
   return distances;
 }
 
-Eigen::VectorXd ParallelTrialScene::body_stress(const solver::Environment& environment,
+Eigen::VectorXd ParallelTrialScene::body_stress(const solver::EnvironmentHandle& environment,
                                                 int body) const {
   if (body == object_body()) return object_.stress(environment);
   const bool finger = std::any_of(jaws_.begin(), jaws_.end(),
@@ -206,7 +206,7 @@ Eigen::VectorXd ParallelTrialScene::body_stress(const solver::Environment& envir
                                    material.youngs, material.poisson);
 }
 
-geometry::Vertices ParallelTrialScene::finger_vertices(const solver::Environment& environment,
+geometry::Vertices ParallelTrialScene::finger_vertices(const solver::EnvironmentHandle& environment,
                                                        int first, int last) const {
   std::vector<geometry::Vertices> bodies;
   Eigen::Index rows = 0;

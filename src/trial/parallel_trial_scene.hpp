@@ -9,7 +9,7 @@
 
 #include <Eigen/Geometry>
 
-#include "solver/environment.hpp"
+#include "solver/engine/engine.hpp"
 #include "solver/model/model.hpp"
 #include "src/geometry/mesh.hpp"
 #include "src/geometry/signed_distance.hpp"
@@ -75,10 +75,10 @@ class ParallelTrialScene final : public TrialScene {
   // Moves gripper g's bodies of a fresh environment to the candidate's pose and opening
   // (Environment::place), holds its jaws still and turns gravity off. Throws std::out_of_range
   // for an opening outside the gripper's range.
-  void place(solver::Environment& environment, const ParallelGrasp& grasp, int g = 0) const;
+  void place(solver::EnvironmentHandle& environment, const ParallelGrasp& grasp, int g = 0) const;
   // Before the first step: moves one jaw (an index of jaws()) and its finger `distance` m
   // further along its closing path (negative: back); `grasp` is its gripper's.
-  void advance_jaw(solver::Environment& environment, const ParallelGrasp& grasp, int jaw,
+  void advance_jaw(solver::EnvironmentHandle& environment, const ParallelGrasp& grasp, int jaw,
                    double distance) const;
 
   // World velocity of a jaw closing at `speed` (m/s) along the candidate's closing axis.
@@ -87,28 +87,28 @@ class ParallelTrialScene final : public TrialScene {
 
   // The grippers' surface vertices in the dataset's order (per gripper gripper.surface():
   // positive finger, then negative), gathered from the environment's finger bodies.
-  geometry::Vertices surface_vertices(const solver::Environment& environment) const;
+  geometry::Vertices surface_vertices(const solver::EnvironmentHandle& environment) const;
   int gripper_surface_vertex_count() const;
 
   // The object's pose as a row-major 3x4 [A | t], world from object frame (A: the affine
   // body's matrix; a soft object's best-fit rotation).
-  std::array<double, 12> object_pose(const solver::Environment& environment) const {
+  std::array<double, 12> object_pose(const solver::EnvironmentHandle& environment) const {
     return object_.pose(environment);
   }
 
   // D1/D2 now: the object's signed distance (its current surface) at the D1/D2 points, which
   // are sampled once on the fingers' rest surfaces (every gripper's) and follow the fingers;
   // and per gripper, from points sampled on its own fingers (empty for one gripper).
-  metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const;
+  metrics::DistanceMetrics grasp_distances(const solver::EnvironmentHandle& environment) const;
   std::vector<metrics::DistanceMetrics> gripper_distances(
-      const solver::Environment& environment) const;
+      const solver::EnvironmentHandle& environment) const;
 
   // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
-  Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const;
+  Eigen::VectorXd body_stress(const solver::EnvironmentHandle& environment, int body) const;
 
  private:
   // The fingers' body vertices of grippers [first, last), in jaws() order.
-  geometry::Vertices finger_vertices(const solver::Environment& environment, int first,
+  geometry::Vertices finger_vertices(const solver::EnvironmentHandle& environment, int first,
                                      int last) const;
 
   grippers::ParallelGripper gripper_;

@@ -20,20 +20,22 @@ class SceneTrialGripper : public TrialGripper {
   bool soft_object() const override { return scene_.soft_object(); }
   int object_body() const override { return scene_.object_body(); }
 
-  geometry::Vertices surface_vertices(const solver::Environment& environment) const override {
+  geometry::Vertices surface_vertices(const solver::EnvironmentHandle& environment) const override {
     return scene_.surface_vertices(environment);
   }
-  std::array<double, 12> object_pose(const solver::Environment& environment) const override {
+  std::array<double, 12> object_pose(const solver::EnvironmentHandle& environment) const override {
     return scene_.object_pose(environment);
   }
-  metrics::DistanceMetrics grasp_distances(const solver::Environment& environment) const override {
+  metrics::DistanceMetrics grasp_distances(
+      const solver::EnvironmentHandle& environment) const override {
     return scene_.grasp_distances(environment);
   }
   std::vector<metrics::DistanceMetrics> gripper_distances(
-      const solver::Environment& environment) const override {
+      const solver::EnvironmentHandle& environment) const override {
     return scene_.gripper_distances(environment);
   }
-  Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const override {
+  Eigen::VectorXd body_stress(const solver::EnvironmentHandle& environment,
+                              int body) const override {
     return scene_.body_stress(environment, body);
   }
 

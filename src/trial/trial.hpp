@@ -1,10 +1,11 @@
 #pragma once
 // The grasp trial's one entry (GRIP, Sec. III-D): a trial scene built from a gripper's registry
 // row (a parallel gripper or a hand, one or two), and run_trials, which runs candidates through
-// the protocol as one solver::Batch: gravity off, the fingers close on the held object until
-// each finger's contact force is the grip force (or its path ends), the released grasp settles,
-// then gravity along +x, -x, +y, -y, +z, -z (world) for one phase each; the verdict, D1/D2,
-// closing forces, stress and the recorded frames make each candidate's io::CandidateResult.
+// the protocol as one batch of an engine (solver::Engine): gravity off, the fingers close on the
+// held object until each finger's contact force is the grip force (or its path ends), the
+// released grasp settles, then gravity along +x, -x, +y, -y, +z, -z (world) for one phase each;
+// the verdict, D1/D2, closing forces, stress and the recorded frames make each candidate's
+// io::CandidateResult.
 #include <memory>
 #include <vector>
 

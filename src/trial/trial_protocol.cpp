@@ -67,7 +67,7 @@ struct TrialState {
 };
 
 // Sum of the normal contact forces between two bodies in the environment's last step (N).
-double pair_normal_force(const solver::Environment& environment, int a, int b) {
+double pair_normal_force(const solver::EnvironmentHandle& environment, int a, int b) {
   const int lo = std::min(a, b), hi = std::max(a, b);
   for (const solver::PairForce& pair : environment.last_step().contact_forces) {
     if (pair.body_a == lo && pair.body_b == hi) return pair.normal_force;
@@ -75,7 +75,7 @@ double pair_normal_force(const solver::Environment& environment, int a, int b) {
   return 0.0;
 }
 
-bool object_touches_gripper(int object, const solver::Environment& environment) {
+bool object_touches_gripper(int object, const solver::EnvironmentHandle& environment) {
   for (const solver::PairForce& pair : environment.last_step().contact_forces) {
     const bool has_object = pair.body_a == object || pair.body_b == object;
     if (has_object && pair.body_a != pair.body_b && pair.normal_force > 0.0) return true;
@@ -129,8 +129,8 @@ class ProtocolRunner {
         p_(gripper.parameters()),
         options_(options),
         fingers_(gripper.finger_count()),
-        batch_(options.threads),
-        arena_(batch_.threads()) {
+        engine_(std::make_unique<solver::Batch>(options.threads)),
+        arena_(engine_->threads()) {
     steps_per_phase_ = static_cast<int>(phase_steps(p_));
     max_steps_per_phase_ = steps_per_phase_ + static_cast<int>(rest_steps(p_));
   }
@@ -140,8 +140,8 @@ class ProtocolRunner {
     // The protocol's work between steps (start checks, contact forces, D1/D2 at 50,000 points,
     // frames) touches only its own environment and state: it runs on the batch's threads too.
     start_more();
-    while (batch_.any_active() || next_ < gripper_.candidate_count()) {
-      batch_.step();
+    while (engine_->any_active() || next_ < gripper_.candidate_count()) {
+      engine_->step();
       for_each_environment(0, [&](int i) {
         if (states_[i].phase != Phase::kDone) advance(i);
       });
@@ -166,8 +166,8 @@ class ProtocolRunner {
   }
 
   void add(std::size_t k) {
-    const int i = batch_.add(gripper_.model());
-    solver::Environment& env = batch_.environment(i);
+    const int i = engine_->add(gripper_.model());
+    solver::EnvironmentHandle& env = engine_->environment(i);
     if (options_.big_system_solver) env.use_linear_solver(options_.big_system_solver, 0);
     std::vector<double> max_travel;
     try {
@@ -205,7 +205,8 @@ class ProtocolRunner {
   // air and nothing arrives with momentum; returns its travel. Conservative advancement: each
   // move is at most the free distance, measured as the largest displacement of any vertex of
   // the finger (a hand's finger turns, so travel and displacement differ).
-  double place_near_object(solver::Environment& env, std::size_t k, int j, double max_travel) {
+  double place_near_object(solver::EnvironmentHandle& env, std::size_t k, int j,
+                           double max_travel) {
     const double gap = p_.placement_gap * p_.sim.d_hat;
     const double search = std::max(10.0 * gap, kPlacementSearch);
     const std::vector<int>& bodies = gripper_.finger_bodies(j);
@@ -248,21 +249,21 @@ class ProtocolRunner {
                                   : gripper_.candidate_count();
     std::size_t running = 0;
     for (const TrialState& state : states_) running += state.phase != Phase::kDone;
-    const int first = batch_.size();
+    const int first = engine_->size();
     for (; running < limit && next_ < gripper_.candidate_count(); ++running) add(next_++);
     for_each_environment(first, [&](int i) { check_start(i); });
   }
 
   template <typename Work>
   void for_each_environment(int first, Work&& work) {
-    if (first >= batch_.size()) return;
-    arena_.execute([&] { tbb::parallel_for(first, batch_.size(), [&](int i) { work(i); }); });
+    if (first >= engine_->size()) return;
+    arena_.execute([&] { tbb::parallel_for(first, engine_->size(), [&](int i) { work(i); }); });
   }
 
   void check_start(int i) {
     TrialState& state = states_[i];
     io::CandidateRecord& record = state.outcome.result.record;
-    const solver::Environment& env = batch_.environment(i);
+    const solver::EnvironmentHandle& env = engine_->environment(i);
     // The solver refuses a start whose contact pairs within d_hat touch, but a finger that
     // pierces the object with every vertex far from its surface, or lies wholly inside it, forms
     // no such pair. So the start is checked here: exact edge-triangle intersections (CGAL) and
@@ -274,7 +275,7 @@ class ProtocolRunner {
     }
   }
 
-  double finger_force(const solver::Environment& env, int finger) const {
+  double finger_force(const solver::EnvironmentHandle& env, int finger) const {
     double force = 0.0;
     for (int body : gripper_.finger_bodies(finger)) {
       force += pair_normal_force(env, gripper_.object_body(), body);
@@ -283,7 +284,7 @@ class ProtocolRunner {
   }
 
   RecordedFrame frame(int i) {
-    solver::Environment& env = batch_.environment(i);
+    solver::EnvironmentHandle& env = engine_->environment(i);
     TrialState& state = states_[i];
     const int object = gripper_.object_body();
     RecordedFrame f;
@@ -320,7 +321,7 @@ class ProtocolRunner {
     TrialState& state = states_[i];
     if (state.metrics_done) return;
     state.metrics_done = true;
-    const solver::Environment& env = batch_.environment(i);
+    const solver::EnvironmentHandle& env = engine_->environment(i);
     const metrics::DistanceMetrics d = gripper_.grasp_distances(env);
     state.outcome.result.record.d1 = d.d1;
     state.outcome.result.record.d2 = d.d2;
@@ -333,7 +334,7 @@ class ProtocolRunner {
   }
 
   void advance(int i) {
-    solver::Environment& env = batch_.environment(i);
+    solver::EnvironmentHandle& env = engine_->environment(i);
     TrialState& state = states_[i];
     if (env.failed()) return fail(i);
     switch (state.phase) {
@@ -358,7 +359,7 @@ class ProtocolRunner {
   // (the paper's "halted", with the drive's compliance: a finger held rigidly would lose its
   // whole force to a creep of a few hundredths of a millimetre, so stiff is the barrier).
   void close(int i) {
-    solver::Environment& env = batch_.environment(i);
+    solver::EnvironmentHandle& env = engine_->environment(i);
     TrialState& state = states_[i];
     bool closed = true;
     for (int j = 0; j < fingers_; ++j) {
@@ -391,7 +392,7 @@ class ProtocolRunner {
 
   // Each finger's motion over the next step: its servo's while closing, its spring's after.
   void command(int i) {
-    solver::Environment& env = batch_.environment(i);
+    solver::EnvironmentHandle& env = engine_->environment(i);
     TrialState& state = states_[i];
     const double max_step = p_.squeeze_speed * p_.sim.dt;
     for (int j = 0; j < fingers_; ++j) {
@@ -422,7 +423,7 @@ class ProtocolRunner {
   // Still: the object's linear and angular speeds below settle_speed and settle_angular_speed
   // (its rotation is tracked from one step to the next).
   bool still(int i) {
-    const solver::Environment& env = batch_.environment(i);
+    const solver::EnvironmentHandle& env = engine_->environment(i);
     TrialState& state = states_[i];
     const int object = gripper_.object_body();
     const Eigen::Matrix3d rotation = env.rotation(object);
@@ -447,7 +448,7 @@ class ProtocolRunner {
   // steady for settle_steps steps in a row. An object that touches no finger any more was not
   // grasped.
   void settle(int i) {
-    solver::Environment& env = batch_.environment(i);
+    solver::EnvironmentHandle& env = engine_->environment(i);
     TrialState& state = states_[i];
     ++state.squeeze_steps;
     for (int j = 0; j < fingers_; ++j) state.fingers[j].observe(finger_force(env, j));
@@ -476,7 +477,7 @@ class ProtocolRunner {
   // The settled grasp's contact patches: the collision vertices that bear a contact force,
   // weighted by its magnitude.
   void record_patch(int i) {
-    solver::Environment& env = batch_.environment(i);
+    solver::EnvironmentHandle& env = engine_->environment(i);
     TrialState& state = states_[i];
     const solver::VertexContactForces forces = env.vertex_contact_forces();
     const solver::Vertices x = env.collision_positions();
@@ -498,7 +499,7 @@ class ProtocolRunner {
   // object's motion is its contact patch's, so that its own sag is not slip either. Without a
   // gripper patch, the centre of mass's displacement.
   double slip(int i) const {
-    const solver::Environment& env = batch_.environment(i);
+    const solver::EnvironmentHandle& env = engine_->environment(i);
     const TrialState& state = states_[i];
     const Eigen::Vector3d& center = state.settled_center;
     const solver::Vertices x = env.collision_positions();
@@ -521,7 +522,7 @@ class ProtocolRunner {
   // (a grasp still swinging on compliant fingers when the wait ends is judged by its slip, as
   // the paper judges every phase); the phase's last frame is that state.
   void shake(int i) {
-    solver::Environment& env = batch_.environment(i);
+    solver::EnvironmentHandle& env = engine_->environment(i);
     TrialState& state = states_[i];
     const int object = gripper_.object_body();
     ++state.phase_step;
@@ -570,7 +571,7 @@ class ProtocolRunner {
   // verdict: the grasp had failed (`displaced`) before; failure_reason keeps the solver's word.
   void fail(int i) {
     TrialState& state = states_[i];
-    const solver::Environment& env = batch_.environment(i);
+    const solver::EnvironmentHandle& env = engine_->environment(i);
     state.outcome.failure_reason = env.failure();
     io::CandidateRecord& record = state.outcome.result.record;
     if (state.phase == Phase::kClosing) record.closing_forces = finger_forces(state);
@@ -587,7 +588,7 @@ class ProtocolRunner {
 
   void finish(int i, io::FailureKind failure) {
     TrialState& state = states_[i];
-    const solver::Environment& env = batch_.environment(i);
+    const solver::EnvironmentHandle& env = engine_->environment(i);
     io::CandidateRecord& record = state.outcome.result.record;
     record.status = failure == io::FailureKind::kNone ? io::Status::kSuccess : io::Status::kFailure;
     record.failure = failure;
@@ -606,14 +607,14 @@ class ProtocolRunner {
     }
     state.recorder = FrameRecorder(p_.closing_frames, p_.validation_frames, steps_per_phase_);
     state.phase = Phase::kDone;
-    batch_.retire(i);
+    engine_->retire(i);
   }
 
   const TrialGripper& gripper_;
   const TrialParameters& p_;
   const TrialRunOptions& options_;
   int fingers_ = 0;
-  solver::Batch batch_;
+  std::unique_ptr<solver::Engine> engine_;
   tbb::task_arena arena_;
   int steps_per_phase_ = 1;
   int max_steps_per_phase_ = 1;  // with the wait for rest

@@ -1,7 +1,7 @@
 #pragma once
 // The grasp trial protocol shared by every gripper (GRIP, Sec. III-D): what the protocol needs
 // from one gripper's scene and candidates (TrialGripper), and run_protocol, which steps them as
-// one solver::Batch through closing, settling and the six gravity phases to their outcomes.
+// one solver::Engine through closing, settling and the six gravity phases to their outcomes.
 // Callers run trials through src/trial/trial.hpp (run_trials), which builds the TrialGripper.
 #include <array>
 #include <cstddef>
@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "solver/environment.hpp"
+#include "solver/engine/engine.hpp"
 #include "solver/linear/linear_system_solver.hpp"
 #include "solver/model/model.hpp"
 #include "src/geometry/mesh.hpp"
@@ -59,14 +59,15 @@ class TrialGripper {
 
   // Puts candidate k in a fresh environment (gravity off, fingers held) and returns each
   // finger's longest travel (m). Throws std::out_of_range for a candidate the gripper cannot take.
-  virtual std::vector<double> place(solver::Environment& environment, std::size_t k) const = 0;
+  virtual std::vector<double> place(solver::EnvironmentHandle& environment,
+                                    std::size_t k) const = 0;
   // Before the first step: moves the finger along its closing path from travel `from` to `to`.
-  virtual void place_finger(solver::Environment& environment, std::size_t k, int finger,
+  virtual void place_finger(solver::EnvironmentHandle& environment, std::size_t k, int finger,
                             double from, double to) const = 0;
   // Moves the finger over the next step from `travel` on at `speed` (m/s), or holds it.
-  virtual void move_finger(solver::Environment& environment, std::size_t k, int finger,
+  virtual void move_finger(solver::EnvironmentHandle& environment, std::size_t k, int finger,
                            double travel, double speed) const = 0;
-  virtual void hold_finger(solver::Environment& environment, int finger) const = 0;
+  virtual void hold_finger(solver::EnvironmentHandle& environment, int finger) const = 0;
   // The fingers' drives are springs inside the solve (driven bodies, BodyDescription::
   // drive_stiffness): after closing, a finger is halted where its command stands. Otherwise it
   // is kinematic and held as a spring by the protocol, a step behind.
@@ -79,19 +80,22 @@ class TrialGripper {
   virtual std::vector<double> joints(std::size_t k, const std::vector<double>& travel) const = 0;
 
   // The gripper's surface vertices in the dataset's order, now.
-  virtual geometry::Vertices surface_vertices(const solver::Environment& environment) const = 0;
+  virtual geometry::Vertices surface_vertices(
+      const solver::EnvironmentHandle& environment) const = 0;
   // The object's pose now: row-major 3x4 [A | t], world from object frame.
-  virtual std::array<double, 12> object_pose(const solver::Environment& environment) const = 0;
+  virtual std::array<double, 12> object_pose(
+      const solver::EnvironmentHandle& environment) const = 0;
   // D1/D2 now, from points fixed on the gripper's surface (both grippers' for a bimanual
   // trial), and per gripper for a bimanual trial (empty for one gripper).
   virtual metrics::DistanceMetrics grasp_distances(
-      const solver::Environment& environment) const = 0;
+      const solver::EnvironmentHandle& environment) const = 0;
   virtual std::vector<metrics::DistanceMetrics> gripper_distances(
-      const solver::Environment&) const {
+      const solver::EnvironmentHandle&) const {
     return {};
   }
   // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
-  virtual Eigen::VectorXd body_stress(const solver::Environment& environment, int body) const = 0;
+  virtual Eigen::VectorXd body_stress(const solver::EnvironmentHandle& environment,
+                                      int body) const = 0;
 };
 
 // One outcome per candidate, in order; each record's wall_time is the batch's wall time divided
