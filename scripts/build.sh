@@ -12,6 +12,10 @@ while [[ $# -ge 2 && $1 == --target ]]; do
   shift 2
 done
 "$root/scripts/install-deps.sh"
+# CUDA's toolkit installs nvcc outside the PATH; CMake builds the CUDA sources where it finds it.
+if ! command -v nvcc >/dev/null && [[ -z ${CUDACXX:-} && -x /usr/local/cuda/bin/nvcc ]]; then
+  export CUDACXX=/usr/local/cuda/bin/nvcc
+fi
 if [[ ! -f "$root/build/build.ninja" || $# -gt 0 ]]; then
   source "$root/scripts/ccache-launcher.sh"
   cmake -S "$root" -B "$root/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DGRIP_UNITY_BUILD=ON \

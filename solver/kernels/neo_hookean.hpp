@@ -160,14 +160,15 @@ GRIP_HD inline Matrix9d stable_neo_hookean_stress_derivative(const Eigen::Matrix
 // sign. Where singular values (nearly) repeat, as at rest, computeDirect's eigenvectors are
 // orthogonal to about 1e-9 only, and U diag(s) V^T is F to about 1e-9 of |F|: a projection
 // built on it moves by that fraction of the eigenvalue it removes, far below anything Newton's
-// tolerance sees. Host only.
+// tolerance sees. computeDirect is closed form and device-callable, unlike Eigen's iterative
+// solver (psd_projection.hpp), so this runs on both launchers.
 struct RotationVariantSvd {
   Eigen::Matrix3d u;
   Eigen::Matrix3d v;
   Eigen::Vector3d s;
 };
 
-inline RotationVariantSvd rotation_variant_svd(const Eigen::Matrix3d& f) {
+GRIP_HD inline RotationVariantSvd rotation_variant_svd(const Eigen::Matrix3d& f) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> gram;
   gram.computeDirect(f.transpose() * f);
   RotationVariantSvd svd;
@@ -209,9 +210,9 @@ inline RotationVariantSvd rotation_variant_svd(const Eigen::Matrix3d& f) {
 // The negative modes are removed from the exact dP/dF, so a PSD one is returned unchanged.
 // No Cholesky test first: the twists' eigenvalues are zero at rest (rotations), and almost any
 // strain that is not a pure dilation makes one slightly negative, so such a test fails for most
-// tets of a deformed body and only adds its cost. Host only, like rotation_variant_svd.
-inline Matrix9d stable_neo_hookean_stress_derivative_psd(const Eigen::Matrix3d& f,
-                                                         const StableNeoHookeanParameters& m) {
+// tets of a deformed body and only adds its cost.
+GRIP_HD inline Matrix9d stable_neo_hookean_stress_derivative_psd(
+    const Eigen::Matrix3d& f, const StableNeoHookeanParameters& m) {
   Matrix9d dpdf = stable_neo_hookean_stress_derivative(f, m);
   const RotationVariantSvd svd = rotation_variant_svd(f);
   const Eigen::Vector3d& s = svd.s;

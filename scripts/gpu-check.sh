@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The device check: builds grip-gpu-check from this tree with nvcc alone (CUDA and Eigen's
+# headers: from .gpu-carry/, which scripts/gpu-carry.sh fills, or the system's), runs it, and
+# writes gpu-check.json, gpu-check.md and the GPU's nvidia-smi report into OUTDIR. It compares
+# the data-parallel engine's stages on the GPU with the host launcher on the same batches, and
+# times them at 1 to 512 environments (docs/architecture.md, "The data-parallel engine").
+# Takes about 3 minutes on an H200 machine with 16 cores. Exit status: grip-gpu-check's (0 all
+# within tolerance, 1 a difference outside it, 2 no device), or the build's.
+#   scripts/gpu-check.sh OUTDIR [grip-gpu-check options]
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+out=${1:?usage: scripts/gpu-check.sh OUTDIR [--sizes 1,8,64,256,512] [--repeats 5]}
+shift
+mkdir -p "$out"
+eigen=$root/.gpu-carry/eigen3
+[[ -f $eigen/Eigen/Core ]] || eigen=/usr/include/eigen3
+[[ -f $eigen/Eigen/Core ]] || { echo "gpu-check: no Eigen headers: run scripts/gpu-carry.sh first" >&2; exit 2; }
+nvcc=$(command -v nvcc || echo /usr/local/cuda/bin/nvcc)
+mkdir -p "$root/build-gpu"
+# The flags solver/CMakeLists.txt gives grip-gpu-check.
+start=$(date +%s)
+"$nvcc" -std=c++20 -O3 -arch=sm_90 -I"$root" -isystem "$eigen" --expt-relaxed-constexpr \
+  -diag-suppress=20012 -Werror=all-warnings -Xcompiler=-Wall,-Wextra,-Werror \
+  "$root/solver/parallel/cuda/device_check.cu" "$root/solver/parallel/fem_batch.cpp" \
+  -o "$root/build-gpu/grip-gpu-check"
+echo "gpu-check: built in $(($(date +%s) - start)) s"
+nvidia-smi >"$out/nvidia-smi.txt" 2>&1 || true
+"$root/build-gpu/grip-gpu-check" "$out" "$@"

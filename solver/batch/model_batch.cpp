@@ -1,0 +1,27 @@
+#include "solver/batch/model_batch.hpp"
+
+namespace grip::solver::parallel {
+
+FemBatch fem_batch(const std::vector<const Model*>& environments) {
+  FemBatch batch;
+  for (const Model* model : environments) {
+    batch.begin_environment(model->dof_count());
+    for (const BodyModel& body : model->bodies()) {
+      if (!body.deforms()) continue;
+      std::vector<double> rest;
+      for (int v = 0; v < body.kind->vertex_count(body.local); ++v) {
+        const Eigen::Vector3d x = body.kind->rest_vertex(body.local, v);
+        rest.insert(rest.end(), {x.x(), x.y(), x.z()});
+      }
+      std::vector<int> tets;
+      for (const std::array<int, 4>& tet : body.kind->tets(body.local)) {
+        tets.insert(tets.end(), tet.begin(), tet.end());
+      }
+      batch.add_body(body.dof_offset, rest, tets, body.material.youngs, body.material.poisson);
+    }
+  }
+  batch.finish();
+  return batch;
+}
+
+}  // namespace grip::solver::parallel

@@ -1,0 +1,16 @@
+#pragma once
+// The data-parallel engine's flat buffers from the models of a batch's environments, in
+// environment order; each environment's DOFs laid out as the CPU engine lays them (Model's body
+// order), so that the two engines' states are the same vectors.
+#include <vector>
+
+#include "solver/model/model.hpp"
+#include "solver/parallel/fem_batch.hpp"
+
+namespace grip::solver::parallel {
+
+// Every deforming body's tets of every environment (one model per environment; models may
+// repeat).
+FemBatch fem_batch(const std::vector<const Model*>& environments);
+
+}  // namespace grip::solver::parallel

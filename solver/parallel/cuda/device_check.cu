@@ -1,0 +1,316 @@
+// grip-gpu-check: the data-parallel engine's stages on a GPU against the host launcher on the
+// same batches (scripts/gpu-check.sh runs it). Batches of 1 to 512 soft-box environments, each
+// deformed differently, go through the elastic stages (per-tet energy, gradient and projected
+// Hessian; per-vertex gradient gather; per-environment energy) on the device (CudaLauncher) and
+// on one host core (SerialLauncher); it reports the largest relative differences, the device's
+// and the host's times, and device memory per environment, as JSON and Markdown in OUTDIR.
+// Exit status: 0 when every difference is within its tolerance, 1 when one is not, 2 when no
+// CUDA device is found or OUTDIR cannot be written.
+//   grip-gpu-check OUTDIR [--sizes 1,8,64,256,512] [--repeats 5]
+#include <cuda_runtime.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "solver/parallel/cuda/cuda_launcher.cuh"
+#include "solver/parallel/elastic_stages.hpp"
+#include "solver/parallel/fem_batch.hpp"
+#include "solver/parallel/launch.hpp"
+
+namespace {
+
+using namespace grip::solver::parallel;
+
+// Tolerances, relative to the largest magnitude compared: the device contracts multiply-adds
+// (FMA) where the host does not, and the Hessian's projection takes eigenvectors of nearly
+// repeated singular values, defined to about 1e-9 (kernels/neo_hookean.hpp).
+constexpr double kEnergyTolerance = 1e-10;
+constexpr double kGradientTolerance = 1e-10;
+constexpr double kHessianTolerance = 1e-7;
+
+// A box of nx x ny x nz cubes of edge `cell`, six positively oriented tets per cube.
+struct BoxMesh {
+  std::vector<double> rest;
+  std::vector<int> tets;
+};
+
+BoxMesh box_mesh(int nx, int ny, int nz, double cell) {
+  BoxMesh mesh;
+  const auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i)
+        mesh.rest.insert(mesh.rest.end(), {i * cell, j * cell, k * cell});
+  const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
+                          {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
+  const auto x = [&](int v, int a) { return mesh.rest[3 * v + a]; };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        int corner[8];
+        for (int c = 0; c < 8; ++c) corner[c] = id(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2));
+        for (const auto& t : kuhn) {
+          int v[4] = {corner[t[0]], corner[t[1]], corner[t[2]], corner[t[3]]};
+          double e[3][3];
+          for (int r = 0; r < 3; ++r)
+            for (int a = 0; a < 3; ++a) e[r][a] = x(v[r + 1], a) - x(v[0], a);
+          const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                             e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                             e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+          if (det < 0) std::swap(v[2], v[3]);
+          mesh.tets.insert(mesh.tets.end(), v, v + 4);
+        }
+      }
+  return mesh;
+}
+
+// A deterministic state per environment: squeezed along z by up to 30 % and jittered by up to
+// 15 % of a cell, so that many tets need their Hessian projected.
+std::vector<double> deformed_state(const BoxMesh& mesh, int environments, double cell) {
+  std::vector<double> q;
+  std::uint64_t seed = 0x9e3779b97f4a7c15ull;
+  const auto uniform = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(seed >> 11) / static_cast<double>(1ull << 53) - 0.5;
+  };
+  for (int e = 0; e < environments; ++e) {
+    const double squeeze = 1.0 - 0.3 * (e % 7) / 6.0;
+    for (std::size_t v = 0; 3 * v < mesh.rest.size(); ++v) {
+      for (int a = 0; a < 3; ++a) {
+        const double scale = a == 2 ? squeeze : 1.0;
+        q.push_back(scale * mesh.rest[3 * v + a] + 0.3 * cell * uniform());
+      }
+    }
+  }
+  return q;
+}
+
+struct StageValues {
+  std::vector<double> environment_energy;
+  std::vector<double> gradient;
+  std::vector<double> hessian;
+};
+
+struct Timing {
+  double device_ms = 0.0;  // median over repeats
+  double host_ms = 0.0;
+  double device_bytes = 0.0;
+};
+
+StageValues host_stages(const FemBatch& batch, const std::vector<double>& q, double& ms) {
+  const TetBuffers tets = batch.tets();
+  StageValues v;
+  std::vector<double> tet_energy(tets.count), tet_gradient(12 * std::size_t(tets.count));
+  v.hessian.resize(144 * std::size_t(tets.count));
+  v.gradient.assign(q.size(), 0.0);
+  v.environment_energy.resize(batch.environment_count());
+  const SerialLauncher launch;
+  const auto start = std::chrono::steady_clock::now();
+  launch(tets.count, ElasticStage{tets, q.data(), true, tet_energy.data(), tet_gradient.data(),
+                                  v.hessian.data()});
+  launch(batch.incidence().count,
+         GradientGatherStage{batch.incidence(), tet_gradient.data(), v.gradient.data()});
+  launch(batch.environment_count(), EnvironmentSumStage{batch.tet_begin().data(), tet_energy.data(),
+                                                        v.environment_energy.data()});
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return v;
+}
+
+StageValues device_stages(const FemBatch& batch, const std::vector<double>& q, int repeats,
+                          Timing& timing) {
+  DeviceArray<int> dofs(batch.tet_dofs()), environment(batch.tet_environment());
+  DeviceArray<double> dm(batch.rest_shape_inverse()), volume(batch.rest_volume()), mu(batch.mu()),
+      lambda(batch.lambda());
+  DeviceArray<int> vertex_dof(batch.vertex_dof()), begin(batch.incidence_begin()),
+      slots(batch.incidence_slots()), tet_begin(batch.tet_begin());
+  const int count = static_cast<int>(batch.rest_volume().size());
+  DeviceArray<double> dq(q), tet_energy(count), tet_gradient(12 * std::size_t(count)),
+      hessian(144 * std::size_t(count)), gradient(q.size()),
+      environment_energy(batch.environment_count());
+  const TetBuffers tets{count,         dofs.data(), environment.data(), dm.data(),
+                        volume.data(), mu.data(),   lambda.data()};
+  const IncidenceBuffers incidence{static_cast<int>(batch.vertex_dof().size()), vertex_dof.data(),
+                                   begin.data(), slots.data()};
+  const CudaLauncher launch;
+  cudaEvent_t start, stop;
+  cuda_check(cudaEventCreate(&start), "cudaEventCreate");
+  cuda_check(cudaEventCreate(&stop), "cudaEventCreate");
+  std::vector<float> ms;
+  for (int r = 0; r <= repeats; ++r) {  // the first run warms up and is not timed
+    cuda_check(cudaEventRecord(start), "cudaEventRecord");
+    launch(count, ElasticStage{tets, dq.data(), true, tet_energy.data(), tet_gradient.data(),
+                               hessian.data()});
+    launch(incidence.count, GradientGatherStage{incidence, tet_gradient.data(), gradient.data()});
+    launch(batch.environment_count(),
+           EnvironmentSumStage{tet_begin.data(), tet_energy.data(), environment_energy.data()});
+    cuda_check(cudaEventRecord(stop), "cudaEventRecord");
+    cuda_check(cudaEventSynchronize(stop), "running the stages");
+    float elapsed = 0.f;
+    cuda_check(cudaEventElapsedTime(&elapsed, start, stop), "cudaEventElapsedTime");
+    if (r > 0) ms.push_back(elapsed);
+  }
+  cudaEventDestroy(start);
+  cudaEventDestroy(stop);
+  std::sort(ms.begin(), ms.end());
+  timing.device_ms = ms[ms.size() / 2];
+  std::size_t free_bytes = 0, total_bytes = 0;
+  cuda_check(cudaMemGetInfo(&free_bytes, &total_bytes), "cudaMemGetInfo");
+  timing.device_bytes =
+      8.0 * double(dq.size() + tet_energy.size() + tet_gradient.size() + hessian.size() +
+                   gradient.size() + dm.size() + volume.size() + mu.size() + lambda.size()) +
+      4.0 * double(dofs.size() + environment.size() + vertex_dof.size() + begin.size() +
+                   slots.size());
+  return {environment_energy.to_host(), gradient.to_host(), hessian.to_host()};
+}
+
+// The largest |a - b| over blocks of `block` values, each relative to its block's largest |b|.
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b,
+                           std::size_t block) {
+  double worst = 0.0;
+  for (std::size_t first = 0; first < b.size(); first += block) {
+    double scale = 0.0, difference = 0.0;
+    for (std::size_t i = first; i < std::min(first + block, b.size()); ++i) {
+      scale = std::max(scale, std::abs(b[i]));
+      difference = std::max(difference, std::abs(a[i] - b[i]));
+    }
+    if (difference > 0.0) worst = std::max(worst, difference / std::max(scale, 1e-300));
+  }
+  return worst;
+}
+
+struct SizeResult {
+  int environments = 0;
+  int tets = 0;
+  Timing timing;
+  double energy = 0.0, gradient = 0.0, hessian = 0.0;  // relative differences
+  bool pass() const {
+    return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
+           hessian <= kHessianTolerance;
+  }
+};
+
+SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double cell) {
+  FemBatch batch;
+  const int dofs = static_cast<int>(mesh.rest.size());
+  for (int e = 0; e < environments; ++e) {
+    batch.begin_environment(dofs);
+    batch.add_body(0, mesh.rest, mesh.tets, 9.4e6, 0.45);
+  }
+  batch.finish();
+  const std::vector<double> q = deformed_state(mesh, environments, cell);
+  SizeResult result;
+  result.environments = environments;
+  result.tets = static_cast<int>(batch.rest_volume().size());
+  const StageValues device = device_stages(batch, q, repeats, result.timing);
+  const StageValues host = host_stages(batch, q, result.timing.host_ms);
+  result.energy = relative_difference(device.environment_energy, host.environment_energy, 1);
+  result.gradient = relative_difference(device.gradient, host.gradient, q.size());
+  result.hessian = relative_difference(device.hessian, host.hessian, 144);
+  return result;
+}
+
+std::vector<int> parse_sizes(const std::string& text) {
+  std::vector<int> sizes;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) sizes.push_back(std::stoi(item));
+  return sizes;
+}
+
+std::string device_description(std::string& name) {
+  cudaDeviceProp properties{};
+  cuda_check(cudaGetDeviceProperties(&properties, 0), "cudaGetDeviceProperties");
+  int driver = 0, runtime = 0;
+  cudaDriverGetVersion(&driver);
+  cudaRuntimeGetVersion(&runtime);
+  name = properties.name;
+  std::ostringstream out;
+  out << "\"gpu\": \"" << properties.name
+      << "\", \"memory_gib\": " << properties.totalGlobalMem / double(1ull << 30)
+      << ", \"driver\": " << driver << ", \"runtime\": " << runtime;
+  return out.str();
+}
+
+void write_reports(const std::string& directory, const std::string& device,
+                   const std::string& gpu_name, const std::vector<SizeResult>& results,
+                   int tets_per_environment) {
+  std::ofstream json(directory + "/gpu-check.json");
+  std::ofstream md(directory + "/gpu-check.md");
+  if (!json || !md) throw std::runtime_error("cannot write to " + directory);
+  json << "{" << device << ", \"tets_per_environment\": " << tets_per_environment
+       << ", \"stages\": \"elastic (energy, gradient, projected Hessian), gradient gather, "
+          "environment energy\", \"sizes\": [";
+  md << "Elastic stages on " << gpu_name << ", " << tets_per_environment
+     << " tets per environment; host: one core, serial launcher.\n\n"
+     << "| environments | tets | device ms | host ms | host/device | device MiB per env | "
+        "energy diff | gradient diff | Hessian diff | within tolerance |\n"
+     << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const SizeResult& r = results[i];
+    const double per_env_mib = r.timing.device_bytes / r.environments / double(1 << 20);
+    json << (i ? ", " : "") << "{\"environments\": " << r.environments << ", \"tets\": " << r.tets
+         << ", \"device_ms\": " << r.timing.device_ms << ", \"host_ms\": " << r.timing.host_ms
+         << ", \"device_mib_per_environment\": " << per_env_mib
+         << ", \"energy_relative_difference\": " << r.energy
+         << ", \"gradient_relative_difference\": " << r.gradient
+         << ", \"hessian_relative_difference\": " << r.hessian
+         << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
+    md << "| " << r.environments << " | " << r.tets << " | " << r.timing.device_ms << " | "
+       << r.timing.host_ms << " | " << r.timing.host_ms / r.timing.device_ms << " | " << per_env_mib
+       << " | " << r.energy << " | " << r.gradient << " | " << r.hessian << " | "
+       << (r.pass() ? "yes" : "NO") << " |\n";
+  }
+  json << "]}\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << "usage: grip-gpu-check OUTDIR [--sizes 1,8,64,256,512] [--repeats 5]\n";
+    return 2;
+  }
+  const std::string directory = argv[1];
+  std::vector<int> sizes{1, 8, 64, 256, 512};
+  int repeats = 5;
+  for (int a = 2; a + 1 < argc; a += 2) {
+    const std::string flag = argv[a];
+    if (flag == "--sizes") sizes = parse_sizes(argv[a + 1]);
+    if (flag == "--repeats") repeats = std::max(1, std::stoi(argv[a + 1]));
+  }
+  int devices = 0;
+  const cudaError_t status = cudaGetDeviceCount(&devices);
+  if (status != cudaSuccess || devices == 0) {
+    std::cerr << "grip-gpu-check: no CUDA device ("
+              << (status != cudaSuccess ? cudaGetErrorString(status) : "none found")
+              << "): run it on a machine with an NVIDIA GPU and its driver\n";
+    return 2;
+  }
+  try {
+    std::string gpu_name;
+    const std::string device = device_description(gpu_name);
+    constexpr double kCell = 0.004;  // a 32 x 16 x 48 mm box, about a fin-ray finger's tets
+    const BoxMesh mesh = box_mesh(8, 4, 12, kCell);
+    std::vector<SizeResult> results;
+    bool pass = true;
+    for (int environments : sizes) {
+      results.push_back(check_size(mesh, environments, repeats, kCell));
+      pass = pass && results.back().pass();
+      std::cout << "environments " << environments << ": device " << results.back().timing.device_ms
+                << " ms, host " << results.back().timing.host_ms << " ms, "
+                << (results.back().pass() ? "within tolerance" : "OUTSIDE TOLERANCE") << "\n";
+    }
+    write_reports(directory, device, gpu_name, results, static_cast<int>(mesh.tets.size() / 4));
+    return pass ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::cerr << "grip-gpu-check: " << e.what() << "\n";
+    return 2;
+  }
+}

@@ -1,0 +1,73 @@
+#pragma once
+// The data-parallel engine's elastic stages, one source for every launcher (launch.hpp): per
+// tet, the stable Neo-Hookean energy, its 12-vector gradient and 12x12 Hessian (PSD-projected by
+// the analytic eigensystem, as the CPU engine's FemBodies does), from the same GRIP_HD kernels;
+// then, per FEM vertex, its gradient gathered from its tets' slots, and per environment, its
+// energy summed over its tets, each in a fixed order.
+#include <Eigen/Core>
+
+#include "solver/kernels/hd.hpp"
+#include "solver/kernels/neo_hookean.hpp"
+#include "solver/parallel/fem_batch.hpp"
+
+namespace grip::solver::parallel {
+
+struct ElasticStage {
+  TetBuffers tets;
+  const double* q = nullptr;   // the batch's DOFs
+  bool project = true;         // PSD-project the Hessian (projected Newton)
+  double* energy = nullptr;    // per tet
+  double* gradient = nullptr;  // 12 per tet
+  double* hessian = nullptr;   // 144 per tet, column-major; null: not wanted
+
+  GRIP_HD void operator()(int t) const {
+    kernels::Vector12d x;
+    for (int c = 0; c < 4; ++c) {
+      const int dof = tets.dofs[4 * t + c];
+      for (int k = 0; k < 3; ++k) x[3 * c + k] = q[dof + k];
+    }
+    const Eigen::Map<const Eigen::Matrix3d> dm_inverse(tets.rest_shape_inverse + 9 * t);
+    const Eigen::Matrix3d rest_shape_inverse = dm_inverse;
+    const double volume = tets.rest_volume[t];
+    const kernels::StableNeoHookeanParameters m{tets.mu[t], tets.lambda[t]};
+    const Eigen::Matrix3d f = kernels::deformation_gradient(x, rest_shape_inverse);
+    energy[t] = volume * kernels::stable_neo_hookean_energy_density(f, m);
+    Eigen::Map<kernels::Vector12d> g(gradient + 12 * t);
+    g = kernels::tet_stable_neo_hookean_gradient(f, rest_shape_inverse, volume, m);
+    if (hessian == nullptr) return;
+    Eigen::Map<kernels::Matrix12d> h(hessian + 144 * t);
+    h = kernels::tet_stable_neo_hookean_hessian(f, rest_shape_inverse, volume, m, project);
+  }
+};
+
+// Per FEM vertex: the sum of its tets' gradient 3-vectors, in slot order, into the batch's
+// DOF-space gradient (which it overwrites at the vertex's DOFs).
+struct GradientGatherStage {
+  IncidenceBuffers incidence;
+  const double* tet_gradient = nullptr;  // 12 per tet (ElasticStage::gradient)
+  double* gradient = nullptr;            // the batch's DOF-space gradient
+
+  GRIP_HD void operator()(int v) const {
+    double sum[3] = {0.0, 0.0, 0.0};
+    for (int s = incidence.begin[v]; s < incidence.begin[v + 1]; ++s) {
+      const int slot = incidence.slots[s];  // 4 t + c: corner c of tet t
+      for (int k = 0; k < 3; ++k) sum[k] += tet_gradient[3 * slot + k];
+    }
+    for (int k = 0; k < 3; ++k) gradient[incidence.vertex_dof[v] + k] = sum[k];
+  }
+};
+
+// Per environment: its tets' energies summed in tet order.
+struct EnvironmentSumStage {
+  const int* tet_begin = nullptr;  // environment_count + 1 offsets
+  const double* tet_energy = nullptr;
+  double* energy = nullptr;  // per environment
+
+  GRIP_HD void operator()(int e) const {
+    double sum = 0.0;
+    for (int t = tet_begin[e]; t < tet_begin[e + 1]; ++t) sum += tet_energy[t];
+    energy[e] = sum;
+  }
+};
+
+}  // namespace grip::solver::parallel

@@ -1,0 +1,21 @@
+#pragma once
+// One source, two launchers. A stage of the data-parallel engine is a functor whose GRIP_HD
+// operator()(int i) computes item i (a tet, a contact pair, a vertex) of flat buffers that hold
+// every environment of a batch, reading and writing only through the raw pointers it carries.
+// A launcher runs a stage for every i in [0, count): SerialLauncher and TbbLauncher
+// (solver/batch/tbb_launcher.hpp) on the host, CudaLauncher (cuda/cuda_launcher.cuh) on a GPU.
+// Items are independent, so the host launchers give the same values bit for bit, and a GPU the
+// same to round-off (it contracts multiply-adds); reductions over items are stages of their
+// own, in a fixed order, never atomics.
+namespace grip::solver::parallel {
+
+// The host launcher without dependencies: the device check's reference, and what the tests use
+// to step through a stage.
+struct SerialLauncher {
+  template <class Stage>
+  void operator()(int count, const Stage& stage) const {
+    for (int i = 0; i < count; ++i) stage(i);
+  }
+};
+
+}  // namespace grip::solver::parallel
