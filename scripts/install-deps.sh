@@ -16,6 +16,7 @@ packages=(
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: clang and its libFuzzer runtime
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-matplotlib python3-numpy
+  slurm-wlm munge hdf5-tools  # tests/slurm/: a one-node SLURM (scripts/slurm-one-node.sh), h5diff
 )
 # Optional: grip builds and runs without them; one benchmark each needs them.
 optional=(
