@@ -1,9 +1,11 @@
 // grip-gpu-check: the data-parallel engine's stages on a GPU against the host launcher on the
 // same batches (scripts/gpu-check.sh runs it). Batches of 1 to 512 soft-box environments, each
 // deformed differently, go through the elastic stages (per-tet energy, gradient and projected
-// Hessian; per-vertex gradient gather; per-environment energy) on the device (CudaLauncher) and
-// on one host core (SerialLauncher); it reports the largest relative differences, the device's
-// and the host's times, and device memory per environment, as JSON and Markdown in OUTDIR.
+// Hessian; per-vertex gradient gather; per-environment energy) and the barrier stage (512
+// contact pairs per environment, point-triangle and edge-edge, some nearly parallel, at 5 % to
+// 120 % of d_hat) on the device (CudaLauncher) and on one host core (SerialLauncher); it reports
+// the largest relative differences, the device's and the host's times, and device memory per
+// environment, as JSON and Markdown in OUTDIR.
 // Exit status: 0 when every difference is within its tolerance, 1 when one is not, 2 when no
 // CUDA device is found or OUTDIR cannot be written.
 //   grip-gpu-check OUTDIR [--sizes 1,8,64,256,512] [--repeats 5]
@@ -20,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/parallel/contact_stages.hpp"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
 #include "solver/parallel/elastic_stages.hpp"
 #include "solver/parallel/fem_batch.hpp"
@@ -105,6 +108,28 @@ struct Timing {
   double device_bytes = 0.0;
 };
 
+// The median time (ms) of `repeats` runs of `stages` on the device, after one untimed run.
+template <class Stages>
+double device_median_ms(int repeats, Stages&& stages) {
+  cudaEvent_t start, stop;
+  cuda_check(cudaEventCreate(&start), "cudaEventCreate");
+  cuda_check(cudaEventCreate(&stop), "cudaEventCreate");
+  std::vector<float> ms;
+  for (int r = 0; r <= repeats; ++r) {
+    cuda_check(cudaEventRecord(start), "cudaEventRecord");
+    stages();
+    cuda_check(cudaEventRecord(stop), "cudaEventRecord");
+    cuda_check(cudaEventSynchronize(stop), "running the stages");
+    float elapsed = 0.f;
+    cuda_check(cudaEventElapsedTime(&elapsed, start, stop), "cudaEventElapsedTime");
+    if (r > 0) ms.push_back(elapsed);
+  }
+  cudaEventDestroy(start);
+  cudaEventDestroy(stop);
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
+
 StageValues host_stages(const FemBatch& batch, const std::vector<double>& q, double& ms) {
   const TetBuffers tets = batch.tets();
   StageValues v;
@@ -140,27 +165,13 @@ StageValues device_stages(const FemBatch& batch, const std::vector<double>& q, i
   const IncidenceBuffers incidence{static_cast<int>(batch.vertex_dof().size()), vertex_dof.data(),
                                    begin.data(), slots.data()};
   const CudaLauncher launch;
-  cudaEvent_t start, stop;
-  cuda_check(cudaEventCreate(&start), "cudaEventCreate");
-  cuda_check(cudaEventCreate(&stop), "cudaEventCreate");
-  std::vector<float> ms;
-  for (int r = 0; r <= repeats; ++r) {  // the first run warms up and is not timed
-    cuda_check(cudaEventRecord(start), "cudaEventRecord");
+  timing.device_ms = device_median_ms(repeats, [&] {
     launch(count, ElasticStage{tets, dq.data(), true, tet_energy.data(), tet_gradient.data(),
                                hessian.data()});
     launch(incidence.count, GradientGatherStage{incidence, tet_gradient.data(), gradient.data()});
     launch(batch.environment_count(),
            EnvironmentSumStage{tet_begin.data(), tet_energy.data(), environment_energy.data()});
-    cuda_check(cudaEventRecord(stop), "cudaEventRecord");
-    cuda_check(cudaEventSynchronize(stop), "running the stages");
-    float elapsed = 0.f;
-    cuda_check(cudaEventElapsedTime(&elapsed, start, stop), "cudaEventElapsedTime");
-    if (r > 0) ms.push_back(elapsed);
-  }
-  cudaEventDestroy(start);
-  cudaEventDestroy(stop);
-  std::sort(ms.begin(), ms.end());
-  timing.device_ms = ms[ms.size() / 2];
+  });
   std::size_t free_bytes = 0, total_bytes = 0;
   cuda_check(cudaMemGetInfo(&free_bytes, &total_bytes), "cudaMemGetInfo");
   timing.device_bytes =
@@ -186,14 +197,82 @@ double relative_difference(const std::vector<double>& a, const std::vector<doubl
   return worst;
 }
 
+constexpr int kPairsPerEnvironment = 512;
+
+// Contact pairs per environment: a point above a triangle or two crossing edges (every third
+// edge pair nearly parallel, so mollified), each at 5 % to 120 % of d_hat = 1 mm.
+ContactPairs contact_pairs(int environments, std::vector<double>& positions) {
+  ContactPairs pairs;
+  std::uint64_t seed = 0x2545f4914f6cdd1dull;
+  const auto uniform = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(seed >> 11) / static_cast<double>(1ull << 53);
+  };
+  for (int e = 0; e < environments; ++e) {
+    pairs.begin_environment(4 * kPairsPerEnvironment, 1e-3, 3e6);
+    for (int k = 0; k < kPairsPerEnvironment; ++k) {
+      const bool edge_edge = k % 2 == 1;
+      const double d = (0.05 + 1.15 * uniform()) * 1e-3, angle = k % 6 == 1 ? 1e-3 : 1.0;
+      const double x[4][3] = {
+          {edge_edge ? -0.006 : 0.0, 0.0, edge_edge ? 0.0 : d},
+          {edge_edge ? 0.006 : -0.004, edge_edge ? 0.0 : -0.003, 0.0},
+          {-0.005 * std::cos(angle), -0.005 * std::sin(angle), edge_edge ? d : 0.0},
+          {0.005 * std::cos(angle), 0.005 * std::sin(angle), edge_edge ? d : 0.0}};
+      for (const auto& v : x) positions.insert(positions.end(), {v[0], v[1], v[2]});
+      const int vertex[4] = {4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3};
+      pairs.add(edge_edge, vertex, 1e-3 * 0.012 * 0.01);  // eps_x: 1e-3 |ea|^2 |eb|^2
+    }
+  }
+  return pairs;
+}
+
+struct BarrierValues {
+  std::vector<double> energy, gradient, hessian;
+};
+
+BarrierValues host_barrier(const ContactPairs& pairs, const std::vector<double>& x, double& ms) {
+  const int n = pairs.pairs().count;
+  BarrierValues v{std::vector<double>(n), std::vector<double>(12 * std::size_t(n)),
+                  std::vector<double>(144 * std::size_t(n))};
+  const auto start = std::chrono::steady_clock::now();
+  SerialLauncher{}(n, BarrierStage{pairs.pairs(), x.data(), true, v.energy.data(),
+                                   v.gradient.data(), v.hessian.data()});
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return v;
+}
+
+BarrierValues device_barrier(const ContactPairs& pairs, const std::vector<double>& x, int repeats,
+                             double& ms, double& bytes) {
+  DeviceArray<int> vertex(pairs.vertex()), environment(pairs.environment());
+  DeviceArray<unsigned char> edge_edge(pairs.edge_edge());
+  DeviceArray<double> eps(pairs.mollifier_eps()), d_hat(pairs.d_hat()), kappa(pairs.kappa()),
+      positions(x);
+  const int n = pairs.pairs().count;
+  DeviceArray<double> energy(n), gradient(12 * std::size_t(n)), hessian(144 * std::size_t(n));
+  const PairBuffers buffers{n,           vertex.data(),      edge_edge.data(),
+                            eps.data(),  environment.data(), d_hat.data(),
+                            kappa.data()};
+  ms = device_median_ms(repeats, [&] {
+    CudaLauncher{}(n, BarrierStage{buffers, positions.data(), true, energy.data(), gradient.data(),
+                                   hessian.data()});
+  });
+  bytes = 8.0 * double(positions.size() + eps.size() + energy.size() + gradient.size() +
+                       hessian.size()) +
+          4.0 * double(vertex.size() + environment.size()) + double(edge_edge.size());
+  return {energy.to_host(), gradient.to_host(), hessian.to_host()};
+}
+
 struct SizeResult {
   int environments = 0;
   int tets = 0;
   Timing timing;
   double energy = 0.0, gradient = 0.0, hessian = 0.0;  // relative differences
+  double barrier_device_ms = 0.0, barrier_host_ms = 0.0, barrier_bytes = 0.0;
+  double barrier_energy = 0.0, barrier_gradient = 0.0, barrier_hessian = 0.0;
   bool pass() const {
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
-           hessian <= kHessianTolerance;
+           hessian <= kHessianTolerance && barrier_energy <= kEnergyTolerance &&
+           barrier_gradient <= kGradientTolerance && barrier_hessian <= kHessianTolerance;
   }
 };
 
@@ -214,6 +293,14 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   result.energy = relative_difference(device.environment_energy, host.environment_energy, 1);
   result.gradient = relative_difference(device.gradient, host.gradient, q.size());
   result.hessian = relative_difference(device.hessian, host.hessian, 144);
+  std::vector<double> positions;
+  const ContactPairs pairs = contact_pairs(environments, positions);
+  const BarrierValues on_device =
+      device_barrier(pairs, positions, repeats, result.barrier_device_ms, result.barrier_bytes);
+  const BarrierValues on_host = host_barrier(pairs, positions, result.barrier_host_ms);
+  result.barrier_energy = relative_difference(on_device.energy, on_host.energy, 1);
+  result.barrier_gradient = relative_difference(on_device.gradient, on_host.gradient, 12);
+  result.barrier_hessian = relative_difference(on_device.hessian, on_host.hessian, 144);
   return result;
 }
 
@@ -246,12 +333,17 @@ void write_reports(const std::string& directory, const std::string& device,
   if (!json || !md) throw std::runtime_error("cannot write to " + directory);
   json << "{" << device << ", \"tets_per_environment\": " << tets_per_environment
        << ", \"stages\": \"elastic (energy, gradient, projected Hessian), gradient gather, "
-          "environment energy\", \"sizes\": [";
-  md << "Elastic stages on " << gpu_name << ", " << tets_per_environment
-     << " tets per environment; host: one core, serial launcher.\n\n"
+          "environment energy; barrier\", \"pairs_per_environment\": "
+       << kPairsPerEnvironment << ", \"sizes\": [";
+  md << "Elastic and barrier stages on " << gpu_name << ": " << tets_per_environment << " tets and "
+     << kPairsPerEnvironment
+     << " contact pairs per environment; host: one core, serial launcher.\n\n"
      << "| environments | tets | device ms | host ms | host/device | device MiB per env | "
-        "energy diff | gradient diff | Hessian diff | within tolerance |\n"
-     << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
+        "energy diff | gradient diff | Hessian diff | pairs | barrier device ms | barrier host ms "
+        "| "
+        "barrier diffs (energy, gradient, Hessian) | within tolerance |\n"
+     << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
+        "| --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     const SizeResult& r = results[i];
     const double per_env_mib = r.timing.device_bytes / r.environments / double(1 << 20);
@@ -261,6 +353,14 @@ void write_reports(const std::string& directory, const std::string& device,
          << ", \"energy_relative_difference\": " << r.energy
          << ", \"gradient_relative_difference\": " << r.gradient
          << ", \"hessian_relative_difference\": " << r.hessian
+         << ", \"pairs\": " << r.environments * kPairsPerEnvironment
+         << ", \"barrier_device_ms\": " << r.barrier_device_ms
+         << ", \"barrier_host_ms\": " << r.barrier_host_ms
+         << ", \"barrier_device_mib_per_environment\": "
+         << r.barrier_bytes / r.environments / double(1 << 20)
+         << ", \"barrier_energy_relative_difference\": " << r.barrier_energy
+         << ", \"barrier_gradient_relative_difference\": " << r.barrier_gradient
+         << ", \"barrier_hessian_relative_difference\": " << r.barrier_hessian
          << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
     md << "| " << r.environments << " | " << r.tets << " | " << r.timing.device_ms << " | "
        << r.timing.host_ms << " | " << r.timing.host_ms / r.timing.device_ms << " | " << per_env_mib
