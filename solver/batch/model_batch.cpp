@@ -17,7 +17,8 @@ FemBatch fem_batch(const std::vector<const Model*>& environments) {
       for (const std::array<int, 4>& tet : body.kind->tets(body.local)) {
         tets.insert(tets.end(), tet.begin(), tet.end());
       }
-      batch.add_body(body.dof_offset, rest, tets, body.material.youngs, body.material.poisson);
+      batch.add_body(body.dof_offset, rest, tets, body.material.youngs, body.material.poisson,
+                     body.material.density);
     }
   }
   batch.finish();

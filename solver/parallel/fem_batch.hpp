@@ -21,6 +21,15 @@ struct TetBuffers {
   const double* lambda = nullptr;              // per tet
 };
 
+// Per FEM vertex: its first DOF in the batch, its environment and its lumped mass (a quarter of
+// each touching tet's rest mass, summed in tet order as FemBodies sums it).
+struct VertexBuffers {
+  int count = 0;
+  const int* dof = nullptr;
+  const int* environment = nullptr;
+  const double* mass = nullptr;
+};
+
 // Per FEM vertex, the slots 4 t + c of the tets that touch it, in increasing order.
 struct IncidenceBuffers {
   int count = 0;
@@ -35,20 +44,23 @@ class FemBatch {
   void begin_environment(int dof_count);
   // Adds an FEM body of the environment begun last: `rest` holds its vertices' rest positions
   // (3 each) and `tets` their indices (4 each, positively oriented); `first_dof` is its first
-  // DOF within the environment. Throws std::invalid_argument for a flat or inverted tet.
+  // DOF within the environment. Throws std::invalid_argument for a flat or inverted tet, or a
+  // vertex that no tet touches.
   void add_body(int first_dof, const std::vector<double>& rest, const std::vector<int>& tets,
-                double youngs, double poisson);
+                double youngs, double poisson, double density);
   // Builds the vertices' incidence; call once every environment is in.
   void finish();
 
   int environment_count() const { return static_cast<int>(dof_begin_.size()) - 1; }
   int dof_count() const { return dof_begin_.back(); }
-  // environment_count() + 1 offsets into the batch's DOFs, and into its tets.
+  // environment_count() + 1 offsets into the batch's DOFs, its tets and its FEM vertices.
   const std::vector<int>& dof_begin() const { return dof_begin_; }
   const std::vector<int>& tet_begin() const { return tet_begin_; }
+  const std::vector<int>& vertex_begin() const { return vertex_begin_; }
 
   // Views of the host arrays.
   TetBuffers tets() const;
+  VertexBuffers vertices() const;
   IncidenceBuffers incidence() const;
 
   // The arrays themselves, for copying to a device.
@@ -59,6 +71,8 @@ class FemBatch {
   const std::vector<double>& mu() const { return mu_; }
   const std::vector<double>& lambda() const { return lambda_; }
   const std::vector<int>& vertex_dof() const { return vertex_dof_; }
+  const std::vector<int>& vertex_environment() const { return vertex_environment_; }
+  const std::vector<double>& vertex_mass() const { return vertex_mass_; }
   const std::vector<int>& incidence_begin() const { return incidence_begin_; }
   const std::vector<int>& incidence_slots() const { return incidence_slots_; }
 
@@ -71,7 +85,10 @@ class FemBatch {
   std::vector<double> rest_volume_;
   std::vector<double> mu_;
   std::vector<double> lambda_;
+  std::vector<int> vertex_begin_{0};
   std::vector<int> vertex_dof_;
+  std::vector<int> vertex_environment_;
+  std::vector<double> vertex_mass_;
   std::vector<int> incidence_begin_;
   std::vector<int> incidence_slots_;
 };

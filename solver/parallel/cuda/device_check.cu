@@ -281,7 +281,7 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   const int dofs = static_cast<int>(mesh.rest.size());
   for (int e = 0; e < environments; ++e) {
     batch.begin_environment(dofs);
-    batch.add_body(0, mesh.rest, mesh.tets, 9.4e6, 0.45);
+    batch.add_body(0, mesh.rest, mesh.tets, 9.4e6, 0.45, 1100.0);
   }
   batch.finish();
   const std::vector<double> q = deformed_state(mesh, environments, cell);

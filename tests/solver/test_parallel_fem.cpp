@@ -1,7 +1,7 @@
-// The data-parallel engine's elastic stages (solver/parallel/) on the host launchers, against
-// the CPU engine's FEM terms (FemBodies) on the same states: a batch of environments of two
-// models, each deformed differently. Also: the serial and TBB launchers agree bit for bit, and
-// an environment's values do not depend on the others in its batch.
+// The data-parallel engine's FEM stages (solver/parallel/: elastic, inertia) on the host
+// launchers, against the CPU engine's FEM terms (FemBodies) on the same states: a batch of
+// environments of two models, each deformed differently. Also: the serial and TBB launchers
+// agree bit for bit, and an environment's values do not depend on the others in its batch.
 #include <gtest/gtest.h>
 
 #include <Eigen/Sparse>
@@ -12,6 +12,7 @@
 #include "solver/batch/tbb_launcher.hpp"
 #include "solver/environment.hpp"
 #include "solver/parallel/elastic_stages.hpp"
+#include "solver/parallel/inertia_stages.hpp"
 #include "solver/parallel/launch.hpp"
 #include "tests/solver/scene_builders.hpp"
 
@@ -198,6 +199,59 @@ TEST(ParallelElastic, AnEnvironmentsValuesDoNotDependOnItsBatch) {
   EXPECT_TRUE(std::equal(solo.hessian.begin(), solo.hessian.end(), in_batch.hessian.begin()));
   EXPECT_EQ(three.fem.dof_begin()[1], a->dof_count());
   EXPECT_EQ(three.fem.dof_begin()[3], 2 * a->dof_count() + c->dof_count());
+}
+
+TEST(ParallelInertia, TargetsMassesAndTermsMatchTheCpuEngine) {
+  const Batch b = make_batch({two_soft_boxes(), one_soft_box(), two_soft_boxes()});
+  const int n = b.fem.environment_count();
+  // Per environment a step and a gravity of its own; velocities at random.
+  std::vector<double> h{0.01, 0.005, 0.02}, gravity{0, 0, -9.8, 9.8, 0, 0, 0, -9.8, 0};
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> speed(-0.5, 0.5);
+  std::vector<double> v(b.q.size());
+  for (double& x : v) x = speed(random);
+  std::vector<double> q_tilde(b.q.size()), gradient(b.q.size());  // zeros
+  std::vector<double> energy(b.fem.vertices().count), environment_energy(n);
+  parallel::SerialLauncher launch;
+  launch(b.fem.vertices().count,
+         parallel::PredictionStage{b.fem.vertices(), b.q.data(), v.data(), h.data(), gravity.data(),
+                                   q_tilde.data()});
+  launch(b.fem.vertices().count,
+         parallel::InertiaStage{b.fem.vertices(), b.q.data(), q_tilde.data(), energy.data(),
+                                gradient.data()});
+  launch(n, EnvironmentSumStage{b.fem.vertex_begin().data(), energy.data(),
+                                environment_energy.data()});
+  for (int e = 0; e < n; ++e) {
+    SCOPED_TRACE("environment " + std::to_string(e));
+    const Model& model = *b.models[e];
+    const int first = b.fem.dof_begin()[e];
+    const Eigen::Map<const Eigen::VectorXd> q(b.q.data() + first, model.dof_count()),
+        velocity(v.data() + first, model.dof_count());
+    Eigen::VectorXd cpu_target = q + h[e] * velocity;
+    Eigen::VectorXd cpu_gradient = Eigen::VectorXd::Zero(model.dof_count());
+    double cpu_energy = 0.0;
+    for (const BodyModel& body : model.bodies()) {
+      if (!body.deforms()) continue;
+      body.kind->add_gravity(body.local, Eigen::Vector3d(&gravity[3 * e]), h[e], cpu_target);
+      body.kind->add_inertia_energy(body.local, q, cpu_target, cpu_energy);
+      body.kind->add_inertia_derivatives(body.local, q, cpu_target, 1.0, cpu_gradient, nullptr);
+      const Eigen::VectorXd masses = body.kind->vertex_masses(body.local);
+      for (int k = 0; k < body.dof_count; ++k) {
+        const int dof = first + body.dof_offset + k;
+        ASSERT_EQ(q_tilde[dof], cpu_target[body.dof_offset + k]) << "DOF " << dof;
+        ASSERT_EQ(gradient[dof], cpu_gradient[body.dof_offset + k]) << "DOF " << dof;
+      }
+      // Vertex masses, in the batch's vertex order.
+      const auto vertex = std::lower_bound(b.fem.vertex_dof().begin(), b.fem.vertex_dof().end(),
+                                           first + body.dof_offset) -
+                          b.fem.vertex_dof().begin();
+      for (int i = 0; i < masses.size(); ++i) {
+        EXPECT_EQ(b.fem.vertex_mass()[vertex + i], masses[i]);
+      }
+    }
+    EXPECT_GT(cpu_energy, 0.0);
+    EXPECT_NEAR(environment_energy[e], cpu_energy, 1e-13 * cpu_energy);
+  }
 }
 
 }  // namespace
