@@ -70,4 +70,24 @@ struct EnvironmentSumStage {
   }
 };
 
+// Where one elastic pass writes: per tet, the batch's gradient, per environment.
+struct ElasticOutputs {
+  double* tet_energy = nullptr;
+  double* tet_gradient = nullptr;        // 12 per tet
+  double* hessian = nullptr;             // 144 per tet, projected; null: not wanted
+  double* gradient = nullptr;            // the batch's DOF-space gradient (FEM DOFs written)
+  double* environment_energy = nullptr;  // per environment
+};
+
+// The elastic stages in the order a Newton iteration needs them: every tet, then the gather
+// into the vertices, then the environments' sums. `tet_begin` holds environments + 1 offsets.
+template <class Launcher>
+void launch_elastic_stages(Launcher&& launch, const TetBuffers& tets,
+                           const IncidenceBuffers& incidence, const int* tet_begin,
+                           int environments, const double* q, const ElasticOutputs& out) {
+  launch(tets.count, ElasticStage{tets, q, true, out.tet_energy, out.tet_gradient, out.hessian});
+  launch(incidence.count, GradientGatherStage{incidence, out.tet_gradient, out.gradient});
+  launch(environments, EnvironmentSumStage{tet_begin, out.tet_energy, out.environment_energy});
+}
+
 }  // namespace grip::solver::parallel

@@ -22,7 +22,6 @@ namespace {
 using parallel::ElasticStage;
 using parallel::EnvironmentSumStage;
 using parallel::FemBatch;
-using parallel::GradientGatherStage;
 
 // Two soft boxes of different materials beside an affine box, so that FEM DOFs do not start
 // at 0 and bodies of other kinds sit between them.
@@ -71,12 +70,10 @@ Values run_stages(const FemBatch& batch, const std::vector<double>& q, Launcher&
   std::vector<double> tet_energy(tets), tet_gradient(12 * static_cast<std::size_t>(tets));
   Values v{std::vector<double>(batch.environment_count()), std::vector<double>(q.size(), 0.0),
            std::vector<double>(144 * static_cast<std::size_t>(tets))};
-  launch(tets, ElasticStage{batch.tets(), q.data(), true, tet_energy.data(), tet_gradient.data(),
-                            v.hessian.data()});
-  launch(batch.incidence().count,
-         GradientGatherStage{batch.incidence(), tet_gradient.data(), v.gradient.data()});
-  launch(batch.environment_count(),
-         EnvironmentSumStage{batch.tet_begin().data(), tet_energy.data(), v.energy.data()});
+  parallel::launch_elastic_stages(launch, batch.tets(), batch.incidence(), batch.tet_begin().data(),
+                                  batch.environment_count(), q.data(),
+                                  {tet_energy.data(), tet_gradient.data(), v.hessian.data(),
+                                   v.gradient.data(), v.energy.data()});
   return v;
 }
 

@@ -137,14 +137,11 @@ StageValues host_stages(const FemBatch& batch, const std::vector<double>& q, dou
   v.hessian.resize(144 * std::size_t(tets.count));
   v.gradient.assign(q.size(), 0.0);
   v.environment_energy.resize(batch.environment_count());
-  const SerialLauncher launch;
   const auto start = std::chrono::steady_clock::now();
-  launch(tets.count, ElasticStage{tets, q.data(), true, tet_energy.data(), tet_gradient.data(),
-                                  v.hessian.data()});
-  launch(batch.incidence().count,
-         GradientGatherStage{batch.incidence(), tet_gradient.data(), v.gradient.data()});
-  launch(batch.environment_count(), EnvironmentSumStage{batch.tet_begin().data(), tet_energy.data(),
-                                                        v.environment_energy.data()});
+  launch_elastic_stages(SerialLauncher{}, tets, batch.incidence(), batch.tet_begin().data(),
+                        batch.environment_count(), q.data(),
+                        {tet_energy.data(), tet_gradient.data(), v.hessian.data(),
+                         v.gradient.data(), v.environment_energy.data()});
   ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return v;
 }
@@ -164,16 +161,12 @@ StageValues device_stages(const FemBatch& batch, const std::vector<double>& q, i
                         volume.data(), mu.data(),   lambda.data()};
   const IncidenceBuffers incidence{static_cast<int>(batch.vertex_dof().size()), vertex_dof.data(),
                                    begin.data(), slots.data()};
-  const CudaLauncher launch;
   timing.device_ms = device_median_ms(repeats, [&] {
-    launch(count, ElasticStage{tets, dq.data(), true, tet_energy.data(), tet_gradient.data(),
-                               hessian.data()});
-    launch(incidence.count, GradientGatherStage{incidence, tet_gradient.data(), gradient.data()});
-    launch(batch.environment_count(),
-           EnvironmentSumStage{tet_begin.data(), tet_energy.data(), environment_energy.data()});
+    launch_elastic_stages(CudaLauncher{}, tets, incidence, tet_begin.data(),
+                          batch.environment_count(), dq.data(),
+                          {tet_energy.data(), tet_gradient.data(), hessian.data(), gradient.data(),
+                           environment_energy.data()});
   });
-  std::size_t free_bytes = 0, total_bytes = 0;
-  cuda_check(cudaMemGetInfo(&free_bytes, &total_bytes), "cudaMemGetInfo");
   timing.device_bytes =
       8.0 * double(dq.size() + tet_energy.size() + tet_gradient.size() + hessian.size() +
                    gradient.size() + dm.size() + volume.size() + mu.size() + lambda.size()) +
