@@ -43,10 +43,14 @@ std::vector<ContactCandidate> find_contact_candidates(const CollisionMesh& mesh,
 // moves by half a millimetre as a whole brings none of its own pairs nearer.
 //
 // With `ccd`, also the pairs continuous collision detection must watch, in order: those within
-// reach, and those that start farther than d_hat / ccd_rescaling. Additive CCD stops a pair only
-// once its distance falls below ccd_rescaling times its start distance; a pair that stays beyond
-// d_hat and starts nearer than d_hat / ccd_rescaling never gets there, so leaving it out leaves
-// the step's collision-free fraction as it was.
+// reach, and those that start farther than d_hat / ccd_rescaling and move fast enough to close
+// (1 - ccd_rescaling) of their gap on the path. Additive CCD stops a pair only once its distance
+// falls below ccd_rescaling times its start distance; a pair that stays beyond d_hat and starts
+// nearer than d_hat / ccd_rescaling never gets there, and one whose relative motion is shorter
+// than (1 - ccd_rescaling) of its gap is cleared by CCD's first advance
+// (kernels::accd_clears_at_first_advance), so leaving them out leaves the step's collision-free
+// fraction as it was. An object falling past a finely meshed hand overlaps tens of thousands of
+// such pairs per iteration.
 std::vector<ContactCandidate> within_reach(const std::vector<int>& vertex_body,
                                            const std::vector<ContactCandidate>& candidates,
                                            const Vertices& start, const Vertices& end, double d_hat,
