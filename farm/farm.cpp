@@ -269,6 +269,7 @@ std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, bool group_only,
   options.trajectory = run.plan.dataset.candidates[unit.ids.front()].frames;
   options.ids = unit.ids;
   options.max_active = 2 * run.threads;  // enough to keep every thread busy while others freeze
+  options.full_trials = run.job.full_trials;
   options.after_step = [&](std::size_t ended) {
     run.progress.add(LiveProgress::kTrials, ended - counted);
     counted = ended;

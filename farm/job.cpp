@@ -236,9 +236,11 @@ void check_trial_consistency(const trial::TrialParameters& p, const std::optiona
 }
 
 void read_outputs(const Table& t, Job& job) {
-  t.allow(config::parameter_keys(trial::trial_parameter_table(), kOutputs), {"frames", "stress"});
+  t.allow(config::parameter_keys(trial::trial_parameter_table(), kOutputs),
+          {"frames", "stress", "full_trials"});
   job.record_frames = t.boolean_or("frames", job.record_frames);
   job.record_stress = t.boolean_or("stress", job.record_stress);
+  job.full_trials = t.boolean_or("full_trials", job.full_trials);
   config::read_parameters(t, trial::trial_parameter_table(), job.trial, kOutputs);
   if (job.trial.validation_frames % 6 != 0) {
     t.fail("validation_frames", "must be a multiple of 6 (one share per gravity axis)");

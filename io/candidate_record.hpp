@@ -56,6 +56,10 @@ struct CandidateRecord {
   std::vector<double> closing_forces;  // N, per finger per hand, when the squeeze settled
   double contact_friction = 0;         // mu of the finger-object contact pairs
   NewtonStatistics newton;
+  // How many of the trajectory's frames (closing, then validation) hold states the trial
+  // reached; those after repeat the last of them. A trial stops once its verdict is decided
+  // (a gravity phase's end found the object dropped or slipped), or when it fails earlier.
+  std::uint32_t simulated_frames = 0;
   double wall_time = 0;  // s; the one column that differs between otherwise equal runs
 
   bool operator==(const CandidateRecord&) const = default;

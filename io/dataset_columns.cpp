@@ -155,6 +155,8 @@ constexpr std::array kColumns = {
            record_field<&CandidateRecord::newton, &NewtonStatistics::max_iterations>()},
     Column{"newton_retries", P::kResult, E::kUint32, F::kZero, one_value,
            record_field<&CandidateRecord::newton, &NewtonStatistics::retries>()},
+    Column{"simulated_frames", P::kResult, E::kUint32, F::kZero, one_value,
+           record_field<&CandidateRecord::simulated_frames>()},
     Column{"wall_time", P::kResult, E::kFloat64, F::kNaN, one_value,
            record_field<&CandidateRecord::wall_time>()},
     Column{"trajectory_written", P::kResult, E::kUint8, F::kZero, one_value,

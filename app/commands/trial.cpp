@@ -57,6 +57,7 @@ struct TrialArgs {
   std::string vtk;                     // folder for per-candidate VTK series; none when empty
   int threads = 0;                     // 0: all cores
   bool compare_solo = false;           // also run each candidate alone: speedup and identity
+  bool full_trials = false;            // run decided trials to the end (TrialRunOptions)
   trial::TrialParameters parameters;   // the protocol's and the solver's (their tables' options)
   // The fin-ray finger's mesh (grippers::FinRayOptions layers and edge_length); unset: its
   // defaults. Refused for other grippers.
@@ -136,6 +137,7 @@ int run_and_report(const TrialArgs& args, const trial::TrialScene& scene,
   options.threads = args.threads;
   options.ids = ids;
   options.body_frames = !args.vtk.empty();
+  options.full_trials = args.full_trials;
   // Memory is measured only to compare with solo runs (it trims the heap first).
   std::optional<platform::MemoryPeak> batch_memory;
   if (args.compare_solo) batch_memory.emplace();
@@ -369,6 +371,8 @@ void declare_trial(cli::Command& root) {
       .check(cli::Check::count());
   trial.flag("--compare-solo", args->compare_solo,
              "Also run each candidate alone: batch speedup and bit-identity");
+  trial.flag("--full-trials", args->full_trials,
+             "Run every trial through the six gravity phases, also once its verdict is decided");
   trial
       .option("--finger-layers", args->finger_layers,
               "Fin-ray: tet layers across the finger's depth (default " +

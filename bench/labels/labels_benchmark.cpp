@@ -51,6 +51,7 @@ RobustnessOptions arm_options(const LabelsOptions& options, const LabelsArm& arm
   o.soft = arm.soft;
   o.parameters = parameters;
   o.threads = options.threads;
+  o.full_trials = options.full_trials;
   o.production_models = options.production_models;
   o.soft_interior_growth = uniform_mesh ? 0.0 : options.soft_interior_growth;
   o.fine_fin_ray = reference && options.refinement.finger;

@@ -52,6 +52,7 @@ struct LabelsOptions {
   double soft_interior_growth = geometry::kSoftObjectInteriorGrowth;  // RobustnessOptions's
   trial::TrialParameters defaults;  // the protocol's defaults unless a bench option says
   LabelsRefinement refinement;
+  bool full_trials = false;  // RobustnessOptions::full_trials, at the defaults and the reference
   std::filesystem::path out = "out/labels";
 };
 

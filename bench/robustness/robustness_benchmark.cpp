@@ -52,6 +52,7 @@ std::string describe(const RobustnessSet& set, std::uint64_t seed) {
 struct CategoryRun {
   RobustnessResult& result;
   const trial::TrialParameters& parameters;
+  bool full_trials = false;  // RobustnessOptions::full_trials
   tbb::task_arena arena;
 
   // Candidates for the seed's shape, `count` asked, as `grip synth` makes them.
@@ -70,7 +71,8 @@ struct CategoryRun {
     try {
       trial::TrialObject object;
       arena.execute([&] { object = make_object(set, seed); });
-      outcomes = RobustnessScene(set, object, parameters).run(candidates, result.threads);
+      outcomes =
+          RobustnessScene(set, object, parameters).run(candidates, result.threads, full_trials);
     } catch (const std::exception& e) {
       // An object that cannot be meshed or a candidate the gripper cannot take: reported, and
       // the other batches still run.
@@ -211,7 +213,7 @@ RobustnessResult run_robustness(const RobustnessOptions& options) {
   result.sets = plan_robustness(options);
   result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   const auto start = std::chrono::steady_clock::now();
-  CategoryRun run{result, options.parameters, tbb::task_arena(result.threads)};
+  CategoryRun run{result, options.parameters, options.full_trials, tbb::task_arena(result.threads)};
   // The rigid and soft sets of one gripper and category walk the seeds together, so that a
   // seed's candidates serve both.
   for (std::size_t i = 0; i < result.sets.size();) {

@@ -30,7 +30,9 @@ struct RobustnessOptions {
   // --refine finger); with production models only.
   bool fine_fin_ray = false;
   trial::TrialParameters parameters;  // the protocol and the solver's settings
-  int threads = 0;                    // 0: all cores
+  // Run decided trials to the end (trial::TrialRunOptions::full_trials): the same verdicts.
+  bool full_trials = false;
+  int threads = 0;  // 0: all cores
   std::filesystem::path out = "out/robustness";
 };
 

@@ -159,9 +159,10 @@ RobustnessScene::~RobustnessScene() = default;
 const trial::TrialParameters& RobustnessScene::parameters() const { return scene_->parameters(); }
 
 std::vector<trial::TrialOutcome> RobustnessScene::run(
-    const std::vector<synth::Candidate>& candidates, int threads) const {
+    const std::vector<synth::Candidate>& candidates, int threads, bool full_trials) const {
   trial::TrialRunOptions options;
   options.threads = threads;
+  options.full_trials = full_trials;
   options.trajectory = false;
   return trial::run_trials(*scene_, candidates, options);
 }

@@ -43,9 +43,10 @@ class RobustnessScene {
   RobustnessScene& operator=(const RobustnessScene&) = delete;
 
   // The candidates' trials as one solver::Batch on `threads` threads (0: all cores), without
-  // trajectories. Throws std::out_of_range for a candidate the gripper cannot take.
-  std::vector<trial::TrialOutcome> run(const std::vector<synth::Candidate>& candidates,
-                                       int threads) const;
+  // trajectories; with full_trials, decided trials run to the end (trial::TrialRunOptions).
+  // Throws std::out_of_range for a candidate the gripper cannot take.
+  std::vector<trial::TrialOutcome> run(const std::vector<synth::Candidate>& candidates, int threads,
+                                       bool full_trials = false) const;
   const trial::TrialParameters& parameters() const;
 
  private:

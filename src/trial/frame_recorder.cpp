@@ -64,6 +64,11 @@ std::vector<RecordedFrame> FrameRecorder::frames() const {
   return frames;
 }
 
+int FrameRecorder::simulated_frames() const {
+  if (closing_.empty()) return 0;
+  return closing_frames_ + static_cast<int>(validation_.size());
+}
+
 io::TrajectoryRecord trajectory_record(const std::vector<RecordedFrame>& frames) {
   io::TrajectoryRecord record;
   for (const RecordedFrame& frame : frames) {

@@ -43,6 +43,9 @@ class FrameRecorder {
   // included), then the validation frames; a trial that ended early repeats its last frame.
   // The settled state is optional (a trial that failed while closing has none).
   std::vector<RecordedFrame> frames() const;
+  // How many of frames() hold states the trial reached: the closing frames and the validation
+  // frames recorded so far (0 before the first frame); the rest repeat the last of them.
+  int simulated_frames() const;
 
  private:
   int closing_frames_;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -53,6 +54,8 @@ struct TrialState {
   ContactPatch gripper_patch;
   ContactPatch object_patch;
   bool metrics_done = false;
+  // The verdict, once a gravity phase's end has decided it (decide_at_phase_end).
+  std::optional<io::FailureKind> decided;
   FrameRecorder recorder;
   TrialOutcome outcome;
 
@@ -554,21 +557,34 @@ class ProtocolRunner {
     state.phase_step = 0;
     state.steady_steps = 0;
     state.recent_speed.fill(0.0);
+    if (!state.decided) decide_at_phase_end(i);
+    if (state.decided && !options_.full_trials) return finish(i, *state.decided);
     if (++state.gravity_phase < 6) {
       env.set_gravity(p_.gravity_magnitude * kGravityAxes[state.gravity_phase]);
       return;
     }
-    if (!object_touches_gripper(object, env)) return finish(i, io::FailureKind::kLostContact);
-    if (slipped_beyond_threshold(p_, record.displacement, record.phase_seconds)) {
-      return finish(i, io::FailureKind::kDisplaced);
+    finish(i, state.decided.value_or(io::FailureKind::kNone));
+  }
+
+  // The verdict at the end of a gravity phase: the first phase whose object touches no finger
+  // any more (dropped: `lost_contact`) or has slipped past the threshold (`displaced`) decides
+  // it. No later phase can change it, so the trial stops there unless full_trials asks for the
+  // rest (docs/trial.md, "Verdict").
+  void decide_at_phase_end(int i) {
+    TrialState& state = states_[i];
+    const io::CandidateRecord& record = state.outcome.result.record;
+    if (!object_touches_gripper(gripper_.object_body(), engine_->environment(i))) {
+      state.decided = io::FailureKind::kLostContact;
+    } else if (slipped_beyond_threshold(p_, record.displacement, record.phase_seconds,
+                                        state.gravity_phase + 1)) {
+      state.decided = io::FailureKind::kDisplaced;
     }
-    finish(i, io::FailureKind::kNone);
   }
 
   // A failed environment's state is not a grasp (a step may have stopped half-way): its
   // frames end at the last accepted step, and D1/D2 are not measured (NaN). A solver failure
-  // after a gravity phase already moved the object beyond the threshold does not decide the
-  // verdict: the grasp had failed (`displaced`) before; failure_reason keeps the solver's word.
+  // after a gravity phase decided the verdict (with full_trials) does not change it;
+  // failure_reason keeps the solver's word.
   void fail(int i) {
     TrialState& state = states_[i];
     const solver::EnvironmentHandle& env = engine_->environment(i);
@@ -578,12 +594,7 @@ class ProtocolRunner {
     if (!state.metrics_done) {
       record.d1 = record.d2 = std::numeric_limits<double>::quiet_NaN();
     }
-    const bool displaced_before =
-        state.phase == Phase::kGravity &&
-        slipped_beyond_threshold(p_, record.displacement, record.phase_seconds,
-                                 state.gravity_phase);
-    finish(i, displaced_before ? io::FailureKind::kDisplaced
-                               : solver_failure_kind(env.failure_code()));
+    finish(i, state.decided.value_or(solver_failure_kind(env.failure_code())));
   }
 
   void finish(int i, io::FailureKind failure) {
@@ -597,6 +608,7 @@ class ProtocolRunner {
     record.newton.iterations = static_cast<std::uint32_t>(stats.newton_iterations);
     record.newton.max_iterations = static_cast<std::uint32_t>(stats.max_step_iterations);
     record.newton.retries = static_cast<std::uint32_t>(stats.retries);
+    record.simulated_frames = static_cast<std::uint32_t>(state.recorder.simulated_frames());
     state.outcome.steps_by_newton_iterations = stats.steps_by_iterations;
     state.outcome.stage_seconds = env.stage_seconds();
     state.outcome.linear_solves = env.linear_solves();

@@ -34,6 +34,11 @@ struct TrialRunOptions {
   // Called on the calling thread after every step of the batch with how many of its trials
   // have ended so far (the farm's live progress). Results do not depend on it.
   std::function<void(std::size_t ended)> after_step;
+  // A trial stops once its verdict is decided (a gravity phase's end found the object dropped
+  // or slipped past the threshold): no later phase can change it. True: such a trial runs the
+  // six phases to the end all the same (frames of a failed grasp to the end); the verdicts are
+  // the same either way (docs/trial.md, "Verdict").
+  bool full_trials = false;
   // Every Newton system of these trials goes to this solver instead of their environments' own
   // CHOLMOD (the farm's PETSc group, for a model too big for one rank). It serves one system at
   // a time and may talk MPI: it needs threads = 1. Null: CHOLMOD solves every system.

@@ -106,6 +106,7 @@ CandidateResult synthetic_result(const DatasetLayout& layout, std::uint64_t id,
               static_cast<std::uint32_t>(5 + random() % 20)};
   r.wall_time = uniform(random, 0.1, 3.0);
   const std::size_t frames = layout.frames();
+  r.simulated_frames = static_cast<std::uint32_t>(random() % (frames + 1));
   if (layout.frame_slot[id] >= 0) {
     TrajectoryRecord t;
     t.object_vertices = values<float>(random, frames * o.vertices * 3, -0.1, 0.1);

@@ -25,6 +25,7 @@ std::vector<TrialOutcome> two_outcomes() {
   outcomes[0].settle_displacement = 2.5e-4;
   held.newton = {70, 188, 48};
   held.wall_time = 1.25;
+  held.simulated_frames = 100;
   outcomes[0].stage_seconds.broad_phase = 0.5;
   outcomes[0].stage_seconds.factorization = 0.25;
   outcomes[0].linear_solves = {12, 170, 900};
@@ -36,6 +37,7 @@ std::vector<TrialOutcome> two_outcomes() {
   failed.d1 = std::numeric_limits<double>::infinity();
   failed.newton = {3, 300, 100};
   failed.wall_time = 0.5;
+  failed.simulated_frames = 41;
   outcomes[1].failure_reason = "t = 0.03 s: Newton did not converge in 100 iterations";
   return outcomes;
 }
@@ -74,8 +76,8 @@ TEST(TrialReport, KeepsItsLayout) {
 "solo_memory_mib": 4,
 "memory_per_added_environment_mib": 6,
 "trials": [
-  {"id": 3, "status": "success", "failure": "none", "reason": "", "d1": 0, "d2": 0.00050000000000000001, "displacement": [9.9999999999999995e-07, 0, 0, 0, 0, 2.4999999999999999e-07], "closing_forces": [51.5, 50], "closing_at_path_end": [false, true], "settle_displacement": 0.00025000000000000001, "center_displacement": [null, null, null, null, null, null], "end_speed": [null, null, null, null, null, null], "phase_seconds": [0, 0, 0, 0, 0, 0], "contact_friction": 0, "newton": {"steps": 70, "iterations": 188, "max_iterations": 48, "retries": 0}, "wall_time": 1.25, "stage_seconds": {"broad_phase": 0.5, "derivatives": 0, "assembly": 0, "factorization": 0.25, "solve": 0, "ccd": 0, "line_search": 0, "friction_lag": 0, "diagnostics": 0}, "linear_solves": {"factorizations": 12, "reused": 170, "cg_iterations": 900}, "peak_stress": 51000},
-  {"id": 4, "status": "failure", "failure": "newton_limit", "reason": "t = 0.03 s: Newton did not converge in 100 iterations", "d1": null, "d2": 0, "displacement": [0, 0, 0, 0, 0, 0], "closing_forces": [], "closing_at_path_end": [], "settle_displacement": null, "center_displacement": [null, null, null, null, null, null], "end_speed": [null, null, null, null, null, null], "phase_seconds": [0, 0, 0, 0, 0, 0], "contact_friction": 0, "newton": {"steps": 3, "iterations": 300, "max_iterations": 100, "retries": 0}, "wall_time": 0.5, "stage_seconds": {"broad_phase": 0, "derivatives": 0, "assembly": 0, "factorization": 0, "solve": 0, "ccd": 0, "line_search": 0, "friction_lag": 0, "diagnostics": 0}, "linear_solves": {"factorizations": 0, "reused": 0, "cg_iterations": 0}}
+  {"id": 3, "status": "success", "failure": "none", "reason": "", "d1": 0, "d2": 0.00050000000000000001, "displacement": [9.9999999999999995e-07, 0, 0, 0, 0, 2.4999999999999999e-07], "closing_forces": [51.5, 50], "closing_at_path_end": [false, true], "settle_displacement": 0.00025000000000000001, "center_displacement": [null, null, null, null, null, null], "end_speed": [null, null, null, null, null, null], "phase_seconds": [0, 0, 0, 0, 0, 0], "contact_friction": 0, "newton": {"steps": 70, "iterations": 188, "max_iterations": 48, "retries": 0}, "simulated_frames": 100, "wall_time": 1.25, "stage_seconds": {"broad_phase": 0.5, "derivatives": 0, "assembly": 0, "factorization": 0.25, "solve": 0, "ccd": 0, "line_search": 0, "friction_lag": 0, "diagnostics": 0}, "linear_solves": {"factorizations": 12, "reused": 170, "cg_iterations": 900}, "peak_stress": 51000},
+  {"id": 4, "status": "failure", "failure": "newton_limit", "reason": "t = 0.03 s: Newton did not converge in 100 iterations", "d1": null, "d2": 0, "displacement": [0, 0, 0, 0, 0, 0], "closing_forces": [], "closing_at_path_end": [], "settle_displacement": null, "center_displacement": [null, null, null, null, null, null], "end_speed": [null, null, null, null, null, null], "phase_seconds": [0, 0, 0, 0, 0, 0], "contact_friction": 0, "newton": {"steps": 3, "iterations": 300, "max_iterations": 100, "retries": 0}, "simulated_frames": 41, "wall_time": 0.5, "stage_seconds": {"broad_phase": 0, "derivatives": 0, "assembly": 0, "factorization": 0, "solve": 0, "ccd": 0, "line_search": 0, "friction_lag": 0, "diagnostics": 0}, "linear_solves": {"factorizations": 0, "reused": 0, "cg_iterations": 0}}
 ]
 }
 )";

@@ -28,6 +28,7 @@ struct BenchLabelsArgs {
   double newton_tol = 0.0;          // the defaults' Newton tolerance; 0: the trial's
   int friction_lag_iterations = 0;  // the defaults' friction lag iterations; 0: the trial's
   double tet_growth = geometry::kSoftObjectInteriorGrowth;  // production soft objects
+  bool full_trials = false;  // run decided trials to the end (LabelsOptions)
   std::string out = "out/labels";
 };
 
@@ -54,6 +55,7 @@ int bench_labels(const BenchLabelsArgs& args) {
   if (args.friction_lag_iterations > 0) {
     options.defaults.sim.friction_lag_iterations = args.friction_lag_iterations;
   }
+  options.full_trials = args.full_trials;
   options.out = args.out;
   try {
     for (const std::string& arm : args.arms) options.arms.push_back(bench::parse_labels_arm(arm));
@@ -114,6 +116,8 @@ void declare_bench_labels(cli::Command& group) {
               "meshed uniformly inside), finger (the fin-ray finger meshed finer)")
       .list()
       .check(cli::Check::one_of({"dt", "newton_tol", "friction_lag", "mesh", "finger"}));
+  labels.flag("--full-trials", args->full_trials,
+              "Run every trial through the six gravity phases, also once its verdict is decided");
   labels
       .option("--dt-divisor", args->dt_divisor,
               "What the reference divides dt by (a convergence study's 4, 8, ...)")
