@@ -22,6 +22,7 @@ void declare_bench_robustness(cli::Command& group);
 void declare_bench_labels(cli::Command& group);
 void declare_bench_peer(cli::Command& group);
 void declare_bench_trial(cli::Command& group);
+void declare_bench_cost(cli::Command& group);
 void declare_bench_linear(cli::Command& group);
 
 }  // namespace grip::commands

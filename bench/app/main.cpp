@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
          {declare_bench_batch, declare_bench_scaling, declare_bench_scale,
           declare_bench_scale_probe, declare_bench_accuracy, declare_bench_hard,
           declare_bench_model, declare_bench_robustness, declare_bench_labels, declare_bench_peer,
-          declare_bench_trial, declare_bench_linear}) {
+          declare_bench_trial, declare_bench_cost, declare_bench_linear}) {
       declare(bench);
     }
   };

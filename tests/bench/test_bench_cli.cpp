@@ -2,11 +2,11 @@
 // table, CSV and plot and exits 0 when every case holds; an unknown case, a bimanual accuracy
 // scene (there is none) or an unknown sweep is one message and exit status 1; `grip bench
 // labels` refuses an arm without its object model or an unknown category in one line, exit 2,
-// writing nothing, and `grip bench trial` an unknown gripper or no repeats; `grip bench peer`
-// refuses an unknown category the same way, and writes its files and JSON line, for the jaws and
-// for the hand (or, built without MuJoCo, says how to install it in one line, exit 1); `grip bench
-// scale` predicts from a cost file and refuses an unknown what-if or a class without costs in one
-// line, exit 2.
+// writing nothing, `grip bench trial` an unknown gripper or no repeats, and `grip bench cost` an
+// unknown gripper or no reference repeats; `grip bench peer` refuses an unknown category the
+// same way, and writes its files and JSON line, for the jaws and for the hand (or, built without
+// MuJoCo, says how to install it in one line, exit 1); `grip bench scale` predicts from a cost
+// file and refuses an unknown what-if or a class without costs in one line, exit 2.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -80,6 +80,21 @@ TEST(BenchCli, TrialRefusesAnUnknownGripperAndNoRepeatsInOneLine) {
             std::string::npos)
       << repeats.err;
   EXPECT_EQ(repeats.err.find('\n'), repeats.err.size() - 1) << repeats.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(BenchCli, CostRefusesAnUnknownGripperAndNoReferenceInOneLine) {
+  const fs::path out = scratch("cost");
+  const auto gripper = run_grip("bench cost --grippers claw --out " + out.string());
+  EXPECT_EQ(gripper.exit_code, 2);
+  EXPECT_NE(gripper.err.find("--grippers"), std::string::npos) << gripper.err;
+  EXPECT_NE(gripper.err.find("parallel-jaw"), std::string::npos) << gripper.err;
+  EXPECT_EQ(gripper.err.find('\n'), gripper.err.size() - 1) << gripper.err;
+  const auto repeats = run_grip("bench cost --reference-repeats 0 --out " + out.string());
+  EXPECT_EQ(repeats.exit_code, 2);
+  EXPECT_NE(repeats.err.find("grip: --reference-repeats: must be a whole number >= 1, not '0'"),
+            std::string::npos)
+      << repeats.err;
   EXPECT_FALSE(fs::exists(out));
 }
 
