@@ -142,9 +142,12 @@ class CostRunner {
                         const synth::Candidate& candidate, const RobustnessScene& scene) const {
     const std::vector<synth::Candidate> one = {candidate};
     const double start = process_cpu_seconds();
-    const std::vector<trial::TrialOutcome> outcomes = scene.run(one, 1);
+    const auto wall_start = std::chrono::steady_clock::now();
+    const std::vector<trial::TrialOutcome> outcomes = scene.run(one, 1, result_.full_trials);
     CostRun run;
     run.cpu_seconds = process_cpu_seconds() - start;
+    run.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     run.arm = cost_arm_name(set.gripper, set.soft);
     run.trial = robustness_trial(set, seed, k, outcomes.front(), scene.parameters());
     run.stages = outcomes.front().stage_seconds;
@@ -237,6 +240,7 @@ CostResult run_cost(const CostOptions& options) {
   CostResult result;
   result.sets = plan_cost(options);
   result.production_models = options.production_models;
+  result.full_trials = options.full_trials;
   result.machine = {cpu_model(), std::thread::hardware_concurrency(), load_average(), ""};
   const auto start = std::chrono::steady_clock::now();
   const trial::TrialParameters parameters;  // the protocol's and the solver's defaults

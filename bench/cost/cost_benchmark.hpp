@@ -31,6 +31,9 @@ struct CostOptions {
   // The models the farm simulates (RobustnessOptions::production_models); false: the coarse ones.
   bool production_models = true;
   int reference_repeats = 9;  // reference factorizations timed at the start, and again at the end
+  // Run decided trials to the end (trial::TrialRunOptions::full_trials): the same verdicts, at
+  // what the protocol cost before trials stopped once decided.
+  bool full_trials = false;
   std::filesystem::path out = "out/cost";
 };
 
@@ -74,11 +77,13 @@ struct CostRun {
   std::string arm;                 // cost_arm_name
   RobustnessTrial trial;           // category, seed, candidate index, verdict, Newton statistics
   double cpu_seconds = 0.0;        // the process's CPU time over its trial::run_trials call
+  double wall_seconds = 0.0;       // and the wall time: the stages' own clock
   solver::StageSeconds stages;     // trial::TrialOutcome::stage_seconds (wall s, one thread)
   double setup_cpu_seconds = 0.0;  // its shape's object and scene, built once for its candidates
 
-  // The protocol's own work (placement, servo, D1/D2, frames) and anything no stage times.
-  double protocol_seconds() const { return cpu_seconds - stages.total(); }
+  // The protocol's own work (placement, servo, D1/D2, frames) and anything no stage times, in
+  // wall s as the stages are: beside other work, CPU s less wall s could go below zero.
+  double protocol_seconds() const { return wall_seconds - stages.total(); }
   std::array<double, kCostStages.size()> stage_seconds() const;
 };
 
@@ -109,6 +114,7 @@ struct CostResult {
   CostReference reference;
   CostMachine machine;
   bool production_models = true;
+  bool full_trials = false;  // CostOptions::full_trials
   double wall_seconds = 0.0;
 };
 

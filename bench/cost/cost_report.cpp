@@ -159,7 +159,10 @@ void write_cost_files(const fs::path& out, const CostResult& result,
      << " candidates on " << result.shapes.size()
      << " shapes, each trial alone (its own trial::run_trials call on one thread, at the "
         "protocol's defaults), timed by the process's CPU time; "
-     << fixed_or_dash(result.wall_seconds, 1) << " s wall in all.\n\n";
+     << fixed_or_dash(result.wall_seconds, 1) << " s wall in all"
+     << (result.full_trials ? "; every trial ran its six gravity phases (--full-trials)"
+                            : "; a trial stops once its verdict is decided")
+     << ".\n\n";
   write_models(md, result);
   md << "\n## CPU seconds per candidate\n\nPer arm and verdict (\"failure\": every failure kind "
         "together): candidates, the mean, median, 90th percentile and largest CPU s, then the "
@@ -168,8 +171,8 @@ void write_cost_files(const fs::path& out, const CostResult& result,
         "an even n the lower middle one).\n\n";
   write_cost_table(md, rows);
   md << "\n## Where the failing trials' time goes\n\nEach stage's share of the failing trials' "
-        "CPU s summed, %. The solver's stages are its own timers (wall s, on the one thread); "
-        "protocol is what they leave of the CPU s: placement, servo, D1/D2, frames.\n\n";
+        "wall time on their one thread, summed, %: the solver's stages are its own timers (wall "
+        "s); protocol is what they leave: placement, servo, D1/D2, frames.\n\n";
   write_stage_table(md, result);
   md << "\n## Setup\n\nEach shape's object (meshed, if soft) and scene, built once for its "
         "candidates and not in the figures above (a gripper's first shape also builds the "
@@ -200,6 +203,7 @@ void write_cost_json_line(std::ostream& out, const CostResult& result,
   const nlohmann::ordered_json line = {
       {"benchmark", "cost"},
       {"models", result.production_models ? "production" : "coarse"},
+      {"full_trials", result.full_trials},
       {"candidates", result.runs.size()},
       {"reference_seconds", r.seconds()},
       {"reference_start_seconds", r.start_median()},

@@ -66,13 +66,13 @@ std::vector<CostRow> cost_rows(const CostResult& result) {
 
 std::array<double, kCostStages.size()> stage_shares(const std::vector<const CostRun*>& runs) {
   std::array<double, kCostStages.size()> shares{};
-  double cpu = 0.0;
+  double wall = 0.0;
   for (const CostRun* run : runs) {
-    cpu += run->cpu_seconds;
+    wall += run->wall_seconds;
     const std::array<double, kCostStages.size()> seconds = run->stage_seconds();
     for (std::size_t i = 0; i < shares.size(); ++i) shares[i] += seconds[i];
   }
-  for (double& share : shares) share = cpu > 0 ? share / cpu : CostStatistics::nan;
+  for (double& share : shares) share = wall > 0 ? share / wall : CostStatistics::nan;
   return shares;
 }
 

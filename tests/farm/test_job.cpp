@@ -72,6 +72,10 @@ TEST(Job, ResolvesDefaultsAndOverrides) {
   EXPECT_EQ(job.trial.validation_frames, 12);
   EXPECT_EQ(job.trial.closing_frames, 40);  // the default, as GRIP's released files
   EXPECT_EQ(job.text, kValid);              // verbatim, for the dataset's provenance
+  EXPECT_FALSE(job.full_trials);            // a decided trial stops by default
+  EXPECT_TRUE(parse_job(std::string(kValid) + "full_trials = true\n", "job.toml").full_trials);
+  EXPECT_NE(error_of(std::string(kValid) + "full_trials = 1\n").find("full_trials"),
+            std::string::npos);
 
   bool found = false;
   for (const io::Parameter& p : resolved_parameters(job)) {

@@ -15,9 +15,9 @@ namespace grip::commands {
 namespace {
 
 // grip bench cost [--grippers ...] [--categories ...] [--seeds N] [--candidates N]
-// [--rigid] [--soft] [--coarse] [--reference-repeats N] [--out DIR]: each synthesized candidate
-// alone, its CPU seconds by verdict; the figures are the result, so the exit code is 0 unless
-// the inputs are bad (bench/cost/, docs/results.md).
+// [--rigid] [--soft] [--coarse] [--full-trials] [--reference-repeats N] [--out DIR]: each
+// synthesized candidate alone, its CPU seconds by verdict; the figures are the result, so the exit
+// code is 0 unless the inputs are bad (bench/cost/, docs/results.md).
 struct BenchCostArgs {
   std::vector<std::string> grippers;    // empty: parallel-jaw, fin-ray, leap
   std::vector<std::string> categories;  // empty: box, cylinder, capsule, bottle
@@ -27,6 +27,7 @@ struct BenchCostArgs {
   bool soft = false;    // alone: soft only
   bool coarse = false;  // the robustness benchmark's coarse models instead of production's
   int reference_repeats = 9;
+  bool full_trials = false;  // run decided trials to the end (CostOptions)
   std::string out = "out/cost";
 };
 
@@ -40,6 +41,7 @@ int bench_cost(const BenchCostArgs& args) {
   options.soft = args.soft;
   options.production_models = !args.coarse;
   options.reference_repeats = args.reference_repeats;
+  options.full_trials = args.full_trials;
   options.out = args.out;
   const bench::CostResult result = bench::run_cost(options);
   const std::vector<bench::CostRow> rows = bench::cost_rows(result);
@@ -81,6 +83,8 @@ void declare_bench_cost(cli::Command& group) {
       .check(cli::Check::positive_count());
   cost.flag("--rigid", args->rigid, "Rigid objects (the default; with --soft, both)");
   cost.flag("--soft", args->soft, "Soft (FEM) objects: minutes per trial (alone: soft only)");
+  cost.flag("--full-trials", args->full_trials,
+            "Run every trial through the six gravity phases, also once its verdict is decided");
   cost.flag("--coarse", args->coarse,
             "The robustness benchmark's coarse models (1-layer fin-ray, capsule hand, coarser "
             "soft objects) instead of the production ones the farm simulates");
