@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <exception>
 #include <fstream>
 #include <map>
@@ -14,6 +13,7 @@
 #include <thread>
 #include <tuple>
 
+#include "bench/common/cpu_clock.hpp"
 #include "bench/cost/cost_statistics.hpp"
 #include "bench/labels/labels_benchmark.hpp"
 #include "bench/robustness/robustness_trials.hpp"
@@ -25,13 +25,6 @@
 
 namespace grip::bench {
 namespace {
-
-// Every thread of the process: what the farm's rank pays, whoever does the work.
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 std::string describe(const RobustnessSet& set, std::uint64_t seed) {
   return set.gripper + " x " + set.category + " seed " + std::to_string(seed) +

@@ -8,6 +8,7 @@
 #include <iomanip>
 
 #include "bench/common/table_text.hpp"
+#include "bench/robustness/robustness_report.hpp"
 #include "src/json/json_text.hpp"
 
 namespace grip::bench {
@@ -101,20 +102,6 @@ void write_reference(std::ostream& md, const CostResult& result) {
         "reference, timed in the same run, carries too.\n";
 }
 
-void write_lists(std::ostream& md, const CostResult& result) {
-  if (!result.skipped.empty()) {
-    md << "\nSeeds skipped (synthesis found no candidate: the shape does not fit the gripper): ";
-    for (std::size_t k = 0; k < result.skipped.size(); ++k) {
-      md << (k ? ", " : "") << result.skipped[k];
-    }
-    md << ".\n";
-  }
-  if (!result.shortfalls.empty()) {
-    md << "\nShortfalls (fewer trials than asked):\n\n";
-    for (const std::string& s : result.shortfalls) md << "- " << s << "\n";
-  }
-}
-
 void write_csv(const fs::path& path, const CostResult& result) {
   std::ofstream csv(path);
   const double reference = result.reference.seconds();
@@ -180,7 +167,7 @@ void write_cost_files(const fs::path& out, const CostResult& result,
   write_setup_table(md, result);
   md << "\n## Reference\n\n";
   write_reference(md, result);
-  write_lists(md, result);
+  write_skipped_and_shortfalls(md, result.skipped, result.shortfalls);
   write_csv(out / "cost.csv", result);
 }
 

@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "bench/common/cpu_clock.hpp"
 #include "bench/peer/mujoco_model.hpp"
 
 namespace grip::bench {

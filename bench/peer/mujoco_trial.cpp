@@ -1,22 +1,16 @@
 #include "bench/peer/mujoco_trial.hpp"
 
 #include <spdlog/fmt/fmt.h>
-#include <time.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
+#include "bench/common/cpu_clock.hpp"
 #include "bench/peer/mujoco_model.hpp"
 
 namespace grip::bench {
-
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 #if GRIP_HAVE_MUJOCO
 

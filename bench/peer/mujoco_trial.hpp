@@ -61,7 +61,4 @@ MujocoOutcome run_mujoco_trial(const geometry::SurfaceMesh& object, double densi
                                const trial::TrialParameters& parameters,
                                const MujocoSettings& settings = {});
 
-// The process's CPU time so far (s), every thread's.
-double process_cpu_seconds();
-
 }  // namespace grip::bench

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "bench/common/cpu_clock.hpp"
 #include "bench/peer/grasp_distances.hpp"
 #include "bench/peer/mujoco_hand_trial.hpp"
 #include "bench/peer/mujoco_trial.hpp"

@@ -90,6 +90,19 @@ bool production_models(const RobustnessResult& result) {
 
 }  // namespace
 
+void write_skipped_and_shortfalls(std::ostream& md, const std::vector<std::string>& skipped,
+                                  const std::vector<std::string>& shortfalls) {
+  if (!skipped.empty()) {
+    md << "\nSeeds skipped (synthesis found no candidate: the shape does not fit the gripper): ";
+    for (std::size_t k = 0; k < skipped.size(); ++k) md << (k ? ", " : "") << skipped[k];
+    md << ".\n";
+  }
+  if (!shortfalls.empty()) {
+    md << "\nShortfalls (fewer trials than asked):\n\n";
+    for (const std::string& s : shortfalls) md << "- " << s << "\n";
+  }
+}
+
 RankStatistics rank_statistics(const std::vector<long>& counts) {
   RankStatistics s;
   for (const long n : counts) s.count += n;
@@ -217,17 +230,7 @@ void write_robustness_files(const fs::path& out, const RobustnessResult& result,
     for (std::size_t k = 1; k < io::kFailureKindCount; ++k) md << " " << r.failures[k] << " |";
     md << " " << r.retries << " | " << statistics_text(r.iterations_per_step, 0) << " |\n";
   }
-  if (!result.skipped.empty()) {
-    md << "\nSeeds skipped (synthesis found no candidate: the shape does not fit the gripper): ";
-    for (std::size_t k = 0; k < result.skipped.size(); ++k) {
-      md << (k ? ", " : "") << result.skipped[k];
-    }
-    md << ".\n";
-  }
-  if (!result.shortfalls.empty()) {
-    md << "\nShortfalls (fewer trials than asked):\n\n";
-    for (const std::string& s : result.shortfalls) md << "- " << s << "\n";
-  }
+  write_skipped_and_shortfalls(md, result.skipped, result.shortfalls);
   const std::vector<std::string> reasons = [&] {
     std::map<std::string, int> counts;
     for (const RobustnessTrial& t : result.trials) {

@@ -44,6 +44,11 @@ RobustnessTally tally(const std::vector<const RobustnessTrial*>& trials);
 std::vector<RobustnessTally> robustness_rows(const RobustnessResult& result);
 
 void write_robustness_table(std::ostream& out, const std::vector<RobustnessTally>& rows);
+
+// The seeds whose shape got no candidate and the sets that got fewer trials than asked, as
+// Markdown (nothing for empty lists): what a benchmark built on the seed walk did not run.
+void write_skipped_and_shortfalls(std::ostream& md, const std::vector<std::string>& skipped,
+                                  const std::vector<std::string>& shortfalls);
 // robustness.md (settings, table, shortfalls) and robustness.csv (one row per trial) in `out`,
 // created if missing.
 void write_robustness_files(const std::filesystem::path& out, const RobustnessResult& result,

@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <exception>
 #include <memory>
 #include <set>
 #include <stdexcept>
 #include <utility>
 
+#include "bench/common/cpu_clock.hpp"
 #include "bench/robustness/robustness_trials.hpp"
 #include "src/synth/candidate.hpp"
 
@@ -32,12 +32,6 @@ const std::vector<std::string>& categories_of(const TrialBenchOptions& options) 
 
 RobustnessSet set_of(const LabelsArm& arm, const std::string& category, bool production_models) {
   return {arm.gripper, category, arm.soft, 1, 1, production_models};
-}
-
-double clock_seconds(clockid_t clock) {
-  timespec t{};
-  clock_gettime(clock, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // One category's shape of an arm: its candidates and its scenes, built once for every run.
@@ -127,15 +121,15 @@ TrialBenchRun run_slot(const TrialBenchSlot& slot, const PlannedArm& arm) {
   const Shape& shape = arm.shapes[arm.shape_of[slot.candidate]];
   const RobustnessScene& scene = slot.reference ? *shape.reference : *shape.defaults;
   const std::vector<synth::Candidate> one = {shape.candidates[c.candidate]};
-  const double cpu_start = clock_seconds(CLOCK_THREAD_CPUTIME_ID);
-  const double process_start = clock_seconds(CLOCK_PROCESS_CPUTIME_ID);
+  const double cpu_start = thread_cpu_seconds();
+  const double process_start = process_cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   const std::vector<trial::TrialOutcome> outcomes = scene.run(one, 1);
   TrialBenchRun run;
   run.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.cpu_seconds = clock_seconds(CLOCK_THREAD_CPUTIME_ID) - cpu_start;
-  run.process_cpu_seconds = clock_seconds(CLOCK_PROCESS_CPUTIME_ID) - process_start;
+  run.cpu_seconds = thread_cpu_seconds() - cpu_start;
+  run.process_cpu_seconds = process_cpu_seconds() - process_start;
   run.slot = slot;
   run.trial = robustness_trial(set_of(arm.plan.arm, c.category, arm.production_models), c.seed,
                                c.candidate, outcomes.front(), scene.parameters());

@@ -32,6 +32,13 @@ struct Aabb {
     return (min.array() <= other.min.array()).all() && (other.max.array() <= max.array()).all();
   }
   GRIP_HD Eigen::Vector3d center() const { return 0.5 * (min + max); }
+  // The squared distance between the two boxes: 0 where they overlap, at most that of any point
+  // of one to any point of the other.
+  GRIP_HD double distance_sq(const Aabb& other) const {
+    const Eigen::Array3d gap =
+        (other.min.array() - max.array()).max(min.array() - other.max.array()).max(0.0);
+    return gap.matrix().squaredNorm();
+  }
 };
 
 }  // namespace grip::solver

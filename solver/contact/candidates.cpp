@@ -121,22 +121,9 @@ double pair_distance_sq(const ContactCandidate& c, const Vertices& x) {
 // The squared distance between the boxes of the pair's two primitives at x: at most the pair's.
 double pair_box_distance_sq(const ContactCandidate& c, const Vertices& x) {
   const int first_b = c.edge_edge ? 2 : 1;
-  double sq = 0.0;
-  for (int axis = 0; axis < 3; ++axis) {
-    double lo_a = x(c.vertex[0], axis), hi_a = lo_a;
-    for (int k = 1; k < first_b; ++k) {
-      lo_a = std::min(lo_a, x(c.vertex[k], axis));
-      hi_a = std::max(hi_a, x(c.vertex[k], axis));
-    }
-    double lo_b = x(c.vertex[first_b], axis), hi_b = lo_b;
-    for (int k = first_b + 1; k < 4; ++k) {
-      lo_b = std::min(lo_b, x(c.vertex[k], axis));
-      hi_b = std::max(hi_b, x(c.vertex[k], axis));
-    }
-    const double gap = std::max({0.0, lo_b - hi_a, lo_a - hi_b});
-    sq += gap * gap;
-  }
-  return sq;
+  Aabb a, b;
+  for (int k = 0; k < 4; ++k) (k < first_b ? a : b).expand(Eigen::Vector3d(x.row(c.vertex[k])));
+  return a.distance_sq(b);
 }
 
 // The largest of `values` over each side of a pair: its point or first edge, its triangle or
