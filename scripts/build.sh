@@ -12,6 +12,7 @@ while [[ $# -ge 2 && $1 == --target ]]; do
   shift 2
 done
 "$root/scripts/install-deps.sh"
+"$root/scripts/install-peers.sh"
 # CUDA's toolkit installs nvcc outside the PATH; CMake builds the CUDA sources where it finds it.
 if ! command -v nvcc >/dev/null && [[ -z ${CUDACXX:-} && -x /usr/local/cuda/bin/nvcc ]]; then
   export CUDACXX=/usr/local/cuda/bin/nvcc

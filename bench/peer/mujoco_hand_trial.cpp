@@ -291,8 +291,8 @@ class HandSimulation {
   int link_contact(int c, double& normal) const {
     const mjContact& contact = d_->contact[c];
     int other = -1;
-    if (contact.geom1 == object_geom_) other = contact.geom2;
-    if (contact.geom2 == object_geom_) other = contact.geom1;
+    if (contact.geom[0] == object_geom_) other = contact.geom[1];
+    if (contact.geom[1] == object_geom_) other = contact.geom[0];
     if (other < 0) return -1;
     const int body = m_->geom_bodyid[other];
     if (body_finger_[static_cast<std::size_t>(body)] == -2) return -1;
@@ -426,7 +426,7 @@ MujocoHandOutcome run_mujoco_hand_trial(const geometry::SurfaceMesh&, double, do
                                         const trial::TrialParameters&, const MujocoSettings&) {
   MujocoHandOutcome out;
   out.verdict = "load_error";
-  out.message = "this build has no MuJoCo (apt-get install libmujoco-dev, then configure again)";
+  out.message = "this build has no MuJoCo (scripts/install-peers.sh, then configure again)";
   return out;
 }
 

@@ -1,7 +1,6 @@
 #include "bench/peer/mujoco_model.hpp"
 
 #if GRIP_HAVE_MUJOCO
-#include <cstring>
 #include <memory>
 
 namespace grip::bench {
@@ -31,9 +30,7 @@ mjModel* load_model(const std::string& xml, std::string& message) {
   (void)quiet;
   const auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
-  mj_makeEmptyFileVFS(vfs.get(), "peer.xml", static_cast<int>(xml.size()));
-  const int file = mj_findFileVFS(vfs.get(), "peer.xml");
-  std::memcpy(vfs->filedata[file], xml.data(), xml.size());
+  mj_addBufferVFS(vfs.get(), "peer.xml", xml.data(), static_cast<int>(xml.size()));
   char error[1000] = "";
   mjModel* model = mj_loadXML("peer.xml", vfs.get(), error, sizeof error);
   mj_deleteVFS(vfs.get());

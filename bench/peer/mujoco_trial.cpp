@@ -237,9 +237,9 @@ class Simulation {
     double sum = 0.0;
     for (int c = 0; c < d_->ncon; ++c) {
       const mjContact& contact = d_->contact[c];
-      const bool jaw_second = contact.geom2 == jaw_geom_[j];
-      if (!((contact.geom1 == object_geom_ && jaw_second) ||
-            (contact.geom2 == object_geom_ && contact.geom1 == jaw_geom_[j]))) {
+      const bool jaw_second = contact.geom[1] == jaw_geom_[j];
+      if (!((contact.geom[0] == object_geom_ && jaw_second) ||
+            (contact.geom[1] == object_geom_ && contact.geom[0] == jaw_geom_[j]))) {
         continue;
       }
       mjtNum f[6];
@@ -309,7 +309,7 @@ MujocoOutcome run_mujoco_trial(const geometry::SurfaceMesh&, double, double,
                                const trial::TrialParameters&, const MujocoSettings&) {
   MujocoOutcome out;
   out.verdict = "load_error";
-  out.message = "this build has no MuJoCo (apt-get install libmujoco-dev, then configure again)";
+  out.message = "this build has no MuJoCo (scripts/install-peers.sh, then configure again)";
   return out;
 }
 

@@ -46,7 +46,7 @@ int bench_peer(const BenchPeerArgs& args) {
   }
   if (!bench::mujoco_available()) {
     spdlog::error(
-        "grip bench peer: this grip was built without MuJoCo; apt-get install libmujoco-dev, "
+        "grip bench peer: this grip was built without MuJoCo; run scripts/install-peers.sh, "
         "then configure and build again");
     return 1;
   }
