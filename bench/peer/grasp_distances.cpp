@@ -2,15 +2,14 @@
 
 #include <stdexcept>
 
+#include "src/geometry/boundary_surface.hpp"
+
 namespace grip::bench {
 namespace {
 
-// Both fingers over their finger-frame vertices, as trial::ParallelTrialScene samples its D1/D2
-// points.
+// Both fingers over their finger-frame surface vertices (a soft finger's: its tet mesh's
+// boundary), as trial::ParallelTrialScene samples its D1/D2 points.
 geometry::SurfaceMesh finger_pair(const grippers::ParallelGripper& gripper) {
-  if (gripper.soft_finger) {
-    throw std::invalid_argument("grip bench peer: soft fingers are not compared");
-  }
   const geometry::SurfaceMesh& one = gripper.finger_surface;
   const Eigen::Index n = one.vertices.rows();
   geometry::SurfaceMesh both;
@@ -28,7 +27,9 @@ GraspDistances::GraspDistances(const grippers::ParallelGripper& gripper,
                                const trial::TrialParameters& parameters)
     : parts_{gripper.finger_surface.vertices, gripper.finger_surface.vertices},
       points_(finger_pair(gripper), parameters.metric_samples, parameters.metric_seed),
-      object_(object) {}
+      object_(object) {
+  if (gripper.soft_finger) geometry::boundary_surface(gripper.soft_finger->mesh, &surface_to_tet_);
+}
 
 GraspDistances::GraspDistances(const trial::HandTrialScene& hand,
                                const geometry::SurfaceMesh& object,
@@ -49,6 +50,20 @@ metrics::DistanceMetrics GraspDistances::operator()(const std::array<Eigen::Isom
   return at({fingers[0], fingers[1]}, object);
 }
 
+metrics::DistanceMetrics GraspDistances::operator()(
+    const std::array<geometry::Vertices, 2>& fingers, const Eigen::Isometry3d& object) const {
+  if (surface_to_tet_.size() == 0) {
+    throw std::invalid_argument("GraspDistances: tet vertices given for rigid fingers");
+  }
+  geometry::Vertices world(2 * surface_to_tet_.size(), 3);
+  for (int j = 0; j < 2; ++j) {
+    for (Eigen::Index v = 0; v < surface_to_tet_.size(); ++v) {
+      world.row(j * surface_to_tet_.size() + v) = fingers[j].row(surface_to_tet_[v]);
+    }
+  }
+  return measured(world, object);
+}
+
 metrics::DistanceMetrics GraspDistances::operator()(const std::vector<Eigen::Isometry3d>& links,
                                                     const Eigen::Isometry3d& object) const {
   std::vector<Eigen::Isometry3d> poses;
@@ -67,6 +82,11 @@ metrics::DistanceMetrics GraspDistances::at(const std::vector<Eigen::Isometry3d>
       world.row(row++) = (part_poses[p] * parts_[p].row(v).transpose()).transpose();
     }
   }
+  return measured(world, object);
+}
+
+metrics::DistanceMetrics GraspDistances::measured(const geometry::Vertices& world,
+                                                  const Eigen::Isometry3d& object) const {
   const geometry::Vertices points = points_.positions(world);
   // Into the object frame, as trial::ObjectBody does for a rigid object.
   const Eigen::Matrix3d a_inverse = object.linear().inverse();

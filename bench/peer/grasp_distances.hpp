@@ -20,8 +20,8 @@ namespace grip::bench {
 
 class GraspDistances {
  public:
-  // `object`: closed and outward, in the object frame. Throws std::invalid_argument for a
-  // gripper with soft fingers.
+  // `object`: closed and outward, in the object frame. Soft fingers are measured on their tet
+  // mesh's boundary, as the trial samples them.
   GraspDistances(const grippers::ParallelGripper& gripper, const geometry::SurfaceMesh& object,
                  const trial::TrialParameters& parameters);
   // The hand's links with a surface, points sampled on the scene's rest surface as it samples
@@ -30,7 +30,11 @@ class GraspDistances {
                  const trial::TrialParameters& parameters);
 
   // fingers: world from finger frame, in grippers::Jaw order; object: world from object frame.
+  // Rigid fingers only.
   metrics::DistanceMetrics operator()(const std::array<Eigen::Isometry3d, 2>& fingers,
+                                      const Eigen::Isometry3d& object) const;
+  // Soft fingers: each finger's tet vertices in the world, in grippers::Jaw order.
+  metrics::DistanceMetrics operator()(const std::array<geometry::Vertices, 2>& fingers,
                                       const Eigen::Isometry3d& object) const;
   // links: world from link frame for every link of the hand's kinematic tree (as
   // KinematicTree::link_poses gives them).
@@ -40,8 +44,12 @@ class GraspDistances {
  private:
   metrics::DistanceMetrics at(const std::vector<Eigen::Isometry3d>& part_poses,
                               const Eigen::Isometry3d& object) const;
+  // D1/D2 at the gripper's surface vertices in the world, in points_'s order.
+  metrics::DistanceMetrics measured(const geometry::Vertices& world,
+                                    const Eigen::Isometry3d& object) const;
 
   std::vector<geometry::Vertices> parts_;  // each part's vertices in its own frame
+  Eigen::VectorXi surface_to_tet_;         // soft fingers: surface vertex to tet vertex
   std::vector<int> part_links_;            // the hand's: each part's link
   metrics::SurfacePoints points_;
   geometry::SignedDistance object_;

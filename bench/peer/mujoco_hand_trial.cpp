@@ -239,6 +239,9 @@ class HandSimulation {
     return finish(out);
   }
 
+  // MuJoCo's deepest contact between object and a link over every step so far (m).
+  double deepest_penetration() const { return deepest_penetration_; }
+
  private:
   struct PatchPoint {
     int body;
@@ -279,6 +282,12 @@ class HandSimulation {
       for (int k = 0; k < 3; ++k) d_->xfrc_applied[6 * b + k] = -m_->body_mass[b] * g[k];
     }
     mj_step(m_, d_);
+    for (int c = 0; c < d_->ncon; ++c) {
+      double normal = 0.0;
+      if (link_contact(c, normal) >= 0) {
+        deepest_penetration_ = std::max(deepest_penetration_, -d_->contact[c].dist);
+      }
+    }
     if (hold) {
       std::copy(held_.begin(), held_.end(), d_->qpos + object_qpos_);
       std::fill(d_->qvel + object_dof_, d_->qvel + object_dof_ + 6, 0.0);
@@ -382,6 +391,7 @@ class HandSimulation {
   const trial::TrialParameters& p_;
   const MujocoSettings& s_;
   int object_body_ = -1, object_geom_ = -1, object_qpos_ = -1, object_dof_ = -1;
+  double deepest_penetration_ = 0.0;
   std::vector<int> link_body_;     // per kinematic link
   std::vector<int> body_finger_;   // per MuJoCo body: its finger, -1 the palm, -2 not a link
   std::vector<int> dof_actuator_;  // per degree of freedom
@@ -411,7 +421,9 @@ MujocoHandOutcome run_mujoco_hand_trial(const geometry::SurfaceMesh& object, dou
   }
   mjData* d = mj_makeData(m);
   const double compiled = process_cpu_seconds();
-  MujocoHandOutcome out = HandSimulation(m, d, scene, grasp, parameters, settings).run();
+  HandSimulation simulation(m, d, scene, grasp, parameters, settings);
+  MujocoHandOutcome out = simulation.run();
+  out.deepest_penetration = simulation.deepest_penetration();
   out.compile_cpu_seconds = compiled - start;
   out.cpu_seconds = process_cpu_seconds() - compiled;
   mj_deleteData(d);

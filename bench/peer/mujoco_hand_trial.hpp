@@ -28,6 +28,7 @@ struct MujocoHandOutcome {
   std::vector<Eigen::Isometry3d> links, final_links;
   Eigen::Isometry3d object = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d final_object = Eigen::Isometry3d::Identity();
+  double deepest_penetration = 0.0;  // m, MujocoOutcome's
   double cpu_seconds = 0.0;
   double compile_cpu_seconds = 0.0;
 };

@@ -67,18 +67,48 @@ void add_mujoco(const Outcome& m, SettledDistances&& settled_distances, PeerTria
   t.mujoco_compile_cpu_seconds = m.compile_cpu_seconds;
 }
 
-// One shape with the parallel jaws: grip's trials, then MuJoCo's, candidate by candidate.
+// The first candidate of each kind of disagreement, once per run: the VTK stem to write it
+// under ("grip_holds_..." or "mujoco_holds_..."), or empty.
+std::string disagreement_stem(const PeerOptions& options, const PeerResult& result,
+                              const RobustnessSet& set, std::uint64_t seed, std::size_t k,
+                              const PeerTrial& t) {
+  const bool grip_held = t.grip_verdict == "success", mujoco_held = t.mujoco_verdict == "success";
+  const std::string kind = mujoco_held ? "mujoco_holds" : "grip_holds";
+  const auto written = [&](const std::string& v) { return v.rfind(kind, 0) == 0; };
+  if (options.vtk.empty() || grip_held == mujoco_held || refused_by_grip(t) ||
+      std::any_of(result.vtk.begin(), result.vtk.end(), written)) {
+    return "";
+  }
+  return fmt::format("{}_{}_{}_seed{}_candidate{}", kind, set.gripper, set.category, seed, k);
+}
+
+// The gripper a parallel set runs: the rigid jaws, or the production fin-ray, as
+// RobustnessScene builds them.
+const grippers::ParallelGripper& parallel_gripper(const RobustnessSet& set) {
+  static const grippers::ParallelGripper jaws =
+      grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw);
+  static const grippers::ParallelGripper fin_ray =
+      grippers::make_parallel_gripper(grippers::GripperKind::kFinRay);
+  return set.gripper == "fin-ray" ? fin_ray : jaws;
+}
+
+// One shape with a parallel gripper (rigid jaws or fin-ray): grip's trials, then MuJoCo's,
+// candidate by candidate. The first candidate of each kind of disagreement is written as VTK if
+// options.vtk is set.
 void run_jaws_shape(const RobustnessSet& set, std::uint64_t seed,
                     const std::vector<synth::Candidate>& candidates, const PeerOptions& options,
                     PeerResult& result) {
-  // The jaws RobustnessScene simulates, and the object as it prepares it.
-  static const grippers::ParallelGripper jaws =
-      grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw);
+  // The gripper RobustnessScene simulates, and the object as it prepares it.
+  const grippers::ParallelGripper& jaws = parallel_gripper(set);
   const trial::TrialObject object = make_object(set, seed);
   const RobustnessScene scene(set, object, options.parameters);
   const GraspDistances distances(jaws, object.surface, options.parameters);
+  // The fin-ray's pads set their own friction; rigid jaws combine theirs with the object's
+  // (trial::ParallelTrialScene).
   const double friction =
-      std::sqrt(object.material.friction * options.parameters.rigid_finger_friction);
+      jaws.soft_finger
+          ? jaws.soft_finger->material.friction
+          : std::sqrt(object.material.friction * options.parameters.rigid_finger_friction);
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const double start = process_cpu_seconds();
     const trial::TrialOutcome outcome = scene.run({candidates[k]}, options.threads).front();
@@ -86,10 +116,26 @@ void run_jaws_shape(const RobustnessSet& set, std::uint64_t seed,
         grip_row(set, seed, k, outcome, options.parameters, process_cpu_seconds() - start);
 
     const synth::HandGrasp& hand = candidates[k].hands.front();
-    const MujocoOutcome m = run_mujoco_trial(object.surface, object.material.density, friction,
-                                             jaws, hand.pose, hand.joints[0], options.parameters);
+    MujocoSettings settings;
+    settings.ipc = options.mujoco_ipc;
+    const MujocoOutcome m =
+        run_mujoco_trial(object.surface, object.material.density, friction, jaws, hand.pose,
+                         hand.joints[0], options.parameters, settings);
     add_mujoco(
-        m, [&] { return distances(m.fingers, m.object); }, t);
+        m,
+        [&] {
+          return jaws.soft_finger ? distances(m.finger_vertices, m.object)
+                                  : distances(m.fingers, m.object);
+        },
+        t);
+    t.mujoco_penetration = m.deepest_penetration;
+    t.mujoco_inverted_tets = m.most_inverted_tets;
+    const std::string stem = disagreement_stem(options, result, set, seed, k, t);
+    if (!stem.empty()) {
+      write_peer_jaws_vtk(options.vtk, stem, object, jaws, hand, m, options.parameters,
+                          options.threads);
+      result.vtk.push_back(fmt::format("{}: grip {}, MuJoCo {}", stem, t.grip_verdict, m.verdict));
+    }
     result.trials.push_back(std::move(t));
   }
 }
@@ -120,14 +166,9 @@ void run_hand_shape(const RobustnessSet& set, std::uint64_t seed,
                                                       friction, scene, grasp, options.parameters);
     add_mujoco(
         m, [&] { return distances(m.links, m.object); }, t);
-
-    const bool grip_held = t.grip_verdict == "success", mujoco_held = m.verdict == "success";
-    const std::string kind = mujoco_held ? "mujoco_holds" : "grip_holds";
-    const auto written = [&](const std::string& v) { return v.rfind(kind, 0) == 0; };
-    if (!options.vtk.empty() && grip_held != mujoco_held && !refused_by_grip(t) &&
-        std::none_of(result.vtk.begin(), result.vtk.end(), written)) {
-      const std::string stem =
-          fmt::format("{}_{}_{}_seed{}_candidate{}", kind, set.gripper, set.category, seed, k);
+    t.mujoco_penetration = m.deepest_penetration;
+    const std::string stem = disagreement_stem(options, result, set, seed, k, t);
+    if (!stem.empty()) {
       write_peer_hand_vtk(options.vtk, stem, object, scene, grasp, m, options.threads);
       result.vtk.push_back(fmt::format("{}: grip {}, MuJoCo {}", stem, t.grip_verdict, m.verdict));
     }
@@ -148,7 +189,12 @@ void check_peer_options(const PeerOptions& options) {
   if (std::find(kPeerGrippers.begin(), kPeerGrippers.end(), options.gripper) ==
       kPeerGrippers.end()) {
     throw std::invalid_argument("grip bench peer: unknown gripper '" + options.gripper +
-                                "' (parallel-jaw or leap)");
+                                "' (parallel-jaw, fin-ray or leap)");
+  }
+  if (options.mujoco_ipc && options.gripper != "fin-ray") {
+    throw std::invalid_argument(
+        "grip bench peer: --mujoco-ipc applies to --gripper fin-ray only (MuJoCo's IPC mode "
+        "is for flexes, under its discrete integrator)");
   }
   try {
     for (const std::string& c : categories_of(options)) objects::parse_object_category(c);
@@ -162,13 +208,15 @@ PeerResult run_peer(const PeerOptions& options) {
   PeerResult result;
   result.gripper = options.gripper;
   result.mujoco_version = mujoco_version();
+  result.mujoco_ipc = options.mujoco_ipc;
   result.parameters = options.parameters;
   result.threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(result.threads);
   const auto start = std::chrono::steady_clock::now();
   for (const std::string& category : categories_of(options)) {
+    // The fin-ray is compared at its production mesh (RobustnessSet::production_models).
     const RobustnessSet set{options.gripper, category,           false,
-                            options.seeds,   options.candidates, false};
+                            options.seeds,   options.candidates, options.gripper == "fin-ray"};
     int found = 0;
     const auto last_seed = static_cast<std::uint64_t>(kSeedsTriedPerShape * options.seeds);
     for (std::uint64_t seed = 1; seed <= last_seed && found < options.seeds; ++seed) {

@@ -17,9 +17,10 @@ namespace grip::bench {
 // The default categories: six on which the parallel jaws and the hand find candidates.
 inline const std::vector<std::string> kPeerCategories = {"box",    "cylinder", "capsule",
                                                          "bottle", "sphere",   "ellipsoid"};
-// The grippers compared: the rigid parallel jaws and the LEAP hand (its coarse links, as
-// `grip bench robustness` simulates it).
-inline const std::vector<std::string> kPeerGrippers = {"parallel-jaw", "leap"};
+// The grippers compared: the rigid parallel jaws, the fin-ray (its production fingers; MuJoCo's
+// are flexes of the same tets) and the LEAP hand (its coarse links, as `grip bench robustness`
+// simulates it).
+inline const std::vector<std::string> kPeerGrippers = {"parallel-jaw", "fin-ray", "leap"};
 
 struct PeerOptions {
   std::string gripper = "parallel-jaw";  // one of kPeerGrippers
@@ -29,9 +30,11 @@ struct PeerOptions {
   int threads = 1;                       // grip's trial; MuJoCo runs on one
   trial::TrialParameters parameters;
   std::filesystem::path out = "out/peer";
-  // The hand's: if set, the first candidate of each kind of disagreement as VTK here
-  // (peer_vtk.hpp).
+  // If set, the first candidate of each kind of disagreement as VTK here (peer_vtk.hpp): the
+  // hand's and the fin-ray's.
   std::filesystem::path vtk;
+  // The fin-ray's MuJoCo scenes with MuJoCo's experimental IPC contact mode (MujocoSettings::ipc).
+  bool mujoco_ipc = false;
 };
 
 // One candidate through both engines.
@@ -51,6 +54,10 @@ struct PeerTrial {
   std::string mujoco_message;
   double mujoco_d1 = nan, mujoco_d2 = nan;
   double mujoco_slip = nan;
+  // MuJoCo's deepest contact between object and gripper at any step (m), and the most of a soft
+  // finger's tets it inverted at once (grip's: none, by construction).
+  double mujoco_penetration = 0.0;
+  int mujoco_inverted_tets = 0;
   double mujoco_cpu_seconds = 0.0;
   double mujoco_compile_cpu_seconds = 0.0;  // building the model, not counted in the above
 };
@@ -65,12 +72,14 @@ struct PeerResult {
   std::vector<std::string> shortfalls;  // fewer shapes or candidates than asked
   std::vector<std::string> vtk;         // the VTK series written, "STEM: why"
   std::string mujoco_version;
+  bool mujoco_ipc = false;  // PeerOptions'
   int threads = 0;
   trial::TrialParameters parameters;
   double wall_seconds = 0.0;
 };
 
-// Throws std::invalid_argument for an unknown gripper or category or seeds or candidates below 1.
+// Throws std::invalid_argument for an unknown gripper or category, seeds or candidates below 1,
+// or mujoco_ipc for a gripper other than the fin-ray.
 void check_peer_options(const PeerOptions& options);
 
 // Requires MuJoCo (mujoco_available()). Logs one line per shape.

@@ -85,6 +85,14 @@ PeerTally tally(const std::string& gripper, const std::string& category,
     if (grip_held && !mujoco_held) ++t.grip_only;
   }
   t.compared = static_cast<int>(compared.size());
+  std::vector<double> penetration;
+  for (const PeerTrial* p : compared) {
+    penetration.push_back(p->mujoco_penetration);
+    t.mujoco_inverting += p->mujoco_inverted_tets > 0;
+  }
+  t.mujoco_penetration_median = median(penetration);
+  t.mujoco_penetration_max =
+      penetration.empty() ? kNan : *std::max_element(penetration.begin(), penetration.end());
   t.grip = engine_stats(compared, grip_view);
   t.mujoco = engine_stats(compared, mujoco_view);
   return t;
@@ -135,8 +143,9 @@ std::vector<PeerTally> peer_tallies(const PeerResult& result) {
 void write_peer_table(std::ostream& out, const std::vector<PeerTally>& tallies) {
   out << "| gripper | category | compared | held: grip | held: MuJoCo | same verdict | MuJoCo "
          "holds, grip drops | grip holds, MuJoCo drops | D1 cm grip (mean / median) | D1 cm "
-         "MuJoCo | D2 cm grip | D2 cm MuJoCo | CPU s per trial: grip (mean / median) | MuJoCo "
-         "|\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+         "MuJoCo | D2 cm grip | D2 cm MuJoCo | MuJoCo's deepest contact, mm (median / max) | "
+         "MuJoCo inverted tets (trials) | CPU s per trial: grip (mean / median) | MuJoCo "
+         "|\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const PeerTally& t : tallies) {
     out << "| " << t.gripper << " | " << t.category << " | " << t.compared << " | " << t.grip.held
         << " | " << t.mujoco.held << " | " << t.agree << " | " << t.mujoco_only << " | "
@@ -144,6 +153,8 @@ void write_peer_table(std::ostream& out, const std::vector<PeerTally>& tallies) 
         << cm_pair(t.mujoco.d1_mean, t.mujoco.d1_median) << " | "
         << cm_pair(t.grip.d2_mean, t.grip.d2_median) << " | "
         << cm_pair(t.mujoco.d2_mean, t.mujoco.d2_median) << " | "
+        << fixed_or_dash(t.mujoco_penetration_median * 1e3, 3) << " / "
+        << fixed_or_dash(t.mujoco_penetration_max * 1e3, 3) << " | " << t.mujoco_inverting << " | "
         << fixed_or_dash(t.grip.cpu_mean, 3) << " / " << fixed_or_dash(t.grip.cpu_median, 3)
         << " | " << fixed_or_dash(t.mujoco.cpu_mean, 3) << " / "
         << fixed_or_dash(t.mujoco.cpu_median, 3) << " |\n";
@@ -160,10 +171,12 @@ void write_peer_files(const fs::path& out, const PeerResult& result,
   const std::string stem = peer_file_stem(result.gripper);
   std::ofstream md(out / (stem + ".md"));
   const trial::TrialParameters& p = result.parameters;
+  const MujocoSettings s;
   md << "# grip bench peer\n\nThe same synthesized candidates validated by grip (IPC, dt "
-     << p.sim.dt << " s) and by MuJoCo " << result.mujoco_version
-     << " (dt 0.001 s, the object's convex hull, multiccd), rigid objects; grip force "
-     << p.grip_force << " N, gravity " << p.gravity_magnitude << " m/s^2 for " << p.phase_duration
+     << p.sim.dt << " s) and by MuJoCo " << result.mujoco_version << " (dt "
+     << (result.gripper == "fin-ray" ? s.flex_timestep : s.timestep)
+     << " s, the object's convex hull, multiccd), rigid objects; grip force " << p.grip_force
+     << " N, gravity " << p.gravity_magnitude << " m/s^2 for " << p.phase_duration
      << " s along +x, -x, +y, -y, +z, -z; held: still in contact and slip "
      << "below " << p.displacement_threshold() * 1e3 << " mm plus eps_v x the time under gravity ("
      << p.sim.eps_v * 1e3
@@ -180,6 +193,18 @@ void write_peer_files(const fs::path& out, const PeerResult& result,
        << p.squeeze_speed * 100 << " cm/s until its normal force with the object reaches "
        << p.grip_force << " N less the tolerance, then held there.\n\n";
   }
+  if (result.gripper == "fin-ray") {
+    md << "The fin-ray: grip's production fingers (the same tets, E, nu, density, Rayleigh "
+          "damping and pad friction) as MuJoCo flexes under its discrete integrator, moved by a "
+          "trilinear field over "
+       << s.flex_cells[0] << " x " << s.flex_cells[1] << " x " << s.flex_cells[2]
+       << " cells of each finger's box, their mount nodes held to the jaws by connect "
+          "constraints; contacts solref "
+       << s.flex_contact_time_constant << " s, solimp " << s.flex_contact_impedance
+       << " (bench/peer/mujoco_trial.hpp)"
+       << (result.mujoco_ipc ? "; MuJoCo's IPC contact mode enabled (--mujoco-ipc)" : "")
+       << ".\n\n";
+  }
   write_peer_table(md, tallies);
   md << "\nVerdicts over the compared candidates:\n\n| gripper | category | refused by grip | "
         "grip | MuJoCo |\n|---|---|---:|---|---|\n";
@@ -191,14 +216,15 @@ void write_peer_files(const fs::path& out, const PeerResult& result,
   for (const std::string& v : result.vtk) md << "\nVTK: " << v << "\n";
   std::ofstream csv(out / (stem + ".csv"));
   csv << "gripper,category,seed,candidate,grip_verdict,mujoco_verdict,grip_d1_mm,mujoco_d1_mm,"
-         "grip_d2_mm,mujoco_d2_mm,grip_slip_mm,mujoco_slip_mm,grip_cpu_s,mujoco_cpu_s,"
-         "mujoco_compile_cpu_s,mujoco_message\n";
+         "grip_d2_mm,mujoco_d2_mm,grip_slip_mm,mujoco_slip_mm,mujoco_penetration_mm,"
+         "mujoco_inverted_tets,grip_cpu_s,mujoco_cpu_s,mujoco_compile_cpu_s,mujoco_message\n";
   for (const PeerTrial& t : result.trials) {
     csv << t.gripper << ',' << t.category << ',' << t.seed << ',' << t.candidate << ','
         << t.grip_verdict << ',' << t.mujoco_verdict << ',' << fixed_or_dash(t.grip_d1 * 1e3, 4)
         << ',' << fixed_or_dash(t.mujoco_d1 * 1e3, 4) << ',' << fixed_or_dash(t.grip_d2 * 1e3, 4)
         << ',' << fixed_or_dash(t.mujoco_d2 * 1e3, 4) << ',' << fixed_or_dash(t.grip_slip * 1e3, 4)
         << ',' << fixed_or_dash(t.mujoco_slip * 1e3, 4) << ','
+        << fixed_or_dash(t.mujoco_penetration * 1e3, 4) << ',' << t.mujoco_inverted_tets << ','
         << fixed_or_dash(t.grip_cpu_seconds, 4) << ',' << fixed_or_dash(t.mujoco_cpu_seconds, 4)
         << ',' << fixed_or_dash(t.mujoco_compile_cpu_seconds, 4) << ",\"" << t.mujoco_message
         << "\"\n";
@@ -227,10 +253,14 @@ void write_peer_json_line(std::ostream& out, const PeerResult& result,
                     {"mujoco_holds_grip_drops", t.mujoco_only},
                     {"grip_holds_mujoco_drops", t.grip_only},
                     {"grip", engine(t.grip)},
-                    {"mujoco", engine(t.mujoco)}});
+                    {"mujoco", engine(t.mujoco)},
+                    {"mujoco_penetration_median", t.mujoco_penetration_median},
+                    {"mujoco_penetration_max", t.mujoco_penetration_max},
+                    {"mujoco_inverting", t.mujoco_inverting}});
   }
   const nlohmann::ordered_json root = {{"benchmark", "peer"},
                                        {"mujoco", result.mujoco_version},
+                                       {"mujoco_ipc", result.mujoco_ipc},
                                        {"threads", result.threads},
                                        {"wall_seconds", result.wall_seconds},
                                        {"rows", std::move(rows)}};

@@ -32,6 +32,10 @@ struct PeerTally {
   int mujoco_only = 0;  // MuJoCo holds what grip drops
   int grip_only = 0;    // grip holds what MuJoCo drops
   PeerEngineStats grip, mujoco;
+  // MuJoCo's deepest contact at any step of a trial (m): median and largest over the compared
+  // candidates; and how many of them inverted a soft finger's tet (grip's never do).
+  double mujoco_penetration_median = 0.0, mujoco_penetration_max = 0.0;
+  int mujoco_inverting = 0;
 };
 
 // Per gripper: its categories in the order run, then "all".

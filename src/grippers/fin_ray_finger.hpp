@@ -24,7 +24,7 @@ struct FinRayOptions {
   double top_cavity_width = 0.005;  // the cavity ends (under a solid tip) where it is this narrow
   double edge_length = 0.0036;      // largest triangle edge of the profile mesh
   // Tet layers across the depth. Four: within 0.07 mm (pose) of eight at 40 % of the cost
-  // (grip bench accuracy, mesh sweep: docs/results.md). Fewer stretch the tets along the depth
+  // (grip bench accuracy, mesh sweep: docs/assets.md). Fewer stretch the tets along the depth
   // (two: 366 slivers) or move the grasp (one: 2.4 mm).
   int layers = 4;
 };

@@ -3,10 +3,11 @@
 // scene (there is none) or an unknown sweep is one message and exit status 1; `grip bench
 // labels` refuses an arm without its object model or an unknown category in one line, exit 2,
 // writing nothing, `grip bench trial` an unknown gripper or no repeats, and `grip bench cost` an
-// unknown gripper or no reference repeats; `grip bench peer` refuses an unknown category the
-// same way, and writes its files and JSON line, for the jaws and for the hand (or, built without
-// MuJoCo, says how to install it in one line, exit 1); `grip bench scale` predicts from a cost
-// file and refuses an unknown what-if or a class without costs in one line, exit 2.
+// unknown gripper or no reference repeats; `grip bench peer` refuses an unknown category (and
+// --mujoco-ipc but for the fin-ray) the same way, and writes its files and JSON line, for the
+// jaws and for the hand (or, built without MuJoCo, says how to install it in one line, exit 1);
+// `grip bench scale` predicts from a cost file and refuses an unknown what-if or a class without
+// costs in one line, exit 2.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -104,6 +105,10 @@ TEST(BenchCli, PeerRefusesAnUnknownCategoryAndRunsOrNamesMujoco) {
   EXPECT_EQ(category.exit_code, 2);
   EXPECT_NE(category.err.find("teacup"), std::string::npos) << category.err;
   EXPECT_EQ(category.err.find('\n'), category.err.size() - 1) << category.err;
+  EXPECT_FALSE(fs::exists(out));
+  const auto ipc = run_grip("bench peer --gripper leap --mujoco-ipc --out " + out.string());
+  EXPECT_EQ(ipc.exit_code, 2);
+  EXPECT_NE(ipc.err.find("--gripper fin-ray only"), std::string::npos) << ipc.err;
   EXPECT_FALSE(fs::exists(out));
   const auto run =
       run_grip("bench peer --categories box --seeds 1 --candidates 2 --out " + out.string());

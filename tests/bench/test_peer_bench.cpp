@@ -1,10 +1,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "bench/peer/grasp_distances.hpp"
 #include "bench/peer/mujoco_hand_trial.hpp"
 #include "bench/peer/mujoco_trial.hpp"
+#include "bench/peer/peer_vtk.hpp"
 #include "solver/environment.hpp"
 #include "src/geometry/primitives.hpp"
 #include "src/grippers/coarse_leap_hand.hpp"
@@ -49,13 +54,29 @@ trial::TrialParameters parameters() {
   return p;
 }
 
+// MuJoCo held the object, both jaws at the grip force (within the protocol's tolerance).
+void expect_held_at_grip_force(const MujocoOutcome& m, const trial::TrialParameters& p) {
+  EXPECT_EQ(m.verdict, "success") << m.message;
+  ASSERT_TRUE(m.settled);
+  for (const double f : m.closing_forces) {
+    EXPECT_NEAR(f, p.grip_force, p.force_tolerance * p.grip_force);
+  }
+  EXPECT_LT(m.largest_slip, p.displacement_threshold());
+}
+
+// grip's trial of one parallel grasp.
+trial::TrialOutcome grip_trial(const trial::TrialObject& object,
+                               const grippers::ParallelGripper& gripper,
+                               const trial::ParallelGrasp& grasp, const trial::TrialParameters& p) {
+  const trial::ParallelTrialScene scene(object, gripper, p);
+  return trial::run_trials(scene, trial::testing::parallel_candidates({grasp})).front();
+}
+
 TEST(PeerBench, CentredBoxIsHeldByBothEngines) {
   const trial::TrialObject object = box();
   const trial::TrialParameters p = parameters();
   const trial::ParallelGrasp grasp = centred(0.035);
-  const trial::ParallelTrialScene scene(object, jaws(), p);
-  const trial::TrialOutcome grip =
-      trial::run_trials(scene, trial::testing::parallel_candidates({grasp})).front();
+  const trial::TrialOutcome grip = grip_trial(object, jaws(), grasp, p);
   EXPECT_EQ(grip.result.record.failure, io::FailureKind::kNone) << grip.failure_reason;
 
   if (!mujoco_available()) GTEST_SKIP() << "built without MuJoCo: its half is not tested";
@@ -63,12 +84,7 @@ TEST(PeerBench, CentredBoxIsHeldByBothEngines) {
       run_mujoco_trial(object.surface, object.material.density,
                        std::sqrt(object.material.friction * p.rigid_finger_friction), jaws(),
                        grasp.pose, grasp.opening, p);
-  EXPECT_EQ(m.verdict, "success") << m.message;
-  ASSERT_TRUE(m.settled);
-  for (const double f : m.closing_forces) {
-    EXPECT_NEAR(f, p.grip_force, p.force_tolerance * p.grip_force);
-  }
-  EXPECT_LT(m.largest_slip, p.displacement_threshold());
+  expect_held_at_grip_force(m, p);
   // The box stays where the jaws met it, and the jaws touch its faces at y = +-1.5 cm.
   EXPECT_LT(m.object.translation().norm(), 1e-3);
   const GraspDistances distances(jaws(), object.surface, p);
@@ -195,6 +211,137 @@ TEST(PeerBench, HandDistancesAreTheTrialsAtTheSamePoses) {
     EXPECT_NEAR(peer.d1, trial.d1, 1e-12) << "inside " << inside;
     EXPECT_NEAR(peer.d2, trial.d2, 1e-12) << "inside " << inside;
     if (inside) {
+      EXPECT_GT(trial.d1, 1e-3);
+    }
+  }
+}
+
+// The number in `NumberOfPoints="..."` of a VTK file.
+long vtk_points(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find("NumberOfPoints=\"");
+  return at == std::string::npos ? -1 : std::stol(text.substr(at + 16));
+}
+
+// Both engines' VTK series of the box `grasp` (write_peer_jaws_vtk) in the test's folder NAME,
+// which it returns.
+std::filesystem::path both_engines_vtk(const std::string& name,
+                                       const grippers::ParallelGripper& gripper,
+                                       const trial::ParallelGrasp& grasp, const MujocoOutcome& m) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / name;
+  std::filesystem::remove_all(dir);
+  synth::HandGrasp hand;
+  hand.pose = grasp.pose;
+  hand.joints = Eigen::VectorXd::Constant(1, grasp.opening);
+  write_peer_jaws_vtk(dir, "case", box(), gripper, hand, m, parameters(), 1);
+  return dir;
+}
+
+TEST(PeerBench, JawsVtkDrawsBothEnginesOverTheSameBodiesEvenUnsettled) {
+  if (!mujoco_available()) GTEST_SKIP() << "built without MuJoCo";
+  const trial::TrialObject object = box();
+  const trial::TrialParameters p = parameters();
+  const trial::ParallelGrasp grasp = centred(0.035);
+  MujocoSettings settings;
+  settings.closing_margin = 0.0;  // the jaws are still moving when closing's time is up
+  const MujocoOutcome m = run_mujoco_trial(object.surface, object.material.density, 3.5, jaws(),
+                                           grasp.pose, grasp.opening, p, settings);
+  ASSERT_EQ(m.verdict, "unsettled") << m.message;
+  // Where it ended stands for the settled grasp: the jaws on their paths, the box in place.
+  for (const Eigen::Isometry3d& finger : m.fingers) {
+    EXPECT_LT((finger.translation() - grasp.pose.translation()).norm(), 0.1);
+  }
+  EXPECT_LT(m.object.translation().norm(), 0.01);
+  const std::filesystem::path dir = both_engines_vtk("peer_jaws_vtk", jaws(), grasp, m);
+  const long points = vtk_points(dir / "case_grip_0000.vtu");
+  EXPECT_GT(points, 0);
+  EXPECT_EQ(vtk_points(dir / "case_mujoco_0000.vtu"), points);
+  EXPECT_EQ(vtk_points(dir / "case_mujoco_0001.vtu"), points);
+}
+
+// The production fin-ray gripper, as `grip bench peer --gripper fin-ray` simulates it.
+const grippers::ParallelGripper& fin_ray() {
+  static const grippers::ParallelGripper gripper =
+      grippers::make_parallel_gripper(grippers::GripperKind::kFinRay);
+  return gripper;
+}
+
+// The box centred between the fin-ray's pads, three quarters of the way to their tips.
+trial::ParallelGrasp fin_ray_grasp(double opening) {
+  const auto z = fin_ray().finger_surface.vertices.col(2);
+  trial::ParallelGrasp grasp;
+  grasp.pose.translation() =
+      Eigen::Vector3d(0.0, 0.0, -(z.minCoeff() + 0.75 * (z.maxCoeff() - z.minCoeff())));
+  grasp.opening = opening;
+  return grasp;
+}
+
+TEST(PeerBench, FinRayGraspOfABoxIsHeldByBothEnginesAndOnlyMujocoPenetrates) {
+  const trial::TrialObject object = box();
+  const trial::TrialParameters p = parameters();
+  const trial::ParallelGrasp grasp = fin_ray_grasp(0.036);
+  const trial::TrialOutcome grip = grip_trial(object, fin_ray(), grasp, p);
+  EXPECT_EQ(grip.result.record.failure, io::FailureKind::kNone) << grip.failure_reason;
+  EXPECT_EQ(grip.result.record.d1, 0.0);
+
+  if (!mujoco_available()) GTEST_SKIP() << "built without MuJoCo: its half is not tested";
+  const double mu = fin_ray().soft_finger->material.friction;
+  const MujocoOutcome m = run_mujoco_trial(object.surface, object.material.density, mu, fin_ray(),
+                                           grasp.pose, grasp.opening, p);
+  expect_held_at_grip_force(m, p);
+  // MuJoCo's contacts sink in; the fingers' flexes bend without inverting here.
+  EXPECT_GT(m.deepest_penetration, 0.0);
+  EXPECT_EQ(m.most_inverted_tets, 0);
+  const GraspDistances distances(fin_ray(), object.surface, p);
+  const metrics::DistanceMetrics d = distances(m.finger_vertices, m.object);
+  // Both engines' frames over the same bodies, the flexes' tets with their stress.
+  const std::filesystem::path dir = both_engines_vtk("peer_fin_ray_vtk", fin_ray(), grasp, m);
+  EXPECT_EQ(vtk_points(dir / "case_mujoco_0000.vtu"), vtk_points(dir / "case_grip_0000.vtu"));
+  EXPECT_GT(d.d1, 0.0);
+  EXPECT_LT(d.d2, 2e-3);
+}
+
+// MuJoCo's flex elements can invert (grip's tets cannot): a finger 1e5 times softer (94 Pa),
+// crushed on the box by the 50 N drive, turns some of its tets inside out, and the trial counts
+// them.
+TEST(PeerBench, MujocoCountsTheTetsItInverts) {
+  if (!mujoco_available()) GTEST_SKIP() << "built without MuJoCo";
+  grippers::ParallelGripper soft = fin_ray();
+  soft.soft_finger->material.youngs_modulus *= 1e-5;
+  const trial::TrialObject object = box();
+  const trial::ParallelGrasp grasp = fin_ray_grasp(0.036);
+  const MujocoOutcome m = run_mujoco_trial(object.surface, object.material.density, 3.5, soft,
+                                           grasp.pose, grasp.opening, parameters());
+  EXPECT_GT(m.most_inverted_tets, 0) << m.verdict << " " << m.message;
+  // The production finger inverts none on the same grasp (the test above).
+}
+
+TEST(PeerBench, FinRayDistancesAreTheTrialsAtTheSameVertices) {
+  const trial::TrialObject object = box();
+  const trial::TrialParameters p = parameters();
+  const trial::ParallelTrialScene scene(object, fin_ray(), p);
+  const GraspDistances distances(fin_ray(), object.surface, p);
+  const geometry::TetMesh& mesh = fin_ray().soft_finger->mesh;
+  // Open (D1 = 0) and closed into the box (D1 > 0): the fingers' rest tets placed by the
+  // candidate's pose, as the trial places them.
+  for (const double opening : {0.036, 0.024}) {
+    const trial::ParallelGrasp grasp = fin_ray_grasp(opening);
+    solver::Environment environment(scene.model());
+    scene.place(environment, grasp);
+    const metrics::DistanceMetrics trial = scene.grasp_distances(environment);
+    std::array<geometry::Vertices, 2> fingers;
+    for (int j = 0; j < 2; ++j) {
+      const Eigen::Isometry3d pose =
+          grasp.pose * fin_ray().finger_pose(
+                           j == 0 ? grippers::Jaw::kPositive : grippers::Jaw::kNegative, opening);
+      fingers[j] =
+          (mesh.vertices * pose.linear().transpose()).rowwise() + pose.translation().transpose();
+    }
+    const metrics::DistanceMetrics peer = distances(fingers, Eigen::Isometry3d::Identity());
+    EXPECT_NEAR(peer.d1, trial.d1, 1e-12) << "opening " << opening;
+    EXPECT_NEAR(peer.d2, trial.d2, 1e-12) << "opening " << opening;
+    if (opening < 0.03) {
       EXPECT_GT(trial.d1, 1e-3);
     }
   }

@@ -1,5 +1,5 @@
-// grip bench peer: the same parallel-jaw or LEAP-hand candidates validated by grip and by MuJoCo
-// (bench/peer/peer_benchmark.hpp, docs/results.md).
+// grip bench peer: the same parallel-jaw, fin-ray or LEAP-hand candidates validated by grip and by
+// MuJoCo (bench/peer/peer_benchmark.hpp, docs/results.md).
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -17,16 +17,17 @@ namespace grip::commands {
 namespace {
 
 // grip bench peer [--gripper G] [--categories ...] [--seeds N] [--candidates N] [--threads N]
-// [--out DIR] [--vtk DIR]: the same parallel-jaw or LEAP-hand candidates validated by grip and
-// by MuJoCo (bench/peer/, docs/results.md).
+// [--out DIR] [--vtk DIR]: the same parallel-jaw, fin-ray or LEAP-hand candidates validated by grip
+// and by MuJoCo (bench/peer/, docs/results.md).
 struct BenchPeerArgs {
-  std::string gripper = "parallel-jaw";  // or leap
+  std::string gripper = "parallel-jaw";  // or fin-ray, leap
   std::vector<std::string> categories;   // empty: box, cylinder, capsule, bottle, sphere, ellipsoid
   int seeds = 4;                         // shapes per category
   int candidates = 9;                    // per shape
   int threads = 1;                       // grip's trial
   std::string out = "out/peer";
-  std::string vtk;  // the hand's disagreement examples as VTK; empty: none
+  std::string vtk;  // the disagreement examples as VTK; empty: none
+  bool mujoco_ipc = false;
 };
 
 int bench_peer(const BenchPeerArgs& args) {
@@ -38,6 +39,7 @@ int bench_peer(const BenchPeerArgs& args) {
   options.threads = args.threads;
   options.out = args.out;
   options.vtk = args.vtk;
+  options.mujoco_ipc = args.mujoco_ipc;
   try {
     bench::check_peer_options(options);
   } catch (const std::invalid_argument& e) {
@@ -69,10 +71,10 @@ void declare_bench_peer(cli::Command& group) {
   auto args = std::make_shared<BenchPeerArgs>();
   cli::Command peer = group.subcommand(
       "peer",
-      "The same parallel-jaw or LEAP-hand candidates validated by grip and by MuJoCo (D1, D2, "
-      "verdicts)");
-  peer.option("--gripper", args->gripper, "parallel-jaw or leap")
-      .check(cli::Check::one_of({"parallel-jaw", "leap"}))
+      "The same parallel-jaw, fin-ray or LEAP-hand candidates validated by grip and by MuJoCo "
+      "(D1, D2, penetration, verdicts)");
+  peer.option("--gripper", args->gripper, "parallel-jaw, fin-ray or leap")
+      .check(cli::Check::one_of({"parallel-jaw", "fin-ray", "leap"}))
       .show_default();
   peer.option("--categories", args->categories,
               "Object categories (default: box,cylinder,capsule,bottle,sphere,ellipsoid)")
@@ -87,12 +89,14 @@ void declare_bench_peer(cli::Command& group) {
       .check(cli::Check::positive_count())
       .show_default();
   peer.option("--out", args->out,
-              "Folder for peer.md and peer.csv (the hand's: peer-leap.md, peer-leap.csv)")
+              "Folder for peer.md and peer.csv (the others': peer-GRIPPER.md, peer-GRIPPER.csv)")
       .show_default()
       .check(cli::Check::output_folder());
   peer.option("--vtk", args->vtk,
-              "The hand: folder for the first candidate of each kind of disagreement as VTK")
+              "Folder for the first candidate of each kind of disagreement as VTK")
       .check(cli::Check::output_folder());
+  peer.flag("--mujoco-ipc", args->mujoco_ipc,
+            "The fin-ray: MuJoCo's scenes with its experimental IPC contact mode");
   peer.on_run([args] { return bench_peer(*args); });
 }
 
