@@ -1,9 +1,9 @@
 #pragma once
 // `grip bench peer`: the GRIP paper's simulator comparison (Table I: IPC against Isaac Gym)
-// reproduced against MuJoCo. The same synthesized parallel-jaw or LEAP-hand candidates on rigid
-// objects run through grip's trial and through the same scene in MuJoCo (mujoco_trial.hpp,
-// mujoco_hand_trial.hpp); per engine the verdict, D1/D2 at its settled grasp (measured by the
-// same code) and the CPU time.
+// reproduced against MuJoCo. The same synthesized parallel-jaw, fin-ray or LEAP-hand candidates
+// on rigid objects run through grip's trial and through the same scene in MuJoCo
+// (mujoco_trial.hpp, mujoco_hand_trial.hpp); per engine the verdict, D1/D2 at its settled grasp
+// (measured by the same code) and the CPU time, and MuJoCo's deepest contact and inverted tets.
 #include <cstdint>
 #include <filesystem>
 #include <limits>

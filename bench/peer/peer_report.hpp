@@ -1,8 +1,9 @@
 #pragma once
 // What `grip bench peer` reports: per gripper and category (and over all categories) each
 // engine's D1/D2 over the grasps it holds, the verdicts' agreement and the two kinds of
-// disagreement, and CPU time per trial; as a text table, peer.md, peer.csv (one row per
-// candidate; peer-leap.* for the hand) and one JSON line.
+// disagreement, MuJoCo's deepest contact and inverted tets, and CPU time per trial; as a text
+// table, peer.md, peer.csv (one row per candidate; peer-GRIPPER.* for the fin-ray and the hand)
+// and one JSON line.
 #include <filesystem>
 #include <map>
 #include <ostream>
