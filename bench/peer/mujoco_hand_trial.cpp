@@ -283,8 +283,7 @@ class HandSimulation {
     }
     mj_step(m_, d_);
     for (int c = 0; c < d_->ncon; ++c) {
-      double normal = 0.0;
-      if (link_contact(c, normal) >= 0) {
+      if (link_of(d_->contact[c]) >= 0) {
         deepest_penetration_ = std::max(deepest_penetration_, -d_->contact[c].dist);
       }
     }
@@ -295,16 +294,20 @@ class HandSimulation {
     return d_->warning[mjWARN_BADQACC].number == 0;
   }
 
-  // The link's body of contact c if it is between the object and a link, else -1; its normal
-  // force in `normal`.
-  int link_contact(int c, double& normal) const {
-    const mjContact& contact = d_->contact[c];
+  // The link's body of `contact` if it is between the object and a link, else -1.
+  int link_of(const mjContact& contact) const {
     int other = -1;
     if (contact.geom[0] == object_geom_) other = contact.geom[1];
     if (contact.geom[1] == object_geom_) other = contact.geom[0];
     if (other < 0) return -1;
     const int body = m_->geom_bodyid[other];
-    if (body_finger_[static_cast<std::size_t>(body)] == -2) return -1;
+    return body_finger_[static_cast<std::size_t>(body)] == -2 ? -1 : body;
+  }
+
+  // link_of contact c, its normal force in `normal`.
+  int link_contact(int c, double& normal) const {
+    const int body = link_of(d_->contact[c]);
+    if (body < 0) return -1;
     mjtNum f[6];
     mj_contactForce(m_, d_, c, f);
     normal = f[0];

@@ -23,17 +23,17 @@ namespace {
 
 using grippers::Jaw;
 
+// MuJoCo's flex vertex positions, in place (rows: vertices).
+using FlexVertices = Eigen::Map<const geometry::Vertices>;
+
 // The tets of `mesh` whose signed volume at `x` is not positive.
-int inverted_tets(const geometry::TetMesh& mesh, const geometry::Vertices& x) {
+int inverted_tets(const geometry::TetMesh& mesh, const FlexVertices& x) {
   int inverted = 0;
   for (Eigen::Index t = 0; t < mesh.tets.rows(); ++t) {
-    const Eigen::Vector3d a = x.row(mesh.tets(t, 0)).transpose();
-    const Eigen::Matrix3d edges{{x(mesh.tets(t, 1), 0) - a.x(), x(mesh.tets(t, 2), 0) - a.x(),
-                                 x(mesh.tets(t, 3), 0) - a.x()},
-                                {x(mesh.tets(t, 1), 1) - a.y(), x(mesh.tets(t, 2), 1) - a.y(),
-                                 x(mesh.tets(t, 3), 1) - a.y()},
-                                {x(mesh.tets(t, 1), 2) - a.z(), x(mesh.tets(t, 2), 2) - a.z(),
-                                 x(mesh.tets(t, 3), 2) - a.z()}};
+    Eigen::Matrix3d edges;  // from the tet's first vertex to the others
+    for (int k = 0; k < 3; ++k) {
+      edges.col(k) = (x.row(mesh.tets(t, k + 1)) - x.row(mesh.tets(t, 0))).transpose();
+    }
     if (!(edges.determinant() > 0.0)) ++inverted;
   }
   return inverted;
@@ -376,20 +376,18 @@ class Simulation {
   }
 
   // A flex's vertices in the world, in the finger mesh's vertex order.
-  geometry::Vertices flex_vertices(int flex) const {
+  FlexVertices flex_vertices(int flex) const {
     const int first = m_->flex_vertadr[flex], count = m_->flex_vertnum[flex];
-    return Eigen::Map<const geometry::Vertices>(d_->flexvert_xpos + 3 * first, count, 3);
+    return FlexVertices(d_->flexvert_xpos + 3 * first, count, 3);
   }
   // Every flex vertex in the world (both fingers, in model order): the rows patch_ indexes.
-  geometry::Vertices flex_positions() const {
-    return Eigen::Map<const geometry::Vertices>(d_->flexvert_xpos, m_->nflexvert, 3);
-  }
+  FlexVertices flex_positions() const { return FlexVertices(d_->flexvert_xpos, m_->nflexvert, 3); }
 
   // The soft fingers' settled contact patch, as grip's trial records its own: the flex vertices
   // that bear the object's contacts, weighted by their normal force (a contact on a tet's face
   // or edge shares its force among the element's vertices).
   void record_patch() {
-    const geometry::Vertices x = flex_positions();
+    const FlexVertices x = flex_positions();
     for (int c = 0; c < d_->ncon; ++c) {
       const mjContact& contact = d_->contact[c];
       for (int j = 0; j < 2; ++j) {

@@ -15,7 +15,6 @@
 #include "bench/peer/peer_vtk.hpp"
 #include "bench/robustness/robustness_trials.hpp"
 #include "src/grippers/coarse_leap_hand.hpp"
-#include "src/grippers/gripper_registry.hpp"
 #include "src/objects/object_library.hpp"
 #include "src/trial/hand_trial_scene.hpp"
 #include "src/trial/trial.hpp"
@@ -82,16 +81,6 @@ std::string disagreement_stem(const PeerOptions& options, const PeerResult& resu
   return fmt::format("{}_{}_{}_seed{}_candidate{}", kind, set.gripper, set.category, seed, k);
 }
 
-// The gripper a parallel set runs: the rigid jaws, or the production fin-ray, as
-// RobustnessScene builds them.
-const grippers::ParallelGripper& parallel_gripper(const RobustnessSet& set) {
-  static const grippers::ParallelGripper jaws =
-      grippers::make_parallel_gripper(grippers::GripperKind::kParallelJaw);
-  static const grippers::ParallelGripper fin_ray =
-      grippers::make_parallel_gripper(grippers::GripperKind::kFinRay);
-  return set.gripper == "fin-ray" ? fin_ray : jaws;
-}
-
 // One shape with a parallel gripper (rigid jaws or fin-ray): grip's trials, then MuJoCo's,
 // candidate by candidate. The first candidate of each kind of disagreement is written as VTK if
 // options.vtk is set.
@@ -99,7 +88,7 @@ void run_jaws_shape(const RobustnessSet& set, std::uint64_t seed,
                     const std::vector<synth::Candidate>& candidates, const PeerOptions& options,
                     PeerResult& result) {
   // The gripper RobustnessScene simulates, and the object as it prepares it.
-  const grippers::ParallelGripper& jaws = parallel_gripper(set);
+  const grippers::ParallelGripper& jaws = robustness_parallel_gripper(set);
   const trial::TrialObject object = make_object(set, seed);
   const RobustnessScene scene(set, object, options.parameters);
   const GraspDistances distances(jaws, object.surface, options.parameters);

@@ -140,17 +140,21 @@ trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed) {
   return object;
 }
 
+const grippers::ParallelGripper& robustness_parallel_gripper(const RobustnessSet& set) {
+  if (set.gripper != "fin-ray") return rigid_jaws();
+  return set.fine_fin_ray        ? fine_fin_ray()
+         : set.production_models ? production_fin_ray()
+                                 : coarse_fin_ray();
+}
+
 RobustnessScene::RobustnessScene(const RobustnessSet& set, const trial::TrialObject& object,
                                  const trial::TrialParameters& parameters) {
   if (set.gripper == "leap") {
     scene_ = std::make_unique<trial::HandTrialScene>(
         object, set.production_models ? production_hand() : coarse_hand(), "leap", parameters);
   } else {
-    const grippers::ParallelGripper& fin_ray = set.fine_fin_ray        ? fine_fin_ray()
-                                               : set.production_models ? production_fin_ray()
-                                                                       : coarse_fin_ray();
-    scene_ = std::make_unique<trial::ParallelTrialScene>(
-        object, set.gripper == "fin-ray" ? fin_ray : rigid_jaws(), parameters);
+    scene_ = std::make_unique<trial::ParallelTrialScene>(object, robustness_parallel_gripper(set),
+                                                         parameters);
   }
 }
 

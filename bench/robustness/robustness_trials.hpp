@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/robustness/robustness_benchmark.hpp"
+#include "src/grippers/parallel_gripper.hpp"
 #include "src/synth/candidate.hpp"
 #include "src/trial/trial_object.hpp"
 #include "src/trial/trial_outcome.hpp"
@@ -33,6 +34,10 @@ std::vector<synth::Candidate> synthesize_candidates(const RobustnessSet& set, st
 trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed);
 
 // One object and the set's gripper: the trial scene, built once, run for any candidates.
+// The parallel gripper (rigid jaws or a fin-ray of the set's model) a set of a parallel gripper
+// simulates, built once.
+const grippers::ParallelGripper& robustness_parallel_gripper(const RobustnessSet& set);
+
 class RobustnessScene {
  public:
   // Throws std::invalid_argument (naming the object) for an unusable object.
