@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
     declare_asset_prepare(asset);
     declare_asset_gallery(asset);
     declare_inspect(root);
+    declare_export(root);
     declare_parameters_command(root);
   };
   return grip::cli::run_program(program, argc, argv);

@@ -72,9 +72,12 @@ struct TrajectoryRecord {
   std::vector<float> gripper_vertices;  // frames x g x 3, m
   std::vector<float> contact_forces;    // frames x n x 3, N, normal contact force per vertex
   std::vector<float> friction_forces;   // frames x n x 3, N, friction force per vertex
-  std::vector<double> object_poses;     // frames x 12, row-major 3x4 [A | t] of the object
-  std::vector<double> hand_poses;       // frames x hands x 12
-  std::vector<double> joints;           // frames x hands x J
+  // frames x g x 3, N: the same forces on each gripper surface vertex (its side of the pairs)
+  std::vector<float> gripper_contact_forces;
+  std::vector<float> gripper_friction_forces;
+  std::vector<double> object_poses;  // frames x 12, row-major 3x4 [A | t] of the object
+  std::vector<double> hand_poses;    // frames x hands x 12
+  std::vector<double> joints;        // frames x hands x J
 
   bool operator==(const TrajectoryRecord&) const = default;
 };

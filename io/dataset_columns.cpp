@@ -111,6 +111,10 @@ constexpr std::array kColumns = {
            field<&TrajectoryRecord::hand_poses>()},
     Column{"joints", P::kTrajectory, E::kFloat64, F::kNever, hand_joints,
            field<&TrajectoryRecord::joints>()},
+    Column{"gripper_contact_forces", P::kTrajectory, E::kFloat32, F::kNever, gripper_vectors,
+           field<&TrajectoryRecord::gripper_contact_forces>()},
+    Column{"gripper_friction_forces", P::kTrajectory, E::kFloat32, F::kNever, gripper_vectors,
+           field<&TrajectoryRecord::gripper_friction_forces>()},
     // /grippers/GGG
     Column{"joint_names", P::kGripper, E::kString, F::kUnset, list,
            field<&GripperRecord::joint_names>()},

@@ -13,7 +13,7 @@
 namespace grip::io {
 
 inline constexpr const char* kFormatName = "grip-dataset";
-inline constexpr std::uint64_t kFormatVersion = 8;
+inline constexpr std::uint64_t kFormatVersion = 9;
 
 struct DatasetLayout {
   std::uint64_t candidate_count = 0;

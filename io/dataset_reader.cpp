@@ -158,6 +158,13 @@ bool DatasetReader::committed(std::uint64_t id, const char* written_column) cons
   return flag("/candidates/done") && flag(std::string("/candidates/") + written_column);
 }
 
+bool DatasetReader::has_trajectory(std::uint64_t id) const {
+  if (id >= layout_.candidate_count) {
+    throw DatasetError(path_.string() + ": no candidate " + std::to_string(id));
+  }
+  return committed(id, "trajectory_written");
+}
+
 std::optional<TrajectoryRecord> DatasetReader::trajectory(std::uint64_t id) const {
   if (id >= layout_.candidate_count) {
     throw DatasetError(path_.string() + ": no candidate " + std::to_string(id));

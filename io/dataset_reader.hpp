@@ -43,6 +43,8 @@ class DatasetReader {
   std::vector<CandidateRecord> candidates() const;
   // The candidate's trajectory or stress, or nothing where none was committed.
   std::optional<TrajectoryRecord> trajectory(std::uint64_t id) const;
+  // Whether trajectory(id) holds one, without reading it.
+  bool has_trajectory(std::uint64_t id) const;
   std::optional<std::vector<float>> stress(std::uint64_t id) const;
 
  private:

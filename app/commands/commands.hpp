@@ -15,6 +15,8 @@ void declare_trial(cli::Command& root);     // grip trial --candidates FILE (tri
 void declare_synth(cli::Command& root);     // grip synth --object ... --out FILE (synth.cpp)
 void declare_simulate(cli::Command& root);  // grip simulate SCENE.toml... (simulate.cpp)
 void declare_inspect(cli::Command& root);   // grip inspect DATASET.h5 (inspect.cpp)
+// grip export --layout grip DATASET.h5 DIR (export.cpp)
+void declare_export(cli::Command& root);
 // grip parameters: every parameter of job and scene files (parameters.cpp).
 void declare_parameters_command(cli::Command& root);
 // The `asset` group's commands: prepare (asset_prepare.cpp) and gallery (asset_gallery.cpp).

@@ -71,15 +71,16 @@ int FrameRecorder::simulated_frames() const {
 
 io::TrajectoryRecord trajectory_record(const std::vector<RecordedFrame>& frames) {
   io::TrajectoryRecord record;
+  const auto append = [](std::vector<float>& to, const std::vector<float>& from) {
+    to.insert(to.end(), from.begin(), from.end());
+  };
   for (const RecordedFrame& frame : frames) {
-    record.object_vertices.insert(record.object_vertices.end(), frame.object_vertices.begin(),
-                                  frame.object_vertices.end());
-    record.gripper_vertices.insert(record.gripper_vertices.end(), frame.gripper_vertices.begin(),
-                                   frame.gripper_vertices.end());
-    record.contact_forces.insert(record.contact_forces.end(), frame.contact_forces.begin(),
-                                 frame.contact_forces.end());
-    record.friction_forces.insert(record.friction_forces.end(), frame.friction_forces.begin(),
-                                  frame.friction_forces.end());
+    append(record.object_vertices, frame.object_vertices);
+    append(record.gripper_vertices, frame.gripper_vertices);
+    append(record.contact_forces, frame.contact_forces);
+    append(record.friction_forces, frame.friction_forces);
+    append(record.gripper_contact_forces, frame.gripper_contact_forces);
+    append(record.gripper_friction_forces, frame.gripper_friction_forces);
     record.object_poses.insert(record.object_poses.end(), frame.object_pose.begin(),
                                frame.object_pose.end());
     record.hand_poses.insert(record.hand_poses.end(), frame.hand_poses.begin(),

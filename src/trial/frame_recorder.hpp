@@ -12,10 +12,12 @@ namespace grip::trial {
 
 // One recorded state, in the dataset's layout.
 struct RecordedFrame {
-  std::vector<float> object_vertices;   // n x 3
-  std::vector<float> gripper_vertices;  // g x 3
-  std::vector<float> contact_forces;    // n x 3, N: barrier force on each object vertex
-  std::vector<float> friction_forces;   // n x 3, N: friction force of the last step
+  std::vector<float> object_vertices;          // n x 3
+  std::vector<float> gripper_vertices;         // g x 3
+  std::vector<float> contact_forces;           // n x 3, N: barrier force on each object vertex
+  std::vector<float> friction_forces;          // n x 3, N: friction force of the last step
+  std::vector<float> gripper_contact_forces;   // g x 3, N: the same on the gripper's vertices
+  std::vector<float> gripper_friction_forces;  // g x 3, N
   std::array<double, 12> object_pose{};
   std::vector<double> hand_poses;  // 12 per gripper (hand)
   std::vector<double> joints;      // the grippers' joint values, one gripper after the other

@@ -342,6 +342,19 @@ geometry::Vertices HandTrialScene::surface_vertices(
   return both;
 }
 
+std::vector<BodyVertex> HandTrialScene::surface_sources() const {
+  std::vector<BodyVertex> sources;
+  for (const HandLinks& links : links_) {
+    for (const int body : links.body) {
+      if (body < 0) continue;
+      const solver::BodyModel& model = model_->bodies()[static_cast<std::size_t>(body)];
+      const int count = model.kind->vertex_count(model.local);
+      for (int v = 0; v < count; ++v) sources.push_back({body, v});
+    }
+  }
+  return sources;
+}
+
 metrics::DistanceMetrics HandTrialScene::grasp_distances(
     const solver::EnvironmentHandle& environment) const {
   return object_.distances(environment, hand_points_->positions(surface_vertices(environment)));

@@ -130,6 +130,7 @@ class HandTrialScene final : public TrialScene {
     return hand_rest_surfaces_.at(static_cast<std::size_t>(h));
   }
   geometry::Vertices surface_vertices(const solver::EnvironmentHandle& environment) const;
+  std::vector<BodyVertex> surface_sources() const;
 
   // The object's pose as a row-major 3x4 [A | t], world from object frame (A: the affine
   // body's matrix; a soft object's best-fit rotation).

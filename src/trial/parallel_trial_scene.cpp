@@ -174,6 +174,14 @@ geometry::Vertices ParallelTrialScene::surface_vertices(
   return vertices;
 }
 
+std::vector<BodyVertex> ParallelTrialScene::surface_sources() const {
+  std::vector<BodyVertex> sources;
+  for (const JawBodies& jaw : jaws_) {
+    for (const int vertex : surface_to_body_) sources.push_back({jaw.finger, vertex});
+  }
+  return sources;
+}
+
 int ParallelTrialScene::gripper_surface_vertex_count() const {
   return static_cast<int>(jaws_.size() * surface_to_body_.size());
 }

@@ -88,6 +88,7 @@ class ParallelTrialScene final : public TrialScene {
   // The grippers' surface vertices in the dataset's order (per gripper gripper.surface():
   // positive finger, then negative), gathered from the environment's finger bodies.
   geometry::Vertices surface_vertices(const solver::EnvironmentHandle& environment) const;
+  std::vector<BodyVertex> surface_sources() const;
   int gripper_surface_vertex_count() const;
 
   // The object's pose as a row-major 3x4 [A | t], world from object frame (A: the affine

@@ -23,6 +23,7 @@ class SceneTrialGripper : public TrialGripper {
   geometry::Vertices surface_vertices(const solver::EnvironmentHandle& environment) const override {
     return scene_.surface_vertices(environment);
   }
+  std::vector<BodyVertex> surface_sources() const override { return scene_.surface_sources(); }
   std::array<double, 12> object_pose(const solver::EnvironmentHandle& environment) const override {
     return scene_.object_pose(environment);
   }

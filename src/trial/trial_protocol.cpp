@@ -125,6 +125,25 @@ std::vector<float> as_floats(const geometry::Vertices& v) {
   return values;
 }
 
+// The collision vertex of each of `vertices`, or -1 where the vertex is not one.
+std::vector<int> collision_vertices(const solver::CollisionMesh& mesh,
+                                    const std::vector<BodyVertex>& vertices) {
+  std::vector<int> collision;
+  collision.reserve(vertices.size());
+  for (const BodyVertex& v : vertices) {
+    int found = -1;
+    const auto b = static_cast<std::size_t>(v.body);
+    for (int c = mesh.body_first_vertex[b]; c < mesh.body_first_vertex[b + 1]; ++c) {
+      if (mesh.vertex_local[c] == v.vertex) {
+        found = c;
+        break;
+      }
+    }
+    collision.push_back(found);
+  }
+  return collision;
+}
+
 class ProtocolRunner {
  public:
   ProtocolRunner(const TrialGripper& gripper, const TrialRunOptions& options)
@@ -136,6 +155,8 @@ class ProtocolRunner {
         arena_(engine_->threads()) {
     steps_per_phase_ = static_cast<int>(phase_steps(p_));
     max_steps_per_phase_ = steps_per_phase_ + static_cast<int>(rest_steps(p_));
+    gripper_collision_ =
+        collision_vertices(gripper_.model()->collision(), gripper_.surface_sources());
   }
 
   std::vector<TrialOutcome> run() {
@@ -305,6 +326,16 @@ class ProtocolRunner {
       }
     }
     f.gripper_vertices = as_floats(gripper_.surface_vertices(env));
+    f.gripper_contact_forces.assign(f.gripper_vertices.size(), 0.f);
+    f.gripper_friction_forces.assign(f.gripper_vertices.size(), 0.f);
+    for (std::size_t v = 0; v < gripper_collision_.size(); ++v) {
+      const int c = gripper_collision_[v];
+      if (c < 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        f.gripper_contact_forces[3 * v + k] = static_cast<float>(forces.normal(c, k));
+        f.gripper_friction_forces[3 * v + k] = static_cast<float>(forces.friction(c, k));
+      }
+    }
     f.object_pose = gripper_.object_pose(env);
     f.hand_poses = pose_values(gripper_.poses(state.candidate));
     f.joints = gripper_.joints(state.candidate, state.travel());
@@ -632,6 +663,9 @@ class ProtocolRunner {
   int max_steps_per_phase_ = 1;  // with the wait for rest
   std::vector<TrialState> states_;
   std::size_t next_ = 0;  // the next candidate to start
+  // The collision vertex of each gripper surface vertex, -1 for one that is not (a soft
+  // finger's surface is all collision vertices; a link's surface too).
+  std::vector<int> gripper_collision_;
 };
 
 }  // namespace

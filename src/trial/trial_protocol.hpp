@@ -20,6 +20,7 @@
 #include "src/metrics/distance_metrics.hpp"
 #include "src/trial/trial_outcome.hpp"
 #include "src/trial/trial_parameters.hpp"
+#include "src/trial/trial_scene.hpp"
 
 namespace grip::trial {
 
@@ -87,6 +88,8 @@ class TrialGripper {
   // The gripper's surface vertices in the dataset's order, now.
   virtual geometry::Vertices surface_vertices(
       const solver::EnvironmentHandle& environment) const = 0;
+  // Where each of those vertices lives: its body and its index among the body's vertices.
+  virtual std::vector<BodyVertex> surface_sources() const = 0;
   // The object's pose now: row-major 3x4 [A | t], world from object frame.
   virtual std::array<double, 12> object_pose(
       const solver::EnvironmentHandle& environment) const = 0;

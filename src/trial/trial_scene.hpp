@@ -18,6 +18,13 @@ namespace grip::trial {
 
 class TrialGripper;
 
+// A vertex of one of the model's bodies: the body, and the vertex's index among its vertices
+// (BodySubsystem::vertex_count).
+struct BodyVertex {
+  int body = -1;
+  int vertex = -1;
+};
+
 class TrialScene {
  public:
   virtual ~TrialScene() = default;

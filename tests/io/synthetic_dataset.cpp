@@ -36,7 +36,10 @@ GripperRecord gripper(const std::string& name, std::uint32_t hands, std::uint32_
   for (std::uint32_t v = 0; v < hands * vertices; ++v) {
     g.vertices.insert(g.vertices.end(), {0.01 * v, 0.02 * v, 0.03});
   }
-  g.triangles = {0, 1, 2};
+  for (std::uint32_t h = 0; h < hands; ++h) {
+    const auto first = static_cast<std::int32_t>(h * vertices);
+    g.triangles.insert(g.triangles.end(), {first, first + 1, first + 2});
+  }
   return g;
 }
 
@@ -58,7 +61,7 @@ DatasetPlan synthetic_plan(std::uint32_t candidates) {
   DatasetPlan plan;
   plan.objects = {box("cube", false, 0.05), box("soft_cube", true, 0.04),
                   box("big_box", false, 0.2)};
-  plan.grippers = {gripper("umi", 1, 1, 2, 5), gripper("leap_bimanual", 2, 3, 4, 7)};
+  plan.grippers = {gripper("umi", 1, 1, 2, 6), gripper("leap_bimanual", 2, 3, 4, 7)};
   plan.closing_frames = 3;
   plan.validation_frames = 4;
   for (std::uint32_t id = 0; id < candidates; ++id) {
@@ -116,6 +119,8 @@ CandidateResult synthetic_result(const DatasetLayout& layout, std::uint64_t id,
     t.object_poses = values<double>(random, frames * 12, -1, 1);
     t.hand_poses = values<double>(random, frames * g.hands * 12, -1, 1);
     t.joints = values<double>(random, frames * g.hands * g.joints, -1.5, 1.5);
+    t.gripper_contact_forces = values<float>(random, frames * g.hands * g.vertices * 3, -5, 5);
+    t.gripper_friction_forces = values<float>(random, frames * g.hands * g.vertices * 3, -5, 5);
     result.trajectory = std::move(t);
   }
   if (layout.stress_slot[id] >= 0) result.stress = values<float>(random, o.tets, 0, 1e6);

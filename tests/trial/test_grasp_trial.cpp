@@ -366,6 +366,33 @@ TEST(GraspTrial, RecordsTheDatasetTrajectory) {
   }
   EXPECT_GT(magnitude, 2.0 * (1.0 - p.force_tolerance) * p.grip_force);
   EXPECT_LT(total.norm(), 0.05 * magnitude);
+  // The jaws' vertices carry the other side of the same contacts: per frame, normal and
+  // friction forces on gripper and object add up to zero (they touch nothing else).
+  ASSERT_EQ(t.gripper_contact_forces.size(), frames * g * 3);
+  ASSERT_EQ(t.gripper_friction_forces.size(), frames * g * 3);
+  const auto sum = [](const std::vector<float>& forces, std::size_t first, std::size_t count) {
+    Eigen::Vector3d s = Eigen::Vector3d::Zero();
+    for (std::size_t v = 0; v < count; ++v) {
+      for (int c = 0; c < 3; ++c) s[c] += forces[first + 3 * v + c];
+    }
+    return s;
+  };
+  for (std::size_t f = 0; f < frames; ++f) {
+    const Eigen::Vector3d normal =
+        sum(t.contact_forces, f * n * 3, n) + sum(t.gripper_contact_forces, f * g * 3, g);
+    const Eigen::Vector3d friction =
+        sum(t.friction_forces, f * n * 3, n) + sum(t.gripper_friction_forces, f * g * 3, g);
+    EXPECT_LT(normal.norm(), 1e-3) << "frame " << f;
+    EXPECT_LT(friction.norm(), 1e-3) << "frame " << f;
+  }
+  double jaw_magnitude = 0.0;
+  for (std::size_t v = 0; v < g; ++v) {
+    jaw_magnitude += Eigen::Vector3d(t.gripper_contact_forces[7 * g * 3 + 3 * v],
+                                     t.gripper_contact_forces[7 * g * 3 + 3 * v + 1],
+                                     t.gripper_contact_forces[7 * g * 3 + 3 * v + 2])
+                         .norm();
+  }
+  EXPECT_GT(jaw_magnitude, 2.0 * (1.0 - p.force_tolerance) * p.grip_force);
   const geometry::SurfaceMesh surface = rigid_jaws().surface(t.joints.front());
   for (std::size_t v = 0; v < g; ++v) {
     const Eigen::Vector3d expected = grasp.pose * surface.vertices.row(v).transpose();

@@ -144,6 +144,8 @@ TEST(HandTrial, SynthesizedGraspClosesOnACylinderWithoutIntersecting) {
   const io::TrajectoryRecord& t = *outcome.result.trajectory;
   const std::size_t frames = 600 + 30;
   EXPECT_EQ(t.gripper_vertices.size(), frames * scene.gripper_record().vertex_count() * 3);
+  EXPECT_EQ(t.gripper_contact_forces.size(), t.gripper_vertices.size());
+  EXPECT_EQ(t.gripper_friction_forces.size(), t.gripper_vertices.size());
   EXPECT_EQ(t.joints.size(), frames * 16);
   EXPECT_EQ(t.hand_poses.size(), frames * 12);
   // The first frame is the placed hand: each finger at or beyond the candidate's joints along
