@@ -16,6 +16,7 @@ packages=(
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: clang and its libFuzzer runtime
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-matplotlib python3-numpy python3-venv
+  python3-torch  # examples/stress_prediction/ (CPU PyTorch 1.13)
   slurm-wlm munge hdf5-tools  # tests/slurm/: a one-node SLURM (scripts/slurm-one-node.sh), h5diff
 )
 # The optional peers MuJoCo and ipc-toolkit come from PyPI (scripts/install-peers.sh).

@@ -15,8 +15,8 @@ frame closing_frames - 1, the end of closing, where grip takes the stress. Each 
   gripper_vertices  (g, 3) float32  every hand's surface vertices at that frame (world, m)
   contact_forces,   (n, 3) float32  normal and friction force on each object vertex (N)
   friction_forces
-  gripper_contact_forces,           (g, 3) float32, only where the file has them (a later
-  gripper_friction_forces           format version adds them)
+  gripper_contact_forces,           (g, 3) float32: the same on the gripper's vertices, from
+  gripper_friction_forces           format 9 on (absent from a format 8 file's items)
   status, failure   int64 scalars   the verdict's codes (their names: the dataset's
                                     status_names, failure_names)
   success           bool scalar     status == success
