@@ -53,6 +53,7 @@ std::vector<FarmObject> list_objects(const Job& job) {
       object.tet_edge = group.tet_edge;
       object.tet_edge_at = group.tet_edge_at;
       object.tet_growth = group.tet_growth;
+      object.tets_across = group.tets_across;
       object.max_tets = job.max_tets;
       object.mesh_scale = group.mesh_scale;
       object.material = group.randomize ? objects::randomize_material(job.randomization,
@@ -99,8 +100,9 @@ io::ObjectRecord prepare_object(const FarmObject& object) {
                      object.material.density, object.material.friction};
   if (object.soft) {
     geometry::TetOptions options;
-    options.edge_length = synth::object_tet_edge(object.category, object.shape_seed,
-                                                 object.material.scale, object.tet_edge);
+    options.edge_length =
+        synth::object_tet_edge(object.category, object.shape_seed, object.material.scale,
+                               object.tet_edge, object.tets_across);
     options.interior_growth = object.tet_growth;
     const double estimate = geometry::estimated_tet_count(
         std::abs(geometry::surface_volume(surface)), options.edge_length);

@@ -24,6 +24,7 @@ struct FarmObject {
   double tet_edge = 0.008;  // m, soft objects
   std::string tet_edge_at;  // "job.toml:LINE" of its entry's tet_edge
   double tet_growth = geometry::kSoftObjectInteriorGrowth;  // TetOptions::interior_growth
+  double tets_across = objects::kDefaultTetsAcross;         // ObjectGroup::tets_across
   double max_tets = geometry::kMaxEstimatedTets;            // the job's [farm] max_tets
   double mesh_scale = 1.0;                                  // multiplies a mesh file's coordinates
   objects::ObjectMaterial material;  // material.scale multiplies every length

@@ -75,8 +75,8 @@ std::vector<std::filesystem::path> resolve_meshes(const Table& group, const std:
 }
 
 ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_dir) {
-  t.allow({"category", "mesh", "count", "soft", "tet_edge", "tet_growth", "scale", "randomize",
-           "density", "youngs", "poisson", "friction"});
+  t.allow({"category", "mesh", "count", "soft", "tet_edge", "tet_growth", "tets_across", "scale",
+           "randomize", "density", "youngs", "poisson", "friction"});
   ObjectGroup group;
   if (t.has("category") == t.has("mesh")) {
     t.fail(t.has("mesh") ? "mesh" : "category",
@@ -92,6 +92,9 @@ ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_d
     group.count = positive_integer(t, "count", 1);
     if (t.has("scale")) t.fail("scale", "applies to mesh files only; use [randomization] scale");
   } else {
+    if (t.has("tets_across")) {
+      t.fail("tets_across", "applies to categories only; a mesh file's tets follow tet_edge");
+    }
     group.meshes = resolve_meshes(t, t.string("mesh"), job_dir);
     if (t.has("count"))
       t.fail("count", "applies to categories only; a mesh entry takes every file it names");
@@ -104,6 +107,14 @@ ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_d
   if (!(group.tet_growth >= 0 && group.tet_growth <= geometry::kMaxInteriorGrowth)) {
     t.fail("tet_growth", "must lie in [0, " + grippers::number_text(geometry::kMaxInteriorGrowth) +
                              "] (0: tets of tet_edge throughout)");
+  }
+  group.tets_across = t.number_or("tets_across", group.tets_across);
+  if (!(group.tets_across >= objects::kMinTetsAcross &&
+        group.tets_across <= objects::kMaxTetsAcross)) {
+    t.fail("tets_across",
+           "must lie in [" + grippers::number_text(objects::kMinTetsAcross) + ", " +
+               grippers::number_text(objects::kMaxTetsAcross) +
+               "] (tet edges across a category's thinnest part; 1 leaves slivers in curved walls)");
   }
   group.randomize = t.boolean_or("randomize", true);
   for (const char* key : {"density", "youngs", "poisson", "friction"}) {

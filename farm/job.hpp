@@ -12,6 +12,7 @@
 #include "src/geometry/tetrahedralize.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/objects/domain_randomization.hpp"
+#include "src/objects/object_library.hpp"
 #include "src/synth/synthesis_settings.hpp"
 #include "src/trial/trial_parameters.hpp"
 
@@ -27,6 +28,8 @@ struct ObjectGroup {
   double tet_edge = 0.008;                    // m, soft objects' target tet edge length
   std::string tet_edge_at;                    // "job.toml:LINE" of tet_edge (or of the entry)
   double tet_growth = geometry::kSoftObjectInteriorGrowth;  // TetOptions::interior_growth
+  // A category's tets: at most its thinnest part (a wall) over this many edges.
+  double tets_across = objects::kDefaultTetsAcross;
   double mesh_scale = 1.0;  // multiplies a mesh file's coordinates (units)
   // Draw scale and material from the job's ranges; otherwise use `material` as given.
   bool randomize = true;

@@ -9,7 +9,7 @@
 namespace grip::io {
 
 struct GripperRecord {
-  std::string name;  // e.g. "umi-soft", "leap", "leap-bimanual"
+  std::string name;  // as the job names it: "fin-ray", "leap", "leap-bimanual"
   std::string kind;  // "parallel" or "hand"
   bool soft = false;
   std::uint32_t hands = 1;                // 1, or 2 for bimanual

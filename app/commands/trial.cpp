@@ -44,10 +44,11 @@ struct TrialArgs {
   bool soft = false;                  // FEM object (tetrahedralized) instead of one affine body
   double tet_edge = 0.008;            // m, target tet edge length of a soft object
   double tet_growth = geometry::kSoftObjectInteriorGrowth;  // TetOptions::interior_growth
-  double max_tets = geometry::kMaxEstimatedTets;            // a finer soft object is refused
-  double density = 1000.0;                                  // kg/m^3
-  double youngs = 1e6;                                      // Pa, soft objects
-  double poisson = 0.4;                                     // soft objects
+  double tets_across = objects::kDefaultTetsAcross;  // a category's thinnest part over the edge
+  double max_tets = geometry::kMaxEstimatedTets;     // a finer soft object is refused
+  double density = 1000.0;                           // kg/m^3
+  double youngs = 1e6;                               // Pa, soft objects
+  double poisson = 0.4;                              // soft objects
   double friction = 3.5;               // the object's mu (a fin-ray pad's pairs use the pad's 3.5)
   std::optional<std::string> gripper;  // a name of the gripper registry
   std::string candidates;              // candidate file (docs/synthesis.md)
@@ -259,10 +260,12 @@ trial::TrialObject trial_object(const TrialArgs& args) {
   object.material = {args.density, args.youngs, args.poisson, args.friction};
   if (!args.soft) return object;
   geometry::TetOptions options;
-  options.edge_length = synth::object_tet_edge(*args.object, *args.seed, 1.0, args.tet_edge);
+  options.edge_length =
+      synth::object_tet_edge(*args.object, *args.seed, 1.0, args.tet_edge, args.tets_across);
   options.interior_growth = args.tet_growth;
   if (options.edge_length < args.tet_edge) {
-    spdlog::info("tet edge {:.4f} m: half the object's thinnest part", options.edge_length);
+    spdlog::info("tet edge {:.4f} m: the object's thinnest part over {:g}", options.edge_length,
+                 args.tets_across);
   }
   const double tets = geometry::estimated_tet_count(
       std::abs(geometry::surface_volume(object.surface)), options.edge_length);
@@ -331,6 +334,12 @@ void declare_object_options(cli::Command& trial, TrialArgs& args) {
               "uniform)")
       .show_default()
       .check(cli::Check::range(0.0, geometry::kMaxInteriorGrowth));
+  trial
+      .option("--tets-across", args.tets_across,
+              "Soft object of a category: at least this many tet edges across its thinnest part "
+              "(a wall)")
+      .show_default()
+      .check(cli::Check::range(objects::kMinTetsAcross, objects::kMaxTetsAcross));
   trial.option("--density", args.density, "Object density (kg/m^3)")
       .show_default()
       .check(cli::Check::positive());
@@ -388,7 +397,8 @@ void declare_trial(cli::Command& root) {
   declare_parameters(trial, scene::sim_parameter_table(), args->parameters.sim);
   declare_parameters(trial, trial::trial_parameter_table(), args->parameters);
   trial.on_check([trial, args] {
-    for (const char* soft_only : {"--tet-edge", "--tet-growth", "--youngs", "--poisson"}) {
+    for (const char* soft_only :
+         {"--tet-edge", "--tet-growth", "--tets-across", "--youngs", "--poisson"}) {
       if (trial.given(soft_only) && !args->soft) {
         throw cli::UsageError(soft_only, "applies to soft objects only: add --soft");
       }

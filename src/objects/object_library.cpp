@@ -271,8 +271,8 @@ double thinnest_feature(const ObjectShape& shape) {
   throw std::invalid_argument("unknown object category");
 }
 
-double tet_edge_for(const ObjectShape& shape, double scale, double requested) {
-  return std::min(requested, 0.5 * scale * thinnest_feature(shape));
+double tet_edge_for(const ObjectShape& shape, double scale, double requested, double tets_across) {
+  return std::min(requested, scale * thinnest_feature(shape) / tets_across);
 }
 
 SurfaceMesh generate_surface(const ObjectShape& shape, int segments) {

@@ -56,10 +56,14 @@ ObjectShape sample_shape(ObjectCategory category, std::uint64_t seed);
 // about half of it resolves the shape with a few tets across.
 double thinnest_feature(const ObjectShape& shape);
 
-// The tet edge length to mesh `shape` scaled by `scale` with: `requested`, or half its thinnest
-// part when that is smaller. An edge longer than a wall is thick leaves slivers (a mug's
-// handle meshed at 8 mm: dihedral angles of 1 to 2 degrees).
-double tet_edge_for(const ObjectShape& shape, double scale, double requested);
+// The tet edge length to mesh `shape` scaled by `scale` with: `requested`, or its thinnest part
+// over `tets_across` when that is smaller. An edge longer than a wall is thick leaves slivers (a
+// mug's handle meshed at 8 mm: dihedral angles of 1 to 2 degrees).
+inline constexpr double kDefaultTetsAcross = 2.0;
+inline constexpr double kMinTetsAcross = 1.0;
+inline constexpr double kMaxTetsAcross = 8.0;
+double tet_edge_for(const ObjectShape& shape, double scale, double requested,
+                    double tets_across = kDefaultTetsAcross);
 
 // The closed, outward, manifold surface of the shape, centred on the origin's vertical axis
 // and standing on z = 0 (a torus and a sphere-like shape lie with their lowest point at z =

@@ -51,10 +51,10 @@ geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, d
 }
 
 double object_tet_edge(const std::string& spec, std::uint64_t seed, double category_scale,
-                       double requested) {
+                       double requested, double tets_across) {
   const auto category = category_of(spec);
   return category ? objects::tet_edge_for(objects::sample_shape(*category, seed), category_scale,
-                                          requested)
+                                          requested, tets_across)
                   : requested;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "src/geometry/mesh.hpp"
+#include "src/objects/object_library.hpp"
 
 namespace grip::synth {
 
@@ -15,10 +16,10 @@ namespace grip::synth {
 geometry::SurfaceMesh load_object(const std::string& spec, std::uint64_t seed, double scale = 1.0);
 
 // The tet edge length to mesh the object with: for a category, objects::tet_edge_for its
-// shape scaled by `category_scale` (half its thinnest part when that is below `requested`);
-// for a mesh file, `requested`.
+// shape scaled by `category_scale` (its thinnest part over `tets_across` when that is below
+// `requested`); for a mesh file, `requested`.
 double object_tet_edge(const std::string& spec, std::uint64_t seed, double category_scale,
-                       double requested);
+                       double requested, double tets_across = objects::kDefaultTetsAcross);
 
 // For a mesh file, a hash of its bytes (64-bit FNV-1a, 16 hex digits), which says whether the
 // file changed since candidates were synthesized on it; empty for a category.

@@ -336,6 +336,10 @@ TEST(HostileInput, JobFilesPastTheTrialLimitsAreRefusedBeforeAnyFile) {
                      "[[objects]] tet_edge: an edge of 1e-05 m would make about");
   expect_job_refused(dir, "[[objects]]\ncategory = \"capsule\"\nsoft = true\ntet_growth = -0.5\n",
                      "key 'objects[0].tet_growth' must lie in [0, 4]");
+  expect_job_refused(dir, "[[objects]]\ncategory = \"mug\"\nsoft = true\ntets_across = 0.5\n",
+                     "key 'objects[0].tets_across' must lie in [1, 8]");
+  expect_job_refused(dir, "[[objects]]\nmesh = \"a.obj\"\ntets_across = 2\n",
+                     "key 'objects[0].tets_across' applies to categories only");
   // A billion objects once planned for hours, holding every candidate in memory, and a stop
   // signal waited for planning to end.
   expect_job_refused(dir, "[[objects]]\ncategory = \"cylinder\"\ncount = 1000000000\n",
@@ -373,6 +377,8 @@ TEST(HostileInput, TrialOptionsOutOfTheirRangeAreUsageErrors) {
       {"--youngs 2e5", "--youngs: applies to soft objects only: add --soft"},
       {"--poisson 0.3", "--poisson: applies to soft objects only: add --soft"},
       {"--tet-edge 0.01", "--tet-edge: applies to soft objects only: add --soft"},
+      {"--tets-across 1", "--tets-across: applies to soft objects only: add --soft"},
+      {"--soft --tets-across 0.5", "--tets-across: Value 0.5 not in range"},
       {"--finger-layers 0", "--finger-layers: Value 0 not in range 1 to 32"},
       {"--finger-edge 0.05", "--finger-edge: Value 0.05 not in range 0.001000 to 0.010000"},
   };

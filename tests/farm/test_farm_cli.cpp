@@ -206,7 +206,7 @@ TEST_F(FarmCli, BimanualJobRecordsBothGrippersAlikeOnOneAndTwoRanks) {
   const io::DatasetReader reader(dir_ / "ranks2.h5");
   const io::GripperRecord gripper = reader.gripper(0);
   EXPECT_EQ(gripper.hands, 2u);
-  EXPECT_EQ(gripper.name, "rigid_jaw-bimanual");
+  EXPECT_EQ(gripper.name, "parallel-jaw-bimanual");
   EXPECT_EQ(gripper.joint_names, std::vector<std::string>{"opening"});
   EXPECT_EQ(gripper.finger_names.size(), 2u);
   const std::vector<io::CandidateRecord> records = reader.candidates();
@@ -233,7 +233,7 @@ TEST_F(FarmCli, BimanualJobRecordsBothGrippersAlikeOnOneAndTwoRanks) {
 
   const auto inspect = grip::testing::run_grip("inspect " + quoted(dir_ / "ranks2.h5"));
   EXPECT_EQ(inspect.exit_code, 0) << inspect.err;
-  EXPECT_NE(inspect.out.find("rigid_jaw-bimanual"), std::string::npos) << inspect.out;
+  EXPECT_NE(inspect.out.find("parallel-jaw-bimanual"), std::string::npos) << inspect.out;
   EXPECT_NE(inspect.out.find("2 (2 done, 0 pending)"), std::string::npos) << inspect.out;
 }
 

@@ -128,6 +128,10 @@ TEST(ObjectsObjectTetrahedralizeTest, ThinWallsAreMeshedFinerThanTheJobsEdge) {
   const ObjectShape ball{ObjectCategory::kSphere, {0.03}};
   EXPECT_EQ(tet_edge_for(ball, 1.0, job_edge), job_edge);
   EXPECT_EQ(tet_edge_for(ball, 0.1, job_edge), 0.5 * 0.1 * 0.06);
+  // tets_across sets how many edges the thinnest part gets.
+  const ObjectShape bowl = sample_shape(ObjectCategory::kBowl, 6);
+  EXPECT_DOUBLE_EQ(tet_edge_for(bowl, 1.0, job_edge, 1.0), thinnest_feature(bowl));
+  EXPECT_DOUBLE_EQ(tet_edge_for(bowl, 1.0, job_edge, 4.0), thinnest_feature(bowl) / 4.0);
 }
 
 }  // namespace
