@@ -83,6 +83,8 @@ io::CandidateResult probe_result(std::uint64_t id, bool trajectory) {
     const std::size_t points = std::size_t{kFrames} * kVertices * 3;
     t.object_vertices.assign(points, 0.1f);
     t.gripper_vertices.assign(std::size_t{kFrames} * kGripperVertices * 3, 0.2f);
+    t.gripper_contact_forces.assign(t.gripper_vertices.size(), 1.0f);
+    t.gripper_friction_forces.assign(t.gripper_vertices.size(), 0.5f);
     t.contact_forces.assign(points, 1.0f);
     t.friction_forces.assign(points, 0.5f);
     t.object_poses.assign(std::size_t{kFrames} * 12, 0.0);
