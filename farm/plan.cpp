@@ -104,14 +104,12 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads, LiveProgress& pro
   }
 
   // Gripper records come from a trial scene; every rank builds them the same way (the first
-  // object's scene: a gripper's record does not depend on the object). Each is named as the job
-  // names it ("fin-ray", "leap-bimanual"), whatever its asset's name.
+  // object's scene: a gripper's record does not depend on the object).
   const trial::TrialObject first = trial_object(plan.dataset.objects.front());
   for (const GripperSetting& gripper : job.grippers) {
-    const grippers::GripperType& type = grippers::gripper_type(gripper.kind);
-    io::GripperRecord record =
-        trial::make_trial_scene(first, type, gripper.bimanual ? 2 : 1, job.trial)->gripper_record();
-    record.name = std::string(type.name) + (gripper.bimanual ? "-bimanual" : "");
+    io::GripperRecord record = trial::make_trial_scene(first, grippers::gripper_type(gripper.kind),
+                                                       gripper.bimanual ? 2 : 1, job.trial)
+                                   ->gripper_record();
     plan.dataset.grippers.push_back(std::move(record));
   }
   plan.dataset.closing_frames = static_cast<std::uint32_t>(job.trial.closing_frames);

@@ -3,9 +3,14 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <functional>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <system_error>
+#include <type_traits>
+#include <utility>
+#include <variant>
 
 #include "io/dataset_error.hpp"
 #include "io/hdf5.hpp"
@@ -90,13 +95,14 @@ class LayoutFile {
   h5::Handle file_;
 };
 
-// A per-frame dataset of the pose's frames: its shape after the pose axis, and its rows.
-struct FrameSeries {
+// One grasp's row of a per-pose dataset: float32 frames or float64 states.
+using Row = std::variant<std::vector<float>, std::vector<double>>;
+
+// A dataset with a leading pose axis, and how one grasp's row is made from its trajectory.
+struct PoseSeries {
   std::string name;
-  hid_t type;
-  hid_t memory_type;
-  Dims shape;  // after the pose axis
   h5::Handle set;
+  std::function<Row(std::uint64_t id, const TrajectoryRecord&)> row;
 };
 
 // Shapes of the per-hand arrays: GRIP's single-hand shape, with a hands axis after the frames
@@ -278,34 +284,53 @@ class PairWriter {
     const std::uint32_t hands = gripper_.hands;
     const hsize_t F = frames_;
     const hsize_t joints = parallel_ ? 3 : gripper_.joint_names.size();
-    std::vector<FrameSeries> series;
-    const auto add = [&](const std::string& name, hid_t type, hid_t memory, Dims shape) {
-      Dims dims = shape;
-      dims.insert(dims.begin(), poses());
-      series.push_back(
-          {name, type, memory, shape, file.dataset("trajectories/" + name, type, dims)});
+    std::vector<PoseSeries> series;
+    const auto add = [&](const std::string& name, hid_t type, Dims shape, auto row) {
+      shape.insert(shape.begin(), poses());
+      series.push_back({name, file.dataset("trajectories/" + name, type, shape), row});
     };
-    add(prefix() + "_joint_states", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-        with_hands(hands, {F, joints}, 1));
-    add(prefix() + "_tf_states", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-        with_hands(hands, {F, 4, 4}, 1));
-    add("hand_translation", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, with_hands(hands, {F, 3}, 1));
-    add("hand_rotation", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, with_hands(hands, {F, 3, 3}, 1));
+    const auto state = [&](const std::string& name, Dims shape, auto values) {
+      add(name, H5T_IEEE_F64LE, with_hands(hands, std::move(shape), 1),
+          [values](std::uint64_t, const TrajectoryRecord& t) { return Row(values(t)); });
+    };
+    state(prefix() + "_joint_states", {F, joints},
+          [this](const TrajectoryRecord& t) { return joint_states(t); });
+    state(prefix() + "_tf_states", {F, 4, 4}, [](const TrajectoryRecord& t) {
+      return pose_columns(t, 0, 4, {0.0, 0.0, 0.0, 1.0});
+    });
+    state("hand_translation", {F, 3},
+          [](const TrajectoryRecord& t) { return pose_columns(t, 3, 1, {}); });
+    state("hand_rotation", {F, 3, 3},
+          [](const TrajectoryRecord& t) { return pose_columns(t, 0, 3, {}); });
     for (const Part& part : parts()) {
       const std::string side = parallel_ ? part.name.substr(0, part.name.size() - 6) : part.name;
-      for (const std::string& name :
-           {part.name + "_points", side + "_f_collisions", side + "_f_frictions"}) {
-        add(name, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, with_hands(hands, {F, part.count, 3}, 1));
+      for (const auto& [name, values] :
+           {std::pair{part.name + "_points", &TrajectoryRecord::gripper_vertices},
+            std::pair{side + "_f_collisions", &TrajectoryRecord::gripper_contact_forces},
+            std::pair{side + "_f_frictions", &TrajectoryRecord::gripper_friction_forces}}) {
+        add(name, H5T_IEEE_F32LE, with_hands(hands, {F, part.count, 3}, 1),
+            [this, part, values = values](std::uint64_t, const TrajectoryRecord& t) {
+              return Row(
+                  hand_rows(t.*values, frames_, gripper_.hands, per_hand_, part.first, part.count));
+            });
       }
     }
     const hsize_t n = object_.vertex_count();
-    for (const std::string& name :
-         {std::string(object_.soft ? "object_points" : "object_vertices"),
-          std::string("object_f_collisions"), std::string("object_f_frictions")}) {
-      add(name, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, {F, n, 3});
+    for (const auto& [name, values] :
+         {std::pair{std::string(object_.soft ? "object_points" : "object_vertices"),
+                    &TrajectoryRecord::object_vertices},
+          std::pair{std::string("object_f_collisions"), &TrajectoryRecord::contact_forces},
+          std::pair{std::string("object_f_frictions"), &TrajectoryRecord::friction_forces}}) {
+      add(name, H5T_IEEE_F32LE, {F, n, 3},
+          [values = values](std::uint64_t, const TrajectoryRecord& t) { return Row(t.*values); });
     }
-    const bool stress = object_.soft && object_.tet_count() > 0;
-    if (stress) add("object_stress", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, {object_.tet_count()});
+    if (object_.soft && object_.tet_count() > 0) {
+      add("object_stress", H5T_IEEE_F32LE, {object_.tet_count()},
+          [this](std::uint64_t id, const TrajectoryRecord&) {
+            return Row(dataset_.stress(id).value_or(
+                std::vector<float>(object_.tet_count(), std::numeric_limits<float>::quiet_NaN())));
+          });
+    }
 
     for (hsize_t p = 0; p < poses(); ++p) {
       const std::uint64_t id = pair_.ids[p];
@@ -313,33 +338,15 @@ class PairWriter {
       if (!t)
         throw DatasetError(dataset_.path().string() + ": candidate " + std::to_string(id) +
                            " lost its trajectory while it was exported");
-      std::vector<const void*> rows;
-      const std::vector<double> joints_now = joint_states(*t);
-      const PoseStates pose = pose_states(*t);
-      rows.push_back(joints_now.data());
-      rows.push_back(pose.tf.data());
-      rows.push_back(pose.translation.data());
-      rows.push_back(pose.rotation.data());
-      std::vector<std::vector<float>> parts_rows;
-      for (const Part& part : parts()) {
-        for (const std::vector<float>* values :
-             {&t->gripper_vertices, &t->gripper_contact_forces, &t->gripper_friction_forces}) {
-          parts_rows.push_back(
-              hand_rows(*values, frames_, hands, per_hand_, part.first, part.count));
-        }
-      }
-      for (const std::vector<float>& r : parts_rows) rows.push_back(r.data());
-      rows.push_back(t->object_vertices.data());
-      rows.push_back(t->contact_forces.data());
-      rows.push_back(t->friction_forces.data());
-      std::vector<float> tet_stress;
-      if (stress) {
-        tet_stress = dataset_.stress(id).value_or(
-            std::vector<float>(object_.tet_count(), std::numeric_limits<float>::quiet_NaN()));
-        rows.push_back(tet_stress.data());
-      }
-      for (std::size_t s = 0; s < series.size(); ++s) {
-        file.row(series[s].set, series[s].name, series[s].memory_type, p, rows[s]);
+      for (const PoseSeries& s : series) {
+        std::visit(
+            [&](const auto& values) {
+              using T = typename std::decay_t<decltype(values)>::value_type;
+              file.row(s.set, s.name,
+                       std::is_same_v<T, float> ? H5T_NATIVE_FLOAT : H5T_NATIVE_DOUBLE, p,
+                       values.data());
+            },
+            s.row(id, *t));
       }
     }
   }
@@ -355,21 +362,20 @@ class PairWriter {
     return out;
   }
 
-  struct PoseStates {
-    std::vector<double> tf, translation, rotation;
-  };
-  static PoseStates pose_states(const TrajectoryRecord& t) {
-    PoseStates s;
+  // Columns [first, first + count) of every row of each frame's hand poses (row-major 3x4
+  // [R | t]), then `last_row`: the tf matrices (0, 4, and 0 0 0 1), translations (3, 1) and
+  // rotations (0, 3).
+  static std::vector<double> pose_columns(const TrajectoryRecord& t, int first, int count,
+                                          std::initializer_list<double> last_row) {
+    std::vector<double> out;
     for (std::size_t k = 0; k + 11 < t.hand_poses.size(); k += 12) {
-      const double* m = &t.hand_poses[k];  // row-major 3x4 [R | t]
       for (int r = 0; r < 3; ++r) {
-        s.tf.insert(s.tf.end(), m + 4 * r, m + 4 * r + 4);
-        s.translation.push_back(m[4 * r + 3]);
-        s.rotation.insert(s.rotation.end(), m + 4 * r, m + 4 * r + 3);
+        const double* row = &t.hand_poses[k + 4 * static_cast<std::size_t>(r)];
+        out.insert(out.end(), row + first, row + first + count);
       }
-      s.tf.insert(s.tf.end(), {0.0, 0.0, 0.0, 1.0});
+      out.insert(out.end(), last_row);
     }
-    return s;
+    return out;
   }
 
   const DatasetReader& dataset_;

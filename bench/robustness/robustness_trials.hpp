@@ -33,11 +33,11 @@ std::vector<synth::Candidate> synthesize_candidates(const RobustnessSet& set, st
 // meshed as robustness_object_model says.
 trial::TrialObject make_object(const RobustnessSet& set, std::uint64_t seed);
 
-// One object and the set's gripper: the trial scene, built once, run for any candidates.
 // The parallel gripper (rigid jaws or a fin-ray of the set's model) a set of a parallel gripper
 // simulates, built once.
 const grippers::ParallelGripper& robustness_parallel_gripper(const RobustnessSet& set);
 
+// One object and the set's gripper: the trial scene, built once, run for any candidates.
 class RobustnessScene {
  public:
   // Throws std::invalid_argument (naming the object) for an unusable object.

@@ -21,8 +21,10 @@ std::unique_ptr<TrialScene> make_trial_scene(const TrialObject& object,
     return std::make_unique<HandTrialScene>(object, std::move(hands), std::string(gripper.name),
                                             parameters);
   }
-  return std::make_unique<ParallelTrialScene>(object, gripper.make_parallel(finger), parameters,
-                                              count);
+  // Named as users type it, as a hand is: the dataset's record takes the scene's name.
+  grippers::ParallelGripper parallel = gripper.make_parallel(finger);
+  parallel.name = std::string(gripper.name);
+  return std::make_unique<ParallelTrialScene>(object, parallel, parameters, count);
 }
 
 std::vector<TrialOutcome> run_trials(const TrialScene& scene,

@@ -20,7 +20,8 @@
 namespace grip::trial {
 
 // The scene of the registry row's gripper: `count` of them (1, or 2 for a bimanual trial: two
-// parallel grippers, or a right and a left hand), a meshed finger meshed as `finger` says.
+// parallel grippers, or a right and a left hand), a meshed finger meshed as `finger` says, named
+// as the row names it (the dataset's gripper record: "fin-ray", "leap-bimanual").
 // Throws std::invalid_argument (naming the object) for an unusable object or parameters.
 std::unique_ptr<TrialScene> make_trial_scene(const TrialObject& object,
                                              const grippers::GripperType& gripper, int count,

@@ -314,26 +314,27 @@ class ProtocolRunner {
     RecordedFrame f;
     f.object_vertices = as_floats(env.body_vertices(object));
     // Contact forces live on collision (surface) vertices; interior vertices carry none.
+    const solver::VertexContactForces forces = env.vertex_contact_forces();
+    const auto put = [&forces](int c, std::size_t row, std::vector<float>& normal,
+                               std::vector<float>& friction) {
+      for (int k = 0; k < 3; ++k) {
+        normal[3 * row + static_cast<std::size_t>(k)] = static_cast<float>(forces.normal(c, k));
+        friction[3 * row + static_cast<std::size_t>(k)] = static_cast<float>(forces.friction(c, k));
+      }
+    };
     f.contact_forces.assign(f.object_vertices.size(), 0.f);
     f.friction_forces.assign(f.object_vertices.size(), 0.f);
-    const solver::VertexContactForces forces = env.vertex_contact_forces();
     const solver::CollisionMesh& mesh = env.model().collision();
-    for (int c = 0; c < mesh.size(); ++c) {
-      if (mesh.vertex_body[c] != object) continue;
-      for (int k = 0; k < 3; ++k) {
-        f.contact_forces[3 * mesh.vertex_local[c] + k] = static_cast<float>(forces.normal(c, k));
-        f.friction_forces[3 * mesh.vertex_local[c] + k] = static_cast<float>(forces.friction(c, k));
-      }
+    for (int c = mesh.body_first_vertex[static_cast<std::size_t>(object)];
+         c < mesh.body_first_vertex[static_cast<std::size_t>(object) + 1]; ++c) {
+      put(c, static_cast<std::size_t>(mesh.vertex_local[c]), f.contact_forces, f.friction_forces);
     }
     f.gripper_vertices = as_floats(gripper_.surface_vertices(env));
     f.gripper_contact_forces.assign(f.gripper_vertices.size(), 0.f);
     f.gripper_friction_forces.assign(f.gripper_vertices.size(), 0.f);
     for (std::size_t v = 0; v < gripper_collision_.size(); ++v) {
-      const int c = gripper_collision_[v];
-      if (c < 0) continue;
-      for (int k = 0; k < 3; ++k) {
-        f.gripper_contact_forces[3 * v + k] = static_cast<float>(forces.normal(c, k));
-        f.gripper_friction_forces[3 * v + k] = static_cast<float>(forces.friction(c, k));
+      if (gripper_collision_[v] >= 0) {
+        put(gripper_collision_[v], v, f.gripper_contact_forces, f.gripper_friction_forces);
       }
     }
     f.object_pose = gripper_.object_pose(env);
