@@ -226,12 +226,7 @@ io::DatasetWriter writer_for(std::optional<io::DatasetWriter> resumed, const Far
                              const std::filesystem::path& dataset, const io::Provenance& provenance,
                              MPI_Comm comm) {
   if (resumed) {
-    if (resumed->layout().candidate_count != plan.candidates.size()) {
-      throw io::DatasetError(dataset.string() +
-                             ": the job now plans a different number of candidates than the "
-                             "dataset holds (was it made by another grip version?); start a new "
-                             "dataset instead of resuming");
-    }
+    resumed->check_plan(plan.dataset);
     return std::move(*resumed);
   }
   int rank = 0;

@@ -131,6 +131,11 @@ DatasetWriter DatasetWriter::resume(const std::filesystem::path& path, const Pro
   return writer;
 }
 
+void DatasetWriter::check_plan(const DatasetPlan& plan) const {
+  check_open();
+  agree(comm_, [&] { check_layout(file_, path_.string(), plan, layout_); });
+}
+
 std::vector<std::uint64_t> DatasetWriter::pending() const {
   std::vector<std::uint64_t> ids;
   for (std::uint64_t id = 0; id < done_.size(); ++id) {

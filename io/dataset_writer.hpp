@@ -39,6 +39,11 @@ class DatasetWriter {
   // rows that do not match their checksums are pending again (damaged() lists them).
   static DatasetWriter resume(const std::filesystem::path& path, const Provenance& provenance,
                               MPI_Comm comm);
+  // Collective, after resume(): throws the same DatasetError on every rank, changing nothing,
+  // when `plan` (the job planned again) has other objects, grippers or candidate slots than
+  // the dataset was created with. Same job text and seed promise the same plan only from the
+  // same grip; this holds a resumed run to it.
+  void check_plan(const DatasetPlan& plan) const;
 
   DatasetWriter(DatasetWriter&&) noexcept;
   DatasetWriter& operator=(DatasetWriter&&) noexcept;

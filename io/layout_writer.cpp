@@ -8,6 +8,7 @@
 #include "io/column.hpp"
 #include "io/column_values.hpp"
 #include "io/dataset_columns.hpp"
+#include "io/dataset_error.hpp"
 #include "io/hdf5.hpp"
 
 namespace grip::io {
@@ -220,7 +221,39 @@ void write_candidate_table(hid_t file, const DatasetLayout& layout, int rank, hi
   }
 }
 
-// ---- batch writes ---------------------------------------------------------------------------
+// The checksum creation wrote for `values` in `location`'s dataset `column`, against theirs;
+// false where they differ.
+bool stored_checksum_matches(hid_t location, const Column& column, const Values& values,
+                             const std::string& path) {
+  const h5::Handle dataset =
+      h5::dataset_handle(H5Dopen2(location, column.name, H5P_DEFAULT), "opening " + path);
+  std::size_t width = 1;
+  if (column.element == Element::kString) {
+    const h5::Handle type = h5::type_handle(H5Dget_type(dataset), "reading the type of " + path);
+    width = H5Tget_size(type);
+    if (width != string_width(std::get<std::vector<std::string>>(values))) return false;
+  }
+  if (H5Aexists(dataset, kChecksumAttribute) <= 0) {
+    throw DatasetError(path + " has no checksum attribute; the file is damaged");
+  }
+  return h5::read_uint_attribute(dataset, kChecksumAttribute) == whole_checksum(values, width);
+}
+
+template <typename Record>
+bool record_matches(hid_t group, Place place, const Record& record, const std::string& prefix,
+                    std::string& differing) {
+  for (const Column& column : dataset_columns()) {
+    if (column.place != place) continue;
+    Values values = empty_values(value_index(column.element));
+    column.access_to<Record>().get(record, values);
+    const std::string path = prefix + "/" + column.name;
+    if (!stored_checksum_matches(group, column, values, path)) {
+      differing = path;
+      return false;
+    }
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -238,6 +271,47 @@ void write_layout(hid_t file, const DatasetPlan& plan, const DatasetLayout& layo
     write_gripper(file, g, plan.grippers[g], rank, transfer);
   }
   write_candidate_table(file, layout, rank, transfer);
+}
+
+void check_layout(hid_t file, const std::string& name, const DatasetPlan& plan,
+                  const DatasetLayout& layout) {
+  const std::string advice =
+      "; nothing was changed. The grip that made the dataset plans this job otherwise (another "
+      "version, or one that meshed or synthesized differently): finish it with that grip, or "
+      "start a new dataset";
+  if (plan.objects.size() != layout.objects.size() ||
+      plan.grippers.size() != layout.grippers.size()) {
+    throw DatasetError(name + ": the job plans " + std::to_string(plan.objects.size()) +
+                       " objects and " + std::to_string(plan.grippers.size()) +
+                       " grippers, the dataset holds " + std::to_string(layout.objects.size()) +
+                       " and " + std::to_string(layout.grippers.size()) + advice);
+  }
+  std::string differing;
+  // Each record of `records` against its group (`group_of` its index), named `kind` in errors.
+  const auto check_records = [&](const auto& records, Place place, auto group_of,
+                                 const char* kind) {
+    for (std::uint32_t i = 0; i < records.size(); ++i) {
+      const std::string path = group_of(i);
+      const h5::Handle group =
+          h5::group_handle(H5Gopen2(file, path.c_str(), H5P_DEFAULT), name + ": opening " + path);
+      if (!record_matches(group, place, records[i], path, differing)) {
+        throw DatasetError(name + ": " + kind + " '" + records[i].name + "' (" + differing +
+                           ") is not the one the dataset holds" + advice);
+      }
+    }
+  };
+  check_records(plan.objects, Place::kObject, object_group, "object");
+  check_records(plan.grippers, Place::kGripper, gripper_group, "gripper");
+  const DatasetLayout planned = DatasetLayout::from_plan(plan);
+  const h5::Handle table =
+      h5::group_handle(H5Gopen2(file, "/candidates", H5P_DEFAULT), name + ": opening /candidates");
+  if (planned.candidate_count != layout.candidate_count ||
+      !record_matches(table, Place::kPlan, planned, "/candidates", differing)) {
+    throw DatasetError(
+        name + ": the job plans other candidates (" + std::to_string(planned.candidate_count) +
+        ", their slots in " + (differing.empty() ? std::string("/candidates") : differing) +
+        ") than the dataset holds (" + std::to_string(layout.candidate_count) + ")" + advice);
+  }
 }
 
 }  // namespace grip::io

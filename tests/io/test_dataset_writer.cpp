@@ -314,6 +314,44 @@ TEST(DatasetWriter, RefusesToResumeAnotherJobsDataset) {
   expect_refused(path, synthetic_provenance(kJob, kSeed + 1), "another job");
 }
 
+// Same job and seed but another plan (a grip that meshed an object otherwise): the resumed
+// writer refuses it on every rank and the dataset and journal keep every byte.
+TEST(DatasetWriter, ResumedWriterRefusesAnotherPlan) {
+  const auto folder = testing::shared_scratch(MPI_COMM_WORLD, "other_plan");
+  const auto path = folder / "data.h5";
+  make_partial_dataset(path);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const std::string before = file_bytes(path);
+  const std::string journal_before = file_bytes(Journal::path_for(path));
+  const Provenance provenance = synthetic_provenance(kJob, kSeed);
+  DatasetPlan moved_vertex = synthetic_plan(10);
+  moved_vertex.objects[0].vertices[4] += 1e-9;
+  DatasetPlan moved_finger = synthetic_plan(10);
+  moved_finger.grippers[0].vertices[0] += 1e-9;
+  DatasetPlan other_slots = synthetic_plan(10);
+  other_slots.candidates[3].frames = !other_slots.candidates[3].frames;
+  const std::vector<std::pair<const DatasetPlan*, std::string>> refusals = {
+      {&moved_vertex, "object '" + moved_vertex.objects[0].name + "' (/objects/000000/vertices)"},
+      {&moved_finger, "gripper '" + moved_finger.grippers[0].name + "' (/grippers/000/vertices)"},
+      {&other_slots, "other candidates (10, their slots in /candidates/frame_slot)"}};
+  {
+    DatasetWriter writer = DatasetWriter::resume(path, provenance, MPI_COMM_WORLD);
+    writer.check_plan(synthetic_plan(10));  // the plan it was made with
+    for (const auto& [plan, message] : refusals) {
+      try {
+        writer.check_plan(*plan);
+        ADD_FAILURE() << "not refused: " << message;
+      } catch (const DatasetError& e) {
+        EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+      }
+    }
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  EXPECT_TRUE(file_bytes(path) == before);
+  EXPECT_TRUE(file_bytes(Journal::path_for(path)) == journal_before);
+}
+
 TEST(DatasetWriter, RefusesToResumeATruncatedDataset) {
   const auto folder = testing::shared_scratch(MPI_COMM_WORLD, "truncated");
   const auto path = folder / "data.h5";
