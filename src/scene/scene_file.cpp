@@ -9,9 +9,11 @@
 #include "solver/model/model.hpp"
 #include "src/config/config.hpp"
 #include "src/config/parameter_table.hpp"
+#include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/mesh_io.hpp"
 #include "src/geometry/mesh_measures.hpp"
 #include "src/geometry/primitives.hpp"
+#include "src/geometry/tet_mesh_io.hpp"
 #include "src/geometry/tetrahedralize.hpp"
 #include "src/scene/primitives.hpp"
 #include "src/scene/sim_parameters.hpp"
@@ -74,11 +76,52 @@ void check_tet_count(const Table& body, double resolution, double tets, double m
                               " allowed; use a larger resolution (a coarser mesh)");
 }
 
+// A body from a tet mesh file (another tool's volume mesh), used as it is: an FEM body's tets,
+// or a rigid body's boundary.
+void read_tet_mesh_shape(const Table& body, const std::filesystem::path& scene_dir, double max_tets,
+                         bool soft, solver::BodyDescription& out) {
+  if (body.has("resolution")) {
+    body.fail("resolution",
+              "does not apply to a tet mesh file, which is simulated as it is; "
+              "remove it (or give a surface mesh to be meshed at a resolution)");
+  }
+  std::filesystem::path file = body.string("file");
+  if (file.is_relative()) file = scene_dir / file;
+  const double scale = body.number_or("scale", 1.0);
+  if (!(scale > 0)) body.fail("scale", "must be positive");
+  geometry::TetMesh tets;
+  try {
+    tets = geometry::read_tet_mesh(file);
+    tets.vertices *= scale;
+    // A scene's body may be larger than a finger; 10 m is where grip asset prepare's unit
+    // warning starts too.
+    geometry::check_soft_body_mesh(tets, file.string(), 10.0);
+  } catch (const std::exception& e) {
+    body.fail("file", std::string("cannot be used: ") + e.what());
+  }
+  if (static_cast<double>(tets.tets.rows()) > max_tets) {
+    body.fail("file", "holds " + std::to_string(tets.tets.rows()) + " tets, more than the " +
+                          number_text("%.0f", max_tets) +
+                          " allowed (grip simulate --max-tets moves the limit)");
+  }
+  if (soft) {
+    set_fem_mesh(out, tets);
+    return;
+  }
+  const geometry::SurfaceMesh surface = geometry::boundary_surface(tets);
+  out.vertices = surface.vertices;
+  out.triangles = surface.triangles;
+}
+
 // The body's surface (and tets, for FEM) from its shape keys.
 void read_shape(const Table& body, const std::filesystem::path& scene_dir, double max_tets,
                 solver::BodyDescription& out) {
   const std::string shape = body.choice("shape", {"box", "sphere", "cylinder", "mesh"});
   const bool soft = solver::body_type_info(out.type).soft;
+  if (shape == "mesh" && geometry::is_tet_mesh_file(body.string("file"))) {
+    read_tet_mesh_shape(body, scene_dir, max_tets, soft, out);
+    return;
+  }
   // A sphere of n segments has about n^2 / 2 vertices: 1,024 makes half a million.
   const int segments = body.count_or("segments", 24, 6, 1024);
   double resolution = 0.0;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "src/config/config.hpp"
+#include "src/geometry/mesh_io.hpp"
 #include "src/scene/scene_file.hpp"
 #include "src/scene/scene_run.hpp"
 #include "src/scene/sim_parameters.hpp"
@@ -22,19 +23,16 @@ std::filesystem::path write_scene(const std::string& name, const std::string& te
   return path;
 }
 
-const std::string kDrop = R"(
-[sim]
-dt = 0.01
-duration = 0.2
-kappa = "auto"
-
+const std::string kGround = R"(
 [[body]]
 name = "ground"
 type = "kinematic"
 shape = "box"
 size = [1, 1, 0.02]
 position = [0, 0, -0.01]
+)";
 
+const std::string kDrop = "\n[sim]\ndt = 0.01\nduration = 0.2\nkappa = \"auto\"\n" + kGround + R"(
 [[body]]
 name = "ball"
 type = "affine"
@@ -150,6 +148,54 @@ std::string error_of(const std::string& text) {
   }
   ADD_FAILURE() << "no error for:\n" << text;
   return {};
+}
+
+// A tet mesh file from another tool: an FEM body's tets as the file has them (here a 2 cm
+// cube cut into five tets, written as Gmsh 2.2 with every tet flipped), or a rigid body's
+// boundary; a mesh that cannot be simulated is refused naming the key and the file.
+TEST(SceneFile, ABodyFromATetMeshFileFallsOntoTheGround) {
+  geometry::TetMesh cube;
+  cube.vertices.resize(8, 3);
+  for (int i = 0; i < 8; ++i) {
+    cube.vertices.row(i) << 0.02 * (i & 1), 0.02 * ((i >> 1) & 1), 0.02 * ((i >> 2) & 1);
+  }
+  cube.tets.resize(5, 4);
+  cube.tets << 2, 1, 4, 7, 1, 0, 2, 4, 2, 3, 1, 7, 4, 5, 7, 1, 7, 6, 4, 2;  // all negative
+  const auto folder = std::filesystem::path(write_scene("grip_scene_tets.toml", "")).parent_path();
+  const std::string mesh_name = std::to_string(::getpid()) + "_cube.msh";
+  geometry::write_msh(folder / mesh_name, cube);
+  const std::string scene = "[sim]\ndt = 0.01\nduration = 0.1\n" + kGround + R"(
+[[body]]
+name = "cube"
+type = "fem"
+shape = "mesh"
+file = ")" + mesh_name + R"("
+position = [0, 0, 0.005]
+youngs = 1e5
+)";
+  const std::string path = write_scene("grip_scene_tets.toml", scene);
+  const SceneFile file = load_scene_file(path);
+  ASSERT_EQ(file.scene.bodies[1].tets.rows(), 5);
+  const BatchReport batch = run_scenes({file}, {path}, false, 1);
+  EXPECT_TRUE(batch.scenes[0].ok) << batch.scenes[0].failure;
+  EXPECT_TRUE(batch.scenes[0].intersection_free);
+  EXPECT_GT(batch.scenes[0].min_volume_ratio, 0.0);
+
+  std::string rigid = scene;
+  rigid.replace(rigid.find("type = \"fem\""), 12, "type = \"affine\"");
+  rigid.replace(rigid.find("youngs = 1e5"), 12, "density = 500");
+  const SceneFile affine = load_scene_file(write_scene("grip_scene_tets.toml", rigid));
+  EXPECT_EQ(affine.scene.bodies[1].triangles.rows(), 12);  // the cube's six faces, halved
+
+  EXPECT_NE(error_of(scene + "resolution = 0.01\n")
+                .find("key 'body[1].resolution' does not "
+                      "apply to a tet mesh file"),
+            std::string::npos);
+  cube.tets.row(0) << 1, 2, 4, 7;  // one tet back to positive: a mix
+  geometry::write_msh(folder / mesh_name, cube);
+  const std::string mixed = error_of(scene);
+  EXPECT_NE(mixed.find("key 'body[1].file' cannot be used"), std::string::npos) << mixed;
+  EXPECT_NE(mixed.find("1 of 5 tets are inverted"), std::string::npos) << mixed;
 }
 
 TEST(SceneFile, MistakesAreOneLineErrorsNamingFileLineAndKey) {
