@@ -105,9 +105,9 @@ class SceneCache {
     }
     if (scenes_.size() == kKept) scenes_.erase(scenes_.begin());
     const GripperSetting& setting = job_.grippers[gripper];
-    scenes_.emplace_back(key, trial::make_trial_scene(trial_object(plan_.dataset.objects[object]),
-                                                      grippers::gripper_type(setting.kind),
-                                                      setting.bimanual ? 2 : 1, job_.trial));
+    scenes_.emplace_back(
+        key, trial::make_trial_scene(trial_object(plan_.dataset.objects[object]), setting.type,
+                                     setting.bimanual ? 2 : 1, job_.trial));
     return *scenes_.back().second;
   }
 
@@ -142,8 +142,7 @@ std::string trial_failure(int rank, const WorkUnit& unit, const FarmPlan& plan, 
                           const char* what) {
   return "rank " + std::to_string(rank) + ": the trials of candidates " +
          std::to_string(unit.ids.front()) + " to " + std::to_string(unit.ids.back()) + " (" +
-         plan.dataset.objects[unit.object].name + " with " +
-         std::string(grippers::gripper_type(job.grippers[unit.gripper].kind).name) +
+         plan.dataset.objects[unit.object].name + " with " + job.grippers[unit.gripper].type.name +
          (job.grippers[unit.gripper].bimanual ? ", bimanual" : "") + ") failed: " + what +
          "; the results committed so far are kept (grip farm --resume continues)";
 }

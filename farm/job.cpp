@@ -13,6 +13,7 @@
 
 #include "src/config/config.hpp"
 #include "src/config/parameter_table.hpp"
+#include "src/grippers/gripper_description.hpp"
 #include "src/grippers/number_text.hpp"
 #include "src/objects/object_library.hpp"
 #include "src/scene/sim_parameters.hpp"
@@ -132,19 +133,38 @@ ObjectGroup read_object_group(const Table& t, const std::filesystem::path& job_d
   return group;
 }
 
-GripperSetting read_gripper(const Table& t) {
-  t.allow({"name", "bimanual", "candidates"});
+GripperSetting read_gripper(const Table& t, const std::filesystem::path& job_dir) {
+  t.allow({"name", "description", "bimanual", "candidates"});
   GripperSetting setting;
-  const std::string name = t.string("name");
-  const grippers::GripperType* type = grippers::find_gripper_type(name);
-  if (!type) {
-    std::string names;
-    for (const std::string& known : grippers::gripper_names()) {
-      names += (names.empty() ? "\"" : ", \"") + known + "\"";
-    }
-    t.fail("name", "is \"" + name + "\" but must be one of " + names);
+  if (t.has("name") == t.has("description")) {
+    t.fail(t.has("name") ? "description" : "name",
+           "a gripper is a built-in one's name or a description file, one of them");
   }
-  setting.kind = type->kind;
+  if (t.has("name")) {
+    const std::string name = t.string("name");
+    const grippers::GripperType* type = grippers::find_gripper_type(name);
+    if (!type) {
+      std::string names;
+      for (const std::string& known : grippers::gripper_names()) {
+        names += (names.empty() ? "\"" : ", \"") + known + "\"";
+      }
+      t.fail("name", "is \"" + name + "\" but must be one of " + names +
+                         " (or give a soft gripper's description file as description)");
+    }
+    setting.type = *type;
+  } else {
+    const std::filesystem::path file = job_dir / t.string("description");
+    if (!grippers::is_gripper_description(file)) {
+      t.fail("description", "names '" + file.string() +
+                                "', not a gripper description file (*.toml; docs/assets.md)");
+    }
+    if (!std::filesystem::is_regular_file(file)) {
+      t.fail("description", "names '" + file.string() +
+                                "', which does not exist; paths are relative to the job file's "
+                                "folder");
+    }
+    setting.type = grippers::resolve_gripper(file.string());
+  }
   setting.bimanual = t.boolean_or("bimanual", false);
   setting.candidates = positive_integer(t, "candidates", setting.candidates);
   return setting;
@@ -152,19 +172,21 @@ GripperSetting read_gripper(const Table& t) {
 
 // A setting (gripper and bimanual) given twice would be two gripper records of the same
 // grippers whose candidates differ only by their synthesis stream: refused on the second entry.
+// Grippers are told apart by name, which the dataset records.
 void check_distinct_settings(const std::vector<Table>& tables,
                              const std::vector<GripperSetting>& settings) {
   for (std::size_t b = 1; b < settings.size(); ++b) {
     for (std::size_t a = 0; a < b; ++a) {
-      if (settings[a].kind != settings[b].kind || settings[a].bimanual != settings[b].bimanual) {
+      if (settings[a].type.name != settings[b].type.name ||
+          settings[a].bimanual != settings[b].bimanual) {
         continue;
       }
       const std::string which = std::string(settings[b].bimanual ? "bimanual " : "unimanual ") +
-                                "'" + std::string(grippers::gripper_type(settings[b].kind).name) +
-                                "'";
-      tables[b].fail(tables[b].has("bimanual") ? "bimanual" : "name",
+                                "'" + settings[b].type.name + "'";
+      const std::string key = tables[b].has("name") ? "name" : "description";
+      tables[b].fail(tables[b].has("bimanual") ? "bimanual" : key,
                      "repeats the " + which + " setting of the entry at " +
-                         tables[a].location("name") +
+                         tables[a].location(tables[a].has("name") ? "name" : "description") +
                          "; give each setting once and raise its candidates instead");
     }
   }
@@ -323,9 +345,8 @@ void check_candidate_count(const Job& job, const Table& root,
   for (std::size_t g = 0; g < job.grippers.size(); ++g) {
     const GripperSetting& setting = job.grippers[g];
     per_object += setting.candidates;
-    cpu_seconds += objects * setting.candidates *
-                   grippers::gripper_type(setting.kind).trial_cpu_seconds *
-                   (setting.bimanual ? 2 : 1);
+    cpu_seconds +=
+        objects * setting.candidates * setting.type.trial_cpu_seconds * (setting.bimanual ? 2 : 1);
     if (setting.candidates > job.grippers[largest_gripper].candidates) largest_gripper = g;
   }
   char message[512];
@@ -391,7 +412,9 @@ Job parse_job(std::string text, const std::filesystem::path& file) {
     job.objects.push_back(read_object_group(group, job_dir));
   if (job.objects.empty()) root.fail("objects", "the job needs at least one [[objects]] entry");
   const std::vector<Table> gripper_tables = root.tables("grippers");
-  for (const Table& gripper : gripper_tables) job.grippers.push_back(read_gripper(gripper));
+  for (const Table& gripper : gripper_tables) {
+    job.grippers.push_back(read_gripper(gripper, job_dir));
+  }
   check_distinct_settings(gripper_tables, job.grippers);
   if (job.grippers.empty()) root.fail("grippers", "the job needs at least one [[grippers]] entry");
 

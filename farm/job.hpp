@@ -43,7 +43,8 @@ struct ObjectGroup {
 
 // One [[grippers]] entry.
 struct GripperSetting {
-  grippers::GripperKind kind = grippers::GripperKind::kParallelJaw;
+  // A built-in gripper ([[grippers]] name) or one read from its description file (description).
+  grippers::GripperType type = grippers::gripper_type(grippers::GripperKind::kParallelJaw);
   bool bimanual = false;  // two grippers of the kind (a hand: a right and a left one)
   int candidates = 16;    // synthesized per object
 };

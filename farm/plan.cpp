@@ -18,14 +18,13 @@ std::vector<synth::Candidate> synthesize_for(const Job& job, const FarmObject& o
   const synth::PreparedObject prepared(trial_object(record).surface);
   const synth::SynthesisParams params = synth::synthesis_params(job.synthesis, job.trial.sim.d_hat);
   synth::SynthesisResult result = synth::synthesize(
-      prepared, gripper.kind, gripper.bimanual, params, object.seed ^ stream, gripper.candidates);
+      prepared, gripper.type, gripper.bimanual, params, object.seed ^ stream, gripper.candidates);
   if (static_cast<int>(result.candidates.size()) < gripper.candidates) {
     spdlog::warn(
         "{} x {}{}: {} of {} candidates after {} attempts (the object may not fit the "
         "gripper)",
-        object.name, grippers::gripper_type(gripper.kind).name,
-        gripper.bimanual ? " (bimanual)" : "", result.candidates.size(), gripper.candidates,
-        result.attempts);
+        object.name, gripper.type.name, gripper.bimanual ? " (bimanual)" : "",
+        result.candidates.size(), gripper.candidates, result.attempts);
   }
   return std::move(result.candidates);
 }
@@ -107,9 +106,9 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads, LiveProgress& pro
   // object's scene: a gripper's record does not depend on the object).
   const trial::TrialObject first = trial_object(plan.dataset.objects.front());
   for (const GripperSetting& gripper : job.grippers) {
-    io::GripperRecord record = trial::make_trial_scene(first, grippers::gripper_type(gripper.kind),
-                                                       gripper.bimanual ? 2 : 1, job.trial)
-                                   ->gripper_record();
+    io::GripperRecord record =
+        trial::make_trial_scene(first, gripper.type, gripper.bimanual ? 2 : 1, job.trial)
+            ->gripper_record();
     plan.dataset.grippers.push_back(std::move(record));
   }
   plan.dataset.closing_frames = static_cast<std::uint32_t>(job.trial.closing_frames);

@@ -50,7 +50,7 @@ void write_whole_checksum(hid_t dataset, const Values& values, std::size_t strin
                       std::uint64_t{whole_checksum(values, string_width)});
 }
 
-void verify_whole_checksum(hid_t dataset, const std::string& path, const Values& values) {
+WholeChecksums whole_checksums(hid_t dataset, const std::string& path, const Values& values) {
   std::size_t width = 1;
   if (std::holds_alternative<std::vector<std::string>>(values)) {
     const h5::Handle type = h5::type_handle(H5Dget_type(dataset), "reading the type of " + path);
@@ -59,12 +59,15 @@ void verify_whole_checksum(hid_t dataset, const std::string& path, const Values&
   if (H5Aexists(dataset, kChecksumAttribute) <= 0) {
     throw DatasetError(path + " has no checksum attribute; the file is damaged");
   }
-  const std::uint64_t stored = h5::read_uint_attribute(dataset, kChecksumAttribute);
-  const std::uint32_t computed = whole_checksum(values, width);
-  if (stored != computed) {
+  return {h5::read_uint_attribute(dataset, kChecksumAttribute), whole_checksum(values, width)};
+}
+
+void verify_whole_checksum(hid_t dataset, const std::string& path, const Values& values) {
+  const WholeChecksums checksums = whole_checksums(dataset, path, values);
+  if (!checksums.match()) {
     throw DatasetError(path + " does not match the checksum written when the dataset was created " +
-                       "(stored " + std::to_string(stored) + ", computed " +
-                       std::to_string(computed) + "); the file is damaged");
+                       "(stored " + std::to_string(checksums.stored) + ", computed " +
+                       std::to_string(checksums.computed) + "); the file is damaged");
   }
 }
 

@@ -28,6 +28,15 @@ std::uint32_t whole_checksum(const Values& values, std::size_t string_width);
 // parallel HDF5: every rank passes the same values).
 void write_whole_checksum(hid_t dataset, const Values& values, std::size_t string_width);
 
+// The checksum attribute written with `dataset` when it was created, and the checksum of
+// `values` in the dataset's string width; throws DatasetError when the attribute is missing.
+struct WholeChecksums {
+  std::uint64_t stored = 0;
+  std::uint32_t computed = 0;
+  bool match() const { return stored == computed; }
+};
+WholeChecksums whole_checksums(hid_t dataset, const std::string& path, const Values& values);
+
 // Throws DatasetError "<path> does not match ..." when `values`, read whole from `dataset`,
 // do not match its checksum attribute.
 void verify_whole_checksum(hid_t dataset, const std::string& path, const Values& values);

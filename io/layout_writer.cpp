@@ -227,16 +227,14 @@ bool stored_checksum_matches(hid_t location, const Column& column, const Values&
                              const std::string& path) {
   const h5::Handle dataset =
       h5::dataset_handle(H5Dopen2(location, column.name, H5P_DEFAULT), "opening " + path);
-  std::size_t width = 1;
+  // Strings longer than the stored width would be cut to it, and could match.
   if (column.element == Element::kString) {
     const h5::Handle type = h5::type_handle(H5Dget_type(dataset), "reading the type of " + path);
-    width = H5Tget_size(type);
-    if (width != string_width(std::get<std::vector<std::string>>(values))) return false;
+    if (H5Tget_size(type) != string_width(std::get<std::vector<std::string>>(values))) {
+      return false;
+    }
   }
-  if (H5Aexists(dataset, kChecksumAttribute) <= 0) {
-    throw DatasetError(path + " has no checksum attribute; the file is damaged");
-  }
-  return h5::read_uint_attribute(dataset, kChecksumAttribute) == whole_checksum(values, width);
+  return whole_checksums(dataset, path, values).match();
 }
 
 template <typename Record>

@@ -12,6 +12,7 @@
 
 #include "app/cli/command_line.hpp"
 #include "app/commands/commands.hpp"
+#include "app/commands/gripper_option.hpp"
 #include "app/commands/parameter_options.hpp"
 #include "src/grippers/gripper_registry.hpp"
 #include "src/scene/sim_parameters.hpp"
@@ -26,7 +27,7 @@ namespace {
 struct SynthArgs {
   std::string object;   // an object category name or a surface mesh file
   double scale = 1.0;   // multiplies a mesh file's coordinates
-  std::string gripper;  // a name of the gripper registry
+  std::string gripper;  // a name of the gripper registry or a description file
   bool bimanual = false;
   int count = 0;
   std::uint64_t seed = 0;
@@ -42,7 +43,7 @@ int synth(const SynthArgs& args) {
     throw std::invalid_argument("--out: the folder '" + folder.string() +
                                 "' does not exist; create it first");
   }
-  const grippers::GripperKind gripper = grippers::gripper_type(args.gripper).kind;
+  const grippers::GripperType gripper = grippers::resolve_gripper(args.gripper);
   const synth::PreparedObject object(synth::load_object(args.object, args.seed, args.scale));
   spdlog::info("object '{}': {} vertices, {} triangles", args.object,
                object.surface().vertices.rows(), object.surface().triangles.rows());
@@ -52,7 +53,7 @@ int synth(const SynthArgs& args) {
       synth::synthesize(object, gripper, args.bimanual, params, args.seed, args.count);
   const std::string file_hash = synth::object_file_hash(args.object);  // empty: a category
   const synth::CandidateObject source{args.object, args.seed, args.scale, file_hash};
-  synth::write_candidates(args.out, source, result.candidates);
+  synth::write_candidates(args.out, source, gripper, result.candidates);
 
   for (const auto& [reason, n] : result.rejections) {
     spdlog::info("rejected {}: {}", n, reason);
@@ -99,9 +100,7 @@ void declare_synth(cli::Command& root) {
   synth.option("--scale", args->scale, "Multiply a mesh file's coordinates by this")
       .show_default()
       .check(cli::Check::positive());
-  synth.option("--gripper", args->gripper, "Gripper: " + grippers::gripper_name_list())
-      .required()
-      .check(cli::Check::one_of(grippers::gripper_names()));
+  synth.option("--gripper", args->gripper, gripper_option_help()).required().check(gripper_check());
   synth.flag("--bimanual", args->bimanual, "Two hands: compose right and left candidates");
   synth.option("--count", args->count, "Number of candidates")
       .required()

@@ -16,6 +16,7 @@
 
 #include "app/cli/command_line.hpp"
 #include "app/commands/commands.hpp"
+#include "app/commands/gripper_option.hpp"
 #include "app/commands/parameter_options.hpp"
 #include "solver/batch/batch.hpp"
 #include "src/geometry/boundary_surface.hpp"
@@ -50,7 +51,7 @@ struct TrialArgs {
   double youngs = 1e6;                               // Pa, soft objects
   double poisson = 0.4;                              // soft objects
   double friction = 3.5;               // the object's mu (a fin-ray pad's pairs use the pad's 3.5)
-  std::optional<std::string> gripper;  // a name of the gripper registry
+  std::optional<std::string> gripper;  // a name of the gripper registry or a description file
   std::string candidates;              // candidate file (docs/synthesis.md)
   bool bimanual = false;               // the file's candidates are bimanual (two grippers)
   std::string index = "0";             // one candidate "I" or a range "A-B", run as one batch
@@ -162,7 +163,8 @@ int run_and_report(const TrialArgs& args, const trial::TrialScene& scene,
   }
   report.object = *args.object;
   report.gripper = *args.gripper;
-  if (grippers::gripper_type(*args.gripper).meshed_finger) report.fin_ray = fin_ray_options(args);
+  const grippers::GripperType* type = grippers::find_gripper_type(*args.gripper);
+  if (type && type->meshed_finger) report.fin_ray = fin_ray_options(args);
   report.soft = args.soft;
   report.grippers = scene.gripper_count();
   report.threads = solver::Batch(args.threads).threads();
@@ -203,13 +205,28 @@ TrialArgs with_file_object(const TrialArgs& given, const synth::CandidateFile& f
                                 "' changed since the candidates were synthesized on it; "
                                 "synthesize again");
   }
-  // Called with at least one candidate: their gripper is the file's.
-  const std::string file_gripper(grippers::gripper_type(file.candidates.front().gripper).name);
-  if (args.gripper && *args.gripper != file_gripper) {
-    mismatch("--gripper", file_gripper, *args.gripper);
+  // A described gripper is known by its file, which the command line must give.
+  if (!args.gripper && !grippers::find_gripper_type(file.gripper)) {
+    throw std::invalid_argument(given.candidates +
+                                ": the candidates were synthesized with the "
+                                "described gripper '" +
+                                file.gripper + "'; pass --gripper with its description file");
   }
-  if (!args.gripper) args.gripper = file_gripper;
+  if (!args.gripper) args.gripper = file.gripper;
   return args;
+}
+
+// The gripper --gripper names, which must be the candidate file's.
+grippers::GripperType file_gripper(const TrialArgs& args, const synth::CandidateFile& file) {
+  grippers::GripperType type = grippers::resolve_gripper(*args.gripper);
+  if (type.name != file.gripper) {
+    throw std::invalid_argument(args.candidates +
+                                ": the candidates were synthesized with "
+                                "--gripper " +
+                                file.gripper + ", not " + type.name + " (" + *args.gripper +
+                                "); leave --gripper out or synthesize again");
+  }
+  return type;
 }
 
 // The candidates --index names, checked against the gripper and --bimanual (their record ids
@@ -240,11 +257,11 @@ std::vector<synth::Candidate> chosen_candidates(const TrialArgs& args,
       return hand.joints.size() == type.joints;
     });
     if (c.gripper != type.kind || c.hands.size() != hands || !joints_fit) {
-      throw std::invalid_argument(
-          args.candidates + ": candidate " + std::to_string(i) + " is for '" +
-          std::string(grippers::gripper_type(c.gripper).name) + "' with " +
-          std::to_string(c.hands.size()) + " hand(s), not " + (hands == 1 ? "one" : "two") + " '" +
-          *args.gripper + "'; synthesize with the same --gripper");
+      throw std::invalid_argument(args.candidates + ": candidate " + std::to_string(i) +
+                                  " is for '" + file.gripper + "' with " +
+                                  std::to_string(c.hands.size()) + " hand(s), not " +
+                                  (hands == 1 ? "one" : "two") + " '" + *args.gripper +
+                                  "'; synthesize with the same --gripper");
     }
     chosen.push_back(c);
     ids.push_back(i);
@@ -287,7 +304,7 @@ int trial(const TrialArgs& given) {
   const synth::CandidateFile file = synth::read_candidates(given.candidates);
   if (file.candidates.empty()) throw std::invalid_argument(given.candidates + ": no candidates");
   const TrialArgs args = with_file_object(given, file);
-  const grippers::GripperType& type = grippers::gripper_type(*args.gripper);
+  const grippers::GripperType type = file_gripper(args, file);
   if ((args.finger_layers || args.finger_edge) && !type.meshed_finger) {
     throw std::invalid_argument(
         std::string(args.finger_layers ? "--finger-layers" : "--finger-edge") +
@@ -364,9 +381,8 @@ void declare_trial(cli::Command& root) {
   declare_object_options(trial, *args);
   trial
       .option("--gripper", args->gripper,
-              "Gripper: " + grippers::gripper_name_list() +
-                  " (default: the candidate file's; must agree)")
-      .check(cli::Check::one_of(grippers::gripper_names()));
+              gripper_option_help() + " (default: the candidate file's; must agree)")
+      .check(gripper_check());
   trial.option("--candidates", args->candidates, "Candidate file from grip synth").required();
   trial.flag("--bimanual", args->bimanual,
              "The candidates are bimanual (grip synth --bimanual): two grippers per trial");

@@ -137,7 +137,9 @@ const std::vector<synth::Candidate>& hand_grasps(const geometry::SurfaceMesh& cy
     synth::SynthesisParams params;
     params.hand.steps = 300;
     const synth::PreparedObject object(cylinder);
-    return synth::synthesize(object, grippers::GripperKind::kLeap, false, params, 1, 2).candidates;
+    return synth::synthesize(object, grippers::gripper_type(grippers::GripperKind::kLeap), false,
+                             params, 1, 2)
+        .candidates;
   }();
   return grasps;
 }

@@ -114,7 +114,7 @@ std::string robustness_object_model(bool soft, bool production_models, double in
 std::vector<synth::Candidate> synthesize_candidates(const RobustnessSet& set, std::uint64_t seed,
                                                     int count) {
   const synth::PreparedObject prepared(synth::load_object(set.category, seed));
-  return synth::synthesize(prepared, grippers::gripper_type(set.gripper).kind,
+  return synth::synthesize(prepared, grippers::gripper_type(set.gripper),
                            /*bimanual=*/false, synth::SynthesisParams{}, seed, count)
       .candidates;
 }

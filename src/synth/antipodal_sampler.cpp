@@ -61,9 +61,9 @@ SynthesisResult sample_antipodal_grasps(const PreparedObject& object,
                                         const grippers::ParallelGripper& gripper,
                                         grippers::GripperKind kind, const AntipodalParams& params,
                                         std::uint64_t seed, int count) {
-  const grippers::GripperType& type = grippers::gripper_type(kind);
-  if (type.is_hand()) {
-    throw std::invalid_argument("sample_antipodal_grasps: the " + std::string(type.name) +
+  if (kind != grippers::GripperKind::kDescribed && grippers::gripper_type(kind).is_hand()) {
+    throw std::invalid_argument("sample_antipodal_grasps: the " +
+                                grippers::gripper_type(kind).name +
                                 " hand is not a parallel gripper");
   }
   const geometry::SurfaceSamples cloud = geometry::sample_surface(

@@ -103,6 +103,13 @@ class LineReader {
     return word;
   }
 
+  // The line's next word, or "" at its end.
+  std::string word_or_end() {
+    std::string word;
+    tokens_ >> word;
+    return word;
+  }
+
   void expect(const std::string& keyword) {
     if (word(keyword) != keyword) fail("expected '" + keyword + "'");
   }
@@ -137,9 +144,8 @@ class LineReader {
 }  // namespace
 
 void write_candidates(const std::filesystem::path& file, const CandidateObject& object,
+                      const grippers::GripperType& gripper,
                       const std::vector<Candidate>& candidates) {
-  const grippers::GripperType& gripper = grippers::gripper_type(
-      candidates.empty() ? grippers::GripperKind::kFinRay : candidates[0].gripper);
   const std::size_t hands = candidates.empty() ? 1 : candidates[0].hands.size();
   const std::vector<EnergyTerm> first_terms =
       candidates.empty() ? std::vector<EnergyTerm>{} : candidates[0].energies;
@@ -161,7 +167,8 @@ void write_candidates(const std::filesystem::path& file, const CandidateObject& 
   out << "object seed " << object.seed << " scale " << number(object.scale) << " hash "
       << (object.content_hash.empty() ? "-" : object.content_hash) << " spec " << object.spec
       << '\n';
-  out << "gripper " << gripper.name << '\n';
+  out << "gripper " << gripper.name
+      << (gripper.kind == grippers::GripperKind::kDescribed ? " described" : "") << '\n';
   out << "hands " << hands << '\n';
   out << "joints " << gripper.joints << '\n';
   out << "energies " << first_terms.size();
@@ -235,22 +242,31 @@ CandidateFile read_candidates(const std::filesystem::path& file) {
   if (result.object.content_hash == "-") result.object.content_hash.clear();
   reader.expect("spec");
   result.object.spec = reader.rest("object spec");
+  // A described gripper's name carries the word "described": its type is its file's, which
+  // the trial is given (grip trial --gripper FILE.toml); a built-in name is checked here.
   reader.next("gripper");
+  result.gripper = reader.word("gripper name");
+  const std::string marker = reader.word_or_end();
   const grippers::GripperType* gripper = nullptr;
-  try {
-    gripper = &grippers::gripper_type(reader.word("gripper name"));
-  } catch (const std::invalid_argument& e) {
-    reader.fail(e.what());
+  if (marker.empty()) {
+    try {
+      gripper = &grippers::gripper_type(result.gripper);
+    } catch (const std::invalid_argument& e) {
+      reader.fail(e.what());
+    }
+  } else if (marker != "described") {
+    reader.fail("unexpected '" + marker + "' after the gripper's name (only 'described' may be)");
   }
   reader.end();
+  const grippers::GripperKind kind = gripper ? gripper->kind : grippers::GripperKind::kDescribed;
+  const int joints = gripper ? gripper->joints : 1;  // a described gripper is a parallel one
   reader.next("hands");
   const int hands = reader.count("hand count");
   if (hands < 1 || hands > 2) reader.fail("hands must be 1 or 2");
   reader.end();
   reader.next("joints");
-  if (reader.count("joint count") != gripper->joints) {
-    reader.fail("joints must be " + std::to_string(gripper->joints) + " for " +
-                std::string(gripper->name));
+  if (reader.count("joint count") != joints) {
+    reader.fail("joints must be " + std::to_string(joints) + " for " + result.gripper);
   }
   reader.end();
   reader.next("energies");
@@ -269,7 +285,7 @@ CandidateFile read_candidates(const std::filesystem::path& file) {
   std::vector<Candidate>& candidates = result.candidates;
   for (int i = 0; i < count; ++i) {
     Candidate& c = candidates.emplace_back();
-    c.gripper = gripper->kind;
+    c.gripper = kind;
     reader.next("candidate");
     if (reader.count("candidate index") != i)
       reader.fail("candidate index must be " + std::to_string(i));
@@ -303,7 +319,7 @@ CandidateFile read_candidates(const std::filesystem::path& file) {
         reader.fail("the matrix disagrees with the position and quaternion");
       }
       reader.expect("joints");
-      hand.joints.resize(gripper->joints);
+      hand.joints.resize(joints);
       for (int k = 0; k < hand.joints.size(); ++k) hand.joints(k) = reader.real("joint value");
       reader.expect("contacts");
       const int contacts = reader.count_on_line("contact count", 6);

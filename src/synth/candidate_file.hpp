@@ -23,13 +23,15 @@ struct CandidateObject {
 
 struct CandidateFile {
   CandidateObject object;
+  std::string gripper;  // its name: a built-in gripper's, or a described gripper's [gripper] name
   std::vector<Candidate> candidates;
 };
 
-// Throws std::invalid_argument if the candidates mix grippers, hand counts or energy names,
-// std::runtime_error naming the file if it cannot be written. Numbers are written with 17
-// significant digits, so reading gives back the same doubles.
+// Throws std::invalid_argument if a candidate is not of `gripper`'s kind or the candidates mix
+// hand counts or energy names, std::runtime_error naming the file if it cannot be written.
+// Numbers are written with 17 significant digits, so reading gives back the same doubles.
 void write_candidates(const std::filesystem::path& file, const CandidateObject& object,
+                      const grippers::GripperType& gripper,
                       const std::vector<Candidate>& candidates);
 
 // The most candidates a candidate file holds and `grip synth --count` makes.

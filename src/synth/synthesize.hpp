@@ -21,9 +21,9 @@ struct SynthesisParams {
 
 // `count` candidates (fewer if the attempt limits are reached; the result says how many
 // attempts it took). Same object, gripper, parameters and seed give the same candidates
-// whatever the thread count. The gripper is built here from its registry entry (a hand from its
-// shipped assets).
-SynthesisResult synthesize(const PreparedObject& object, grippers::GripperKind gripper,
+// whatever the thread count. The gripper is built here from its type (a hand from its shipped
+// assets, a described gripper from its file).
+SynthesisResult synthesize(const PreparedObject& object, const grippers::GripperType& gripper,
                            bool bimanual, const SynthesisParams& params, std::uint64_t seed,
                            int count);
 

@@ -141,8 +141,8 @@ const trial::HandTrialGrasp& hand_candidate() {
     synth::SynthesisParams params;
     params.hand.steps = 300;
     const synth::PreparedObject object(cylinder().surface);
-    const synth::SynthesisResult result =
-        synth::synthesize(object, grippers::GripperKind::kLeap, false, params, 1, 1);
+    const synth::SynthesisResult result = synth::synthesize(
+        object, grippers::gripper_type(grippers::GripperKind::kLeap), false, params, 1, 1);
     const synth::HandGrasp& h = result.candidates.at(0).hands.front();
     return trial::HandTrialGrasp{h.pose, h.joints, h.contacts, h.contact_normals};
   }();

@@ -3,7 +3,8 @@
 // while the trials run, a trial failing on one rank of two is one message and resumable, the
 // scaling benchmark writes its table for every setting, and their JSON keeps any path as it is;
 // a bimanual job's dataset holds both grippers' poses, joints and frames, the same on 1 and 2
-// ranks, and grip inspect reads it.
+// ranks, and grip inspect reads it; a soft gripper from a description file runs through grip
+// synth, grip trial and a job.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,6 +17,7 @@
 
 #include "tests/app/run_grip.hpp"
 #include "tests/farm/farm_test_job.hpp"
+#include "tests/grippers/described_gripper_files.hpp"
 
 namespace grip::farm {
 namespace {
@@ -235,6 +237,62 @@ TEST_F(FarmCli, BimanualJobRecordsBothGrippersAlikeOnOneAndTwoRanks) {
   EXPECT_EQ(inspect.exit_code, 0) << inspect.err;
   EXPECT_NE(inspect.out.find("parallel-jaw-bimanual"), std::string::npos) << inspect.out;
   EXPECT_NE(inspect.out.find("2 (2 done, 0 pending)"), std::string::npos) << inspect.out;
+}
+
+// A user's soft gripper (a box finger meshed in millimetres, its description beside it) in grip
+// synth, grip trial and a job's [[grippers]] description, recorded as the built-in ones are.
+TEST_F(FarmCli, ADescribedSoftGripperRunsThroughSynthTrialAndAJob) {
+  fs::create_directories(dir_ / "finger");
+  const fs::path description = grip::testing::write_described_gripper(dir_ / "finger");
+  const auto synth =
+      grip::testing::run_grip("synth --object cylinder --seed 3 --scale 0.5 --gripper " +
+                              quoted(description) + " --count 1 --out " + quoted(dir_ / "c.txt"));
+  ASSERT_EQ(synth.exit_code, 0) << synth.err;
+  EXPECT_NE(grip::testing::slurp(dir_ / "c.txt").find("\ngripper test-soft-jaws described\n"),
+            std::string::npos);
+  const auto bare = grip::testing::run_grip("trial --candidates " + quoted(dir_ / "c.txt"));
+  EXPECT_EQ(bare.exit_code, 1);
+  EXPECT_NE(bare.err.find("pass --gripper with its description file"), std::string::npos)
+      << bare.err;
+  const auto trial = grip::testing::run_grip("trial --candidates " + quoted(dir_ / "c.txt") +
+                                             " --gripper " + quoted(description) +
+                                             " --threads 1 --report " + quoted(dir_ / "r.json"));
+  ASSERT_EQ(trial.exit_code, 0) << trial.err;
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(dir_ / "r.json"));
+  ASSERT_EQ(report["trials"].size(), 1u);
+
+  std::string job = testing::small_job(1, 2, false);
+  const std::string jaws = "name = \"parallel-jaw\"";
+  job.replace(job.find(jaws), jaws.size(), "description = \"finger/gripper.toml\"");
+  testing::write_file(dir_ / "job.toml", job);
+  const auto farm = grip::testing::run_grip("farm " + quoted(dir_ / "job.toml") + " --output " +
+                                            quoted(dir_ / "data.h5") + " --threads 1");
+  ASSERT_EQ(farm.exit_code, 0) << farm.err;
+  const io::DatasetReader reader(dir_ / "data.h5");
+  const io::GripperRecord gripper = reader.gripper(0);
+  EXPECT_EQ(gripper.name, "test-soft-jaws");
+  EXPECT_TRUE(gripper.soft);
+  EXPECT_EQ(gripper.vertex_count(), 2u * 138u);  // both box fingers' surfaces
+  const std::vector<io::CandidateRecord> records = reader.candidates();
+  ASSERT_EQ(records.size(), 2u);
+  for (const io::CandidateRecord& r : records) {
+    EXPECT_NE(r.status, io::Status::kPending);
+    EXPECT_NE(r.failure, io::FailureKind::kInitialPenetration);
+    EXPECT_NE(r.failure, io::FailureKind::kNewtonLimit);
+    EXPECT_NE(r.failure, io::FailureKind::kNumerical);
+    ASSERT_EQ(r.closing_forces.size(), 2u);
+    EXPECT_GT(r.closing_forces[0], 0.0);  // the soft fingers squeezed the cylinder
+  }
+
+  // A description that is not there: one message naming the job file and the key.
+  job.replace(job.find("finger/gripper.toml"), 19, "finger/missing.toml");
+  testing::write_file(dir_ / "missing.toml", job);
+  const auto missing = grip::testing::run_grip("farm " + quoted(dir_ / "missing.toml") +
+                                               " --output " + quoted(dir_ / "missing.h5"));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("key 'grippers[0].description' names"), std::string::npos)
+      << missing.err;
+  EXPECT_NE(missing.err.find("which does not exist"), std::string::npos) << missing.err;
 }
 
 }  // namespace

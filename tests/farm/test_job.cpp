@@ -63,7 +63,7 @@ TEST(Job, ResolvesDefaultsAndOverrides) {
   EXPECT_TRUE(job.objects[1].soft);
   EXPECT_DOUBLE_EQ(job.objects[1].material.friction, 0.8);
   ASSERT_EQ(job.grippers.size(), 1u);
-  EXPECT_EQ(job.grippers[0].kind, grippers::GripperKind::kParallelJaw);
+  EXPECT_EQ(job.grippers[0].type.kind, grippers::GripperKind::kParallelJaw);
   EXPECT_EQ(job.grippers[0].candidates, 4);
   EXPECT_DOUBLE_EQ(job.trial.sim.dt, 0.005);
   EXPECT_DOUBLE_EQ(job.trial.grip_force, 40.0);

@@ -18,6 +18,7 @@ std::filesystem::path scratch(const std::string& name) {
 }
 
 const CandidateObject kObject{"mug", 12345678901234567890ULL, 1.0, ""};
+const grippers::GripperType& kLeap = grippers::gripper_type(grippers::GripperKind::kLeap);
 
 Candidate hand_candidate(double shift) {
   Candidate c;
@@ -40,12 +41,13 @@ Candidate hand_candidate(double shift) {
 TEST(SynthCandidateFileTest, RoundTripIsExact) {
   const std::vector<Candidate> written{hand_candidate(0.0), hand_candidate(0.25)};
   const auto file = scratch("round_trip.txt");
-  write_candidates(file, kObject, written);
+  write_candidates(file, kObject, kLeap, written);
   const CandidateFile back = read_candidates(file);
   EXPECT_EQ(back.object.spec, kObject.spec);
   EXPECT_EQ(back.object.seed, kObject.seed);  // a 64-bit seed, exactly
   EXPECT_EQ(back.object.scale, kObject.scale);
   EXPECT_EQ(back.object.content_hash, "");
+  EXPECT_EQ(back.gripper, "leap");
   const std::vector<Candidate>& read = back.candidates;
   ASSERT_EQ(read.size(), written.size());
   for (std::size_t i = 0; i < read.size(); ++i) {
@@ -67,7 +69,7 @@ TEST(SynthCandidateFileTest, EmptySetRoundTrips) {
   const auto file = scratch("empty.txt");
   // A mesh path with a space, and its hash, survive the round trip.
   const CandidateObject mesh{"my meshes/teapot.obj", 3, 0.01, "0123456789abcdef"};
-  write_candidates(file, mesh, {});
+  write_candidates(file, mesh, kLeap, {});
   const CandidateFile back = read_candidates(file);
   EXPECT_TRUE(back.candidates.empty());
   EXPECT_EQ(back.object.spec, mesh.spec);
@@ -79,8 +81,39 @@ TEST(SynthCandidateFileTest, EmptySetRoundTrips) {
 TEST(SynthCandidateFileTest, RefusesMixedSets) {
   Candidate other = hand_candidate(0.0);
   other.hands.pop_back();
-  EXPECT_THROW(write_candidates(scratch("mixed.txt"), kObject, {hand_candidate(0.0), other}),
+  EXPECT_THROW(write_candidates(scratch("mixed.txt"), kObject, kLeap, {hand_candidate(0.0), other}),
                std::invalid_argument);
+  // Candidates of another gripper than the file's.
+  EXPECT_THROW(write_candidates(scratch("mixed.txt"), kObject,
+                                grippers::gripper_type(grippers::GripperKind::kFinRay),
+                                {hand_candidate(0.0)}),
+               std::invalid_argument);
+}
+
+// A described gripper is written by its name and the word "described", and read back as a
+// described one: the trial resolves it from the description file it is given.
+TEST(SynthCandidateFileTest, ADescribedGrippersCandidatesRoundTrip) {
+  const grippers::GripperType described{
+      grippers::GripperKind::kDescribed, "my-soft-gripper", 1, nullptr, nullptr, false, 1.0, {}};
+  Candidate c;
+  c.gripper = grippers::GripperKind::kDescribed;
+  HandGrasp hand;
+  hand.joints = Eigen::VectorXd::Constant(1, 0.05);
+  hand.contacts.resize(2, 3);
+  hand.contacts.setZero();
+  hand.contact_normals = hand.contacts;
+  c.hands.push_back(hand);
+  const auto file = scratch("described.txt");
+  write_candidates(file, kObject, described, {c});
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("\ngripper my-soft-gripper described\n"), std::string::npos) << text;
+  const CandidateFile back = read_candidates(file);
+  EXPECT_EQ(back.gripper, "my-soft-gripper");
+  ASSERT_EQ(back.candidates.size(), 1u);
+  EXPECT_EQ(back.candidates[0].gripper, grippers::GripperKind::kDescribed);
+  EXPECT_EQ(back.candidates[0].hands[0].joints, hand.joints);
+  std::filesystem::remove(file);
 }
 
 std::string read_error(const std::filesystem::path& file) {
@@ -94,7 +127,7 @@ std::string read_error(const std::filesystem::path& file) {
 
 TEST(SynthCandidateFileTest, ErrorsNameFileAndLine) {
   const auto file = scratch("bad.txt");
-  write_candidates(file, kObject, {hand_candidate(0.0)});
+  write_candidates(file, kObject, kLeap, {hand_candidate(0.0)});
   std::ifstream in(file);
   std::string text((std::istreambuf_iterator<char>(in)), {});
   in.close();
@@ -142,6 +175,11 @@ TEST(SynthCandidateFileTest, ErrorsNameFileAndLine) {
 
   std::ofstream(file) << "grip-candidates 2\nobject seed 1 scale 1 hash - spec box\ngripper claw\n";
   EXPECT_NE(read_error(file).find(":3: unknown gripper 'claw'"), std::string::npos)
+      << read_error(file);
+  std::ofstream(file) << "grip-candidates 2\nobject seed 1 scale 1 hash - spec box\n"
+                         "gripper claw custom\n";
+  EXPECT_NE(read_error(file).find(":3: unexpected 'custom' after the gripper's name"),
+            std::string::npos)
       << read_error(file);
   // Version 1 named no object: refused, with what to do.
   std::ofstream(file) << "grip-candidates 1\ngripper leap\n";

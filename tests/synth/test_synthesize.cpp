@@ -45,8 +45,8 @@ TEST(SynthSynthesizeTest, BimanualParallelJawsKeepClearOfObjectAndEachOther) {
   const PreparedObject object(geometry::make_box(Eigen::Vector3d(0.3, 0.04, 0.04)));
   SynthesisParams params;
   params.antipodal.cloud_points = 2000;
-  const SynthesisResult result =
-      synthesize(object, grippers::GripperKind::kParallelJaw, true, params, 3, 6);
+  const SynthesisResult result = synthesize(
+      object, grippers::gripper_type(grippers::GripperKind::kParallelJaw), true, params, 3, 6);
   ASSERT_GE(result.candidates.size(), 3u);
   ASSERT_LE(result.candidates.size(), 6u);
   const grippers::ParallelGripper gripper = grippers::make_rigid_jaw_gripper();
@@ -80,13 +80,15 @@ TEST(SynthSynthesizeTest, TheLargeCategoriesTakeBimanualFinRayAndHandCandidates)
       EXPECT_LE(sides[1], 0.07 + 1e-9) << name;
       const PreparedObject object(surface);
       const SynthesisParams params;  // the hand needs its default annealing steps on a rod
-      EXPECT_GE(
-          synthesize(object, grippers::GripperKind::kFinRay, true, params, 1, 2).candidates.size(),
-          1u)
+      EXPECT_GE(synthesize(object, grippers::gripper_type(grippers::GripperKind::kFinRay), true,
+                           params, 1, 2)
+                    .candidates.size(),
+                1u)
           << name;
-      EXPECT_GE(
-          synthesize(object, grippers::GripperKind::kLeap, true, params, 1, 1).candidates.size(),
-          1u)
+      EXPECT_GE(synthesize(object, grippers::gripper_type(grippers::GripperKind::kLeap), true,
+                           params, 1, 1)
+                    .candidates.size(),
+                1u)
           << name;
     }
   }

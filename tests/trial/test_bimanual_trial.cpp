@@ -185,8 +185,8 @@ const std::array<HandTrialGrasp, 2>& synthesized_pair() {
     synth::SynthesisParams params;
     params.hand.steps = 300;
     const synth::PreparedObject object(large_box().surface);
-    const synth::SynthesisResult result =
-        synth::synthesize(object, grippers::GripperKind::kLeap, true, params, 1, 1);
+    const synth::SynthesisResult result = synth::synthesize(
+        object, grippers::gripper_type(grippers::GripperKind::kLeap), true, params, 1, 1);
     const synth::Candidate& c = result.candidates.at(0);
     std::array<HandTrialGrasp, 2> grasps;
     for (std::size_t h = 0; h < 2; ++h) {

@@ -49,8 +49,8 @@ const HandTrialGrasp& closing_candidate() {
     synth::SynthesisParams params;
     params.hand.steps = 300;
     const synth::PreparedObject object(cylinder().surface);
-    const synth::SynthesisResult result =
-        synth::synthesize(object, grippers::GripperKind::kLeap, false, params, 1, 2);
+    const synth::SynthesisResult result = synth::synthesize(
+        object, grippers::gripper_type(grippers::GripperKind::kLeap), false, params, 1, 2);
     const synth::HandGrasp& h = result.candidates.at(1).hands.front();
     return HandTrialGrasp{h.pose, h.joints, h.contacts, h.contact_normals};
   }();
