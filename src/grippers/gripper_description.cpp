@@ -142,7 +142,7 @@ ParallelGripper load_gripper_description(const std::filesystem::path& file) {
   root.allow({"gripper", "finger"});
 
   const config::Table head = root.table("gripper");
-  head.allow({"name", "opening", "grasp_depth"});
+  head.allow({"name", "opening", "grasp_depth", "second_finger"});
   ParallelGripper gripper;
   gripper.name = head.string("name");
   if (gripper.name.empty() || gripper.name.find_first_of(" \t/") != std::string::npos) {
@@ -165,6 +165,9 @@ ParallelGripper load_gripper_description(const std::filesystem::path& file) {
   }
   gripper.min_opening = opening[0];
   gripper.max_opening = opening[1];
+  if (head.choice_or("second_finger", {"same", "mirrored"}, "same") == "mirrored") {
+    gripper.second_finger = SecondFinger::kMirrored;
+  }
 
   const config::Table finger = root.table("finger");
   finger.allow({"mesh", "scale", "closing_axis", "tip_axis", "mount", "material"});

@@ -1,8 +1,9 @@
 #pragma once
 // A soft parallel gripper a user describes in a TOML file (docs/assets.md, "Your own soft
-// gripper"): one finger's tet mesh from another tool, its material, the vertices pinned to the jaw,
-// the finger's axes in the mesh's frame, and the jaws' stroke. The second finger is the first
-// turned half a turn about the approach axis, as the built-in grippers' are.
+// gripper"): one finger's tet mesh from another tool, its material, the vertices pinned to the
+// jaw, the finger's axes in the mesh's frame, the jaws' stroke, and whether the second finger is
+// the first turned half a turn about the approach axis (as the built-in grippers') or its
+// mirror image.
 #include <filesystem>
 
 #include "src/grippers/parallel_gripper.hpp"

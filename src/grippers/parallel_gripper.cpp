@@ -30,8 +30,27 @@ Eigen::Isometry3d ParallelGripper::finger_pose(Jaw jaw, double opening) const {
 geometry::SurfaceMesh ParallelGripper::surface(double opening) const {
   geometry::SurfaceMesh mesh;
   append_transformed(mesh, finger_surface, finger_pose(Jaw::kPositive, opening));
-  append_transformed(mesh, finger_surface, finger_pose(Jaw::kNegative, opening));
+  append_transformed(mesh, finger_surface_of(Jaw::kNegative), finger_pose(Jaw::kNegative, opening));
   return mesh;
+}
+
+geometry::SurfaceMesh ParallelGripper::finger_surface_of(Jaw jaw) const {
+  if (jaw == Jaw::kPositive || second_finger == SecondFinger::kSame) return finger_surface;
+  // The reflection x -> -x turns every triangle inside out: two corners swap back.
+  geometry::SurfaceMesh mirrored = finger_surface;
+  mirrored.vertices.col(0) = -mirrored.vertices.col(0);
+  mirrored.triangles.col(1).swap(mirrored.triangles.col(2));
+  return mirrored;
+}
+
+std::optional<FinRayFinger> ParallelGripper::soft_finger_of(Jaw jaw) const {
+  if (!soft_finger || jaw == Jaw::kPositive || second_finger == SecondFinger::kSame) {
+    return soft_finger;
+  }
+  FinRayFinger mirrored = *soft_finger;
+  mirrored.mesh.vertices.col(0) = -mirrored.mesh.vertices.col(0);
+  mirrored.mesh.tets.col(1).swap(mirrored.mesh.tets.col(2));  // positive again
+  return mirrored;
 }
 
 namespace {

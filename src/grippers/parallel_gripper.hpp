@@ -27,12 +27,19 @@ struct RigidJawOptions {
   double length = 0.050;
 };
 
+// How the kNegative finger is made from the kPositive one, both in their finger frames: the
+// same finger (finger_pose turns it half a turn about z), or its mirror image across the finger
+// frame's x = 0 plane (turned so, the pair are mirror images across the gripper's y = 0 plane).
+// The two agree for a finger symmetric across its width, as the built-in fingers are.
+enum class SecondFinger { kSame, kMirrored };
+
 struct ParallelGripper {
   std::string name;
-  geometry::SurfaceMesh finger_surface;     // one finger, finger frame, closed and outward
-  std::optional<FinRayFinger> soft_finger;  // the tet model of a soft finger; empty if rigid
-  double min_opening = 0.0;                 // m
-  double max_opening = 0.085;               // m
+  geometry::SurfaceMesh finger_surface;     // kPositive's finger, finger frame, closed, outward
+  std::optional<FinRayFinger> soft_finger;  // its tet model when soft; empty if rigid
+  SecondFinger second_finger = SecondFinger::kSame;
+  double min_opening = 0.0;    // m
+  double max_opening = 0.085;  // m
   // How deep the object must reach between the fingers, from their tips (synthesis' approach
   // depth), for the fingers to build the grip force before the jaws reach the end of their
   // stroke: 0 for rigid fingers; a fin-ray finger pressed nearer its tip wraps the object and
@@ -45,6 +52,11 @@ struct ParallelGripper {
 
   // Both fingers at `opening`, in the gripper frame.
   geometry::SurfaceMesh surface(double opening) const;
+
+  // Jaw `jaw`'s finger in its finger frame: its surface, and its tet model when soft (a mirrored
+  // finger keeps the vertex numbering and the mount vertices of the kPositive one).
+  geometry::SurfaceMesh finger_surface_of(Jaw jaw) const;
+  std::optional<FinRayFinger> soft_finger_of(Jaw jaw) const;
 };
 
 // UMI-style: two fin-ray fingers (the surface is the tet mesh's boundary), jaw opening 0-85 mm,

@@ -56,7 +56,8 @@ ParallelTrialScene::ParallelTrialScene(const TrialObject& object,
     finger.name = "finger" + suffix;
     finger.pose = pose;
     if (gripper.soft_finger) {
-      const grippers::FinRayFinger& soft = *gripper.soft_finger;
+      const grippers::FinRayFinger soft = *gripper.soft_finger_of(kJaws[j]);
+      finger_tets_[j] = soft.mesh;
       solver::BodyDescription jaw;
       jaw.name = "jaw" + suffix;
       jaw.type = solver::BodyType::kKinematic;
@@ -84,8 +85,9 @@ ParallelTrialScene::ParallelTrialScene(const TrialObject& object,
       jaws_[i].finger = static_cast<int>(scene.bodies.size());
     } else {
       finger.type = solver::BodyType::kKinematic;
-      finger.vertices = gripper.finger_surface.vertices;
-      finger.triangles = gripper.finger_surface.triangles;
+      const geometry::SurfaceMesh surface = gripper.finger_surface_of(kJaws[j]);
+      finger.vertices = surface.vertices;
+      finger.triangles = surface.triangles;
       finger.material.friction = parameters.rigid_finger_friction;
       jaws_[i].jaw = jaws_[i].finger = static_cast<int>(scene.bodies.size());
     }
@@ -206,12 +208,13 @@ std::vector<metrics::DistanceMetrics> ParallelTrialScene::gripper_distances(
 Eigen::VectorXd ParallelTrialScene::body_stress(const solver::EnvironmentHandle& environment,
                                                 int body) const {
   if (body == object_body()) return object_.stress(environment);
-  const bool finger = std::any_of(jaws_.begin(), jaws_.end(),
-                                  [&](const JawBodies& jaw) { return jaw.finger == body; });
-  if (!gripper_.soft_finger || !finger) return {};
+  const auto jaw = std::find_if(jaws_.begin(), jaws_.end(),
+                                [&](const JawBodies& bodies) { return bodies.finger == body; });
+  if (!gripper_.soft_finger || jaw == jaws_.end()) return {};
   const solver::Material& material = model_->bodies()[body].material;
-  return metrics::von_mises_stress(gripper_.soft_finger->mesh, environment.body_vertices(body),
-                                   material.youngs, material.poisson);
+  return metrics::von_mises_stress(finger_tets_[static_cast<std::size_t>(jaw - jaws_.begin()) % 2],
+                                   environment.body_vertices(body), material.youngs,
+                                   material.poisson);
 }
 
 geometry::Vertices ParallelTrialScene::finger_vertices(const solver::EnvironmentHandle& environment,

@@ -116,8 +116,9 @@ class ParallelTrialScene final : public TrialScene {
   TrialParameters parameters_;
   ObjectBody object_;  // body 0
   std::vector<JawBodies> jaws_;
-  std::array<Eigen::Isometry3d, 2> canonical_;  // finger frames at the widest opening
-  Eigen::VectorXi surface_to_body_;             // finger_surface vertex -> finger body vertex
+  std::array<Eigen::Isometry3d, 2> canonical_;    // finger frames at the widest opening
+  Eigen::VectorXi surface_to_body_;               // finger_surface vertex -> finger body vertex
+  std::array<geometry::TetMesh, 2> finger_tets_;  // a soft finger's rest tets, per Jaw
   std::shared_ptr<const solver::Model> model_;
   std::unique_ptr<metrics::SurfacePoints> finger_points_;
   // On one gripper's fingers (every gripper's rest surface is the same), when there are two.

@@ -260,6 +260,26 @@ TEST_F(FarmCli, ADescribedSoftGripperRunsThroughSynthTrialAndAJob) {
   ASSERT_EQ(trial.exit_code, 0) << trial.err;
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(dir_ / "r.json"));
   ASSERT_EQ(report["trials"].size(), 1u);
+  // The box finger is symmetric across its width: its mirror image as the second finger
+  // (numbered otherwise) grasps as the turned one does.
+  std::string text = grip::testing::slurp(description);
+  text.insert(text.find("\n[finger]"), "second_finger = \"mirrored\"\n");
+  text.replace(text.find("mesh = \""), 8, "mesh = \"finger/");
+  testing::write_file(dir_ / "mirrored.toml", text);
+  const auto mirrored = grip::testing::run_grip("trial --candidates " + quoted(dir_ / "c.txt") +
+                                                " --gripper " + quoted(dir_ / "mirrored.toml") +
+                                                " --threads 1 --report " + quoted(dir_ / "m.json"));
+  ASSERT_EQ(mirrored.exit_code, 0) << mirrored.err;
+  const nlohmann::json& a = report["trials"][0];
+  const nlohmann::json mirrored_report = nlohmann::json::parse(std::ifstream(dir_ / "m.json"));
+  const nlohmann::json& b = mirrored_report["trials"][0];
+  EXPECT_EQ(a["status"], b["status"]);
+  ASSERT_EQ(a["closing_forces"].size(), 2u);
+  for (int f = 0; f < 2; ++f) {
+    const double force = a["closing_forces"][f];
+    EXPECT_GT(force, 1.0);
+    EXPECT_NEAR(b["closing_forces"][f].get<double>(), force, 1e-3 * force);
+  }
 
   std::string job = testing::small_job(1, 2, false);
   const std::string jaws = "name = \"parallel-jaw\"";

@@ -124,6 +124,54 @@ TEST_F(GripperDescription, TheMountIsAPlaneOrABoxOfTheFilesCoordinates) {
   EXPECT_EQ(plane.soft_finger->mount_vertices, box.soft_finger->mount_vertices);
 }
 
+// A finger that is not symmetric across its width (the box with one corner cell cut away): the
+// second finger is the first turned half a turn, or with second_finger = "mirrored" its mirror
+// image across the gripper's closing plane, positively oriented.
+TEST_F(GripperDescription, TheSecondFingerIsTheFirstTurnedOrMirrored) {
+  geometry::TetMesh notched = testing::box_finger_mm();
+  // The last cell's six tets: the corner at the tip, +x and +z of the file.
+  notched.tets.conservativeResize(notched.tets.rows() - 6, 4);
+  testing::write_vtk_tets(dir_ / "finger.vtk", notched);
+  std::string text = testing::described_gripper_text();
+  std::ofstream(dir_ / "same.toml") << text;
+  text.insert(text.find("\n[finger]"), "second_finger = \"mirrored\"\n");
+  std::ofstream(dir_ / "mirrored.toml") << text;
+  const ParallelGripper same = load_gripper_description(dir_ / "same.toml");
+  const ParallelGripper mirrored = load_gripper_description(dir_ / "mirrored.toml");
+  EXPECT_EQ(same.second_finger, SecondFinger::kSame);
+  ASSERT_EQ(mirrored.second_finger, SecondFinger::kMirrored);
+
+  const double opening = 0.03;
+  const geometry::SurfaceMesh turned = same.surface(opening);
+  const geometry::SurfaceMesh reflected = mirrored.surface(opening);
+  const Eigen::Index n = same.finger_surface.vertices.rows();
+  ASSERT_EQ(turned.vertices.rows(), 2 * n);
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const Eigen::Vector3d p = turned.vertices.row(v);
+    EXPECT_TRUE(Eigen::Vector3d(reflected.vertices.row(v)).isApprox(p, 1e-15));
+    const Eigen::Vector3d half_turn(-p.x(), -p.y(), p.z());
+    const Eigen::Vector3d mirror(p.x(), -p.y(), p.z());
+    EXPECT_LT((Eigen::Vector3d(turned.vertices.row(n + v)) - half_turn).norm(), 1e-15);
+    EXPECT_LT((Eigen::Vector3d(reflected.vertices.row(n + v)) - mirror).norm(), 1e-15);
+  }
+  // The notch: some corner of the mirror image is no corner of the turned finger.
+  double apart = 0.0;
+  for (Eigen::Index v = n; v < 2 * n; ++v) {
+    double nearest = 1e300;
+    for (Eigen::Index w = n; w < 2 * n; ++w) {
+      nearest = std::min(nearest, (reflected.vertices.row(v) - turned.vertices.row(w)).norm());
+    }
+    apart = std::max(apart, nearest);
+  }
+  EXPECT_GT(apart, 0.004);
+  // The mirrored finger's tets keep their orientation and its mount its vertices.
+  const std::optional<FinRayFinger> second = mirrored.soft_finger_of(Jaw::kNegative);
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(geometry::tet_quality(second->mesh).inverted_count, 0);
+  EXPECT_EQ(second->mount_vertices, mirrored.soft_finger->mount_vertices);
+  EXPECT_EQ(mirrored.finger_surface_of(Jaw::kPositive).vertices, mirrored.finger_surface.vertices);
+}
+
 TEST_F(GripperDescription, ResolvesAsADescribedGripperType) {
   const fs::path file = testing::write_described_gripper(dir_);
   const GripperType type = resolve_gripper(file.string());
