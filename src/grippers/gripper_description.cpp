@@ -23,8 +23,9 @@ constexpr double kMaxDescribedOpening = 0.5;
 Eigen::Vector3d unit_axis(const config::Table& table, std::string_view key) {
   const std::array<double, 3> a = table.vec3(key);
   const Eigen::Vector3d axis(a[0], a[1], a[2]);
-  if (!(axis.norm() > 0.0)) table.fail(key, "must be a direction, not the zero vector");
-  return axis.normalized();
+  const double length = axis.stableNorm();  // finite for any finite components
+  if (!(length > 0.0)) table.fail(key, "must be a direction, not the zero vector");
+  return axis / length;
 }
 
 FinRayMaterial read_material(const config::Table& finger) {
@@ -122,6 +123,9 @@ std::vector<int> mount_vertices(const config::Table& finger, const geometry::Tet
                "metres from the finger's end opposite its tip; a box in the mesh file's "
                "coordinates)");
   }
+  if (pinned.size() == static_cast<std::size_t>(mesh.vertices.rows())) {
+    mount.fail(key, "pins every vertex of the finger, which could then not bend: pin its base");
+  }
   if (!spans_a_plane(mesh.vertices, pinned)) {
     mount.fail(key, "pins " + std::to_string(pinned.size()) +
                         " vertices on one line or point; the finger would swing about them: pin "
@@ -191,6 +195,17 @@ ParallelGripper load_gripper_description(const std::filesystem::path& file) {
     soft.mesh = to_finger_frame(file_mesh, scale, closing, tip);
     geometry::check_soft_body_mesh(soft.mesh, mesh_file.string(), kMaxDescribedFingerSize);
   } catch (const std::runtime_error& e) {
+    // An empty mesh (the file was not read) has no size.
+    const double size =
+        soft.mesh.vertices.rows() == 0
+            ? kMinDescribedFingerSize
+            : (soft.mesh.vertices.colwise().maxCoeff() - soft.mesh.vertices.colwise().minCoeff())
+                  .norm();
+    if (size < kMinDescribedFingerSize) {
+      finger.fail("scale", "makes the finger " + number_text(size) + " m across, smaller than " +
+                               number_text(kMinDescribedFingerSize) +
+                               " m: give the scale that turns the mesh's units into metres");
+    }
     finger.fail("mesh", std::string("names a finger grip cannot simulate: ") + e.what());
   }
   soft.mount_vertices = mount_vertices(finger, file_mesh, soft.mesh);

@@ -13,6 +13,8 @@ namespace grip::grippers {
 // The largest finger a description may hold, across (m): a finger meshed in millimetres and
 // read as metres is refused by it.
 inline constexpr double kMaxDescribedFingerSize = 1.0;
+// The smallest (m): a finger this small would be a scale mistake, and its tets degenerate.
+inline constexpr double kMinDescribedFingerSize = 1e-3;
 
 // Reads `file` and builds the gripper: its name is the file's [gripper] name, its finger the
 // mesh turned into the finger frame of FinRayOptions (contact face on y = 0 facing -y, the

@@ -266,6 +266,8 @@ TEST_F(GripperDescription, AMountThatHoldsNothingIsRefused) {
                                             "lower = [4, -26, -11]\nupper = [6, "
                                             "-24, 11]"));
   EXPECT_NE(line.find("pins 5 vertices on one line or point"), std::string::npos) << line;
+  const std::string all = error(testing::described_gripper_text("finger.vtk", "depth = 1e308"));
+  EXPECT_NE(all.find("pins every vertex of the finger"), std::string::npos) << all;
   const std::string both = error(testing::described_gripper_text(
       "finger.vtk", "depth = 0.001\nlower = [4, -26, -11]\nupper = [6, -24, 11]"));
   EXPECT_NE(both.find("either a depth (the plane) or a box"), std::string::npos) << both;
@@ -290,6 +292,15 @@ TEST_F(GripperDescription, KeysOutOfRangeNameTheKey) {
                       "depth' must lie in"),
             std::string::npos);
   EXPECT_NE(error(replaced("friction = 1.0", "fricton = 1.0")).find("did you mean"),
+            std::string::npos);
+  // A direction as long as doubles allow is still a direction.
+  EXPECT_EQ(error(replaced("closing_axis = [1, 0, 0]", "closing_axis = [1e308, 0, 1e-300]")), "");
+  EXPECT_NE(error(replaced("closing_axis = [1, 0, 0]", "closing_axis = [0, 0, 0]"))
+                .find("key 'finger.closing_axis' must be a direction"),
+            std::string::npos);
+  EXPECT_NE(error(replaced("scale = 0.001", "scale = 1e-300"))
+                .find("key 'finger.scale' makes the "
+                      "finger"),
             std::string::npos);
   EXPECT_NE(error(replaced("poisson_ratio = 0.4", "poisson_ratio = 0.5")).find("(-1, 0.5)"),
             std::string::npos);
