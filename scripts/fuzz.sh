@@ -13,7 +13,7 @@ source "$root/scripts/instrumented-tree.sh"
 seconds="${1:-30}"
 shift || true
 targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=(fuzz_scene fuzz_job fuzz_candidates fuzz_mesh fuzz_tet_mesh fuzz_dataset
+[[ ${#targets[@]} -gt 0 ]] || targets=(fuzz_scene fuzz_job fuzz_candidates fuzz_mesh fuzz_tet_mesh fuzz_gripper_description fuzz_dataset
                                         fuzz_dataset_values)
 "$root/scripts/install-deps.sh"
 configure_instrumented_tree OFF
