@@ -72,13 +72,13 @@ class Words {
     }
     refuse(file_, what + ": '" + w + "' is not a finite number");
   }
-  // A count of entries of at least `bytes_each` bytes: not negative, and no more than the
-  // file could hold (a damaged count must not size an allocation).
   std::array<double, 3> point(const std::string& what) {
     const double x = number(what);
     const double y = number(what);
     return {x, y, number(what)};
   }
+  // A count of entries of at least `bytes_each` bytes: not negative, and no more than the
+  // file could hold (a damaged count must not size an allocation).
   std::size_t count(const std::string& what, std::size_t bytes_each) {
     const long long n = integer(what);
     if (n < 0 || static_cast<std::uintmax_t>(n) > size_ / bytes_each) {

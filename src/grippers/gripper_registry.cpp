@@ -35,7 +35,8 @@ const std::array<GripperType, 3>& table() {
 
 GripperType described_gripper(const std::filesystem::path& file) {
   auto gripper = std::make_shared<const ParallelGripper>(load_gripper_description(file));
-  const double fin_ray_tets = static_cast<double>(make_fin_ray_finger().mesh.tets.rows());
+  // The production finger is meshed once per process, not per description read.
+  static const double fin_ray_tets = static_cast<double>(make_fin_ray_finger().mesh.tets.rows());
   const double tets = static_cast<double>(gripper->soft_finger->mesh.tets.rows());
   const GripperType& fin_ray = gripper_type(GripperKind::kFinRay);
   return {GripperKind::kDescribed,

@@ -288,8 +288,7 @@ TEST_F(GripperDescription, KeysOutOfRangeNameTheKey) {
   EXPECT_NE(error(replaced("[0.0, 0.08]", "[0, 80]")).find("is it in millimetres?"),
             std::string::npos);
   EXPECT_NE(error(replaced("grasp_depth = 0.02", "grasp_depth = 0.06"))
-                .find("key 'gripper.grasp_"
-                      "depth' must lie in"),
+                .find("key 'gripper.grasp_depth' must lie in"),
             std::string::npos);
   EXPECT_NE(error(replaced("friction = 1.0", "fricton = 1.0")).find("did you mean"),
             std::string::npos);
@@ -299,8 +298,7 @@ TEST_F(GripperDescription, KeysOutOfRangeNameTheKey) {
                 .find("key 'finger.closing_axis' must be a direction"),
             std::string::npos);
   EXPECT_NE(error(replaced("scale = 0.001", "scale = 1e-300"))
-                .find("key 'finger.scale' makes the "
-                      "finger"),
+                .find("key 'finger.scale' makes the finger"),
             std::string::npos);
   EXPECT_NE(error(replaced("poisson_ratio = 0.4", "poisson_ratio = 0.5")).find("(-1, 0.5)"),
             std::string::npos);
