@@ -8,8 +8,11 @@ Both panels show the gripper's surface (grey, see-through) and the object's, as 
 frames place them. A soft object is coloured by von Mises stress per tet (its boundary
 triangles take their tet's value): at the settled grasp the stored field, in the last frame
 the same stable Neo-Hookean formula applied to that frame's vertices. A rigid object is
-coloured by the normal contact force on each vertex. Without --record it draws the first
-successful grasp of a soft object that has stress, else the first successful one with frames.
+coloured by the normal contact force on each vertex. Soft fingers whose stress was kept are
+coloured at the settled grasp by their own von Mises stress (viridis, a scale of their own,
+ending at the 98th percentile).
+Without --record it draws the first successful grasp of a soft object that has stress, else the
+first successful one with frames.
 
 Needs matplotlib, numpy and h5py (Debian: python3-matplotlib, python3-numpy, python3-h5py);
 no display: it draws with matplotlib's Agg backend. The schema is docs/dataset-format.md.
@@ -87,6 +90,17 @@ def triangle_tets(triangles, tets):
     return np.array([owner.get(tuple(sorted(tri)), -1) for tri in triangles])
 
 
+def finger_faces(gripper, stress):
+    """Per gripper surface triangle, the stress of the finger tet it is a face of (NaN where
+    none is). The surface's vertices are the finger tets' own, bit for bit."""
+    tet_vertex = {tuple(v): i for i, v in enumerate(gripper["tet_vertices"][:])}
+    on_tets = np.array([tet_vertex.get(tuple(v), -1) for v in gripper["vertices"][:]])
+    triangles = on_tets[gripper["triangles"][:]]
+    owner = triangle_tets(triangles, gripper["tets"][:])
+    owner[(triangles < 0).any(axis=1)] = -1
+    return np.where(owner >= 0, stress[owner], np.nan)
+
+
 class Trial:
     """The meshes and the two frames of one candidate row."""
 
@@ -113,6 +127,10 @@ class Trial:
         self.gripper_triangles = gripper["triangles"][:]
         self.gripper_vertices = [frames["gripper_vertices"][slot, i].astype(float)
                                  for i in self.frame_numbers]
+        self.finger_values = None  # kPa per gripper triangle at the settled grasp
+        if "finger_stress_written" in table and table["finger_stress_written"][row]:
+            stored = gripper["finger_stress"][table["finger_stress_slot"][row]].astype(float)
+            self.finger_values = finger_faces(gripper, stored) / 1e3
         if self.info["soft"] and len(obj["tets"]):
             stored = table["stress_slot"][row] if self.info["stress"] else None
             self.label, self.face_values = "von Mises stress (kPa)", self.stress(obj, stored)
@@ -168,6 +186,12 @@ class View:
         top = np.nanmax(values) if np.isfinite(values).any() else 0.0
         self.norm = matplotlib.colors.Normalize(vmin=0.0, vmax=top if top > 0 else 1.0)
         self.colour_map = plt.get_cmap("magma_r")
+        if trial.finger_values is not None:
+            # A few rib joints carry most of the peak: the scale ends at the 98th percentile.
+            finite = trial.finger_values[np.isfinite(trial.finger_values)]
+            top = np.percentile(finite, 98) if len(finite) else 0.0
+            self.finger_norm = matplotlib.colors.Normalize(vmin=0.0, vmax=top if top > 0 else 1.0)
+            self.finger_colour_map = plt.get_cmap("viridis")
 
 
 def draw_panel(ax, trial, panel, view):
@@ -178,7 +202,13 @@ def draw_panel(ax, trial, panel, view):
     colours[np.isnan(values)] = (0.8, 0.8, 0.8, 1.0)
     # One collection, so the faces of both bodies are depth-sorted together.
     faces = np.concatenate([object_faces, gripper_faces])
-    colours = np.concatenate([colours, np.tile(GRIPPER_RGBA, (len(gripper_faces), 1))])
+    gripper_colours = np.tile(GRIPPER_RGBA, (len(gripper_faces), 1))
+    if panel == 0 and trial.finger_values is not None:
+        stressed = np.isfinite(trial.finger_values)
+        gripper_colours[stressed] = view.finger_colour_map(
+            view.finger_norm(trial.finger_values[stressed]))
+        gripper_colours[stressed, 3] = 0.9
+    colours = np.concatenate([colours, gripper_colours])
     edges = [(0, 0, 0, 0)] * len(object_faces) + [(0.2, 0.2, 0.25, 0.5)] * len(gripper_faces)
     ax.add_collection3d(Poly3DCollection(list(faces), facecolors=shaded(colours, faces),
                                          edgecolors=edges, linewidths=0.4))
@@ -214,10 +244,17 @@ def render(path, row, out):
     figure.suptitle(f"record {row}: {info['object']} ({'soft' if info['soft'] else 'rigid'}) "
                     f"in {info['gripper']}, {verdict}, D2 = {1e3 * info['d2']:.2f} mm",
                     fontsize=10)
-    bar = figure.colorbar(matplotlib.cm.ScalarMappable(norm=view.norm, cmap=view.colour_map),
-                          cax=figure.add_axes((0.9, 0.18, 0.015, 0.6)))
-    bar.set_label(trial.label, fontsize=8)
-    bar.ax.tick_params(labelsize=7)
+    bars = [(view.norm, view.colour_map, trial.label)]
+    if trial.finger_values is not None:
+        figure.subplots_adjust(right=0.8)
+        bars.append((view.finger_norm, view.finger_colour_map,
+                     "finger von Mises stress (kPa), settled (98th pct.)"))
+    for k, (norm, colour_map, label) in enumerate(bars):
+        left = 0.9 if len(bars) == 1 else 0.83 + 0.085 * k
+        bar = figure.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=colour_map),
+                              cax=figure.add_axes((left, 0.18, 0.015, 0.6)))
+        bar.set_label(label, fontsize=8)
+        bar.ax.tick_params(labelsize=7)
     figure.savefig(out)
     plt.close(figure)
     print(f"record {row} ({info['object']}, {info['gripper']}, {verdict}) drawn to {out}")

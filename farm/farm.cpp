@@ -275,7 +275,9 @@ std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, bool group_only,
   for (trial::TrialOutcome& outcome :
        trial::run_trials(run.scenes.get(unit.object, unit.gripper), candidates, options)) {
     io::CandidateResult& result = outcome.result;
-    if (!run.plan.dataset.candidates[result.record.id].stress) result.stress.reset();
+    const io::CandidateSlot& slot = run.plan.dataset.candidates[result.record.id];
+    if (!slot.stress) result.stress.reset();
+    if (!slot.finger_stress) result.finger_stress.reset();
     results.push_back(std::move(result));
   }
   run.progress.add(LiveProgress::kTrials, unit.ids.size() - counted);

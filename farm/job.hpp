@@ -82,8 +82,8 @@ struct Job {
   trial::TrialParameters trial;        // trial.sim holds the [physics] settings
   synth::SynthesisSettings synthesis;  // [synthesis]
   bool record_frames = true;           // every candidate's trajectory
-  bool record_stress = true;           // soft objects' von Mises stress at the settled grasp
-  bool full_trials = false;            // run decided trials to the end (trial::TrialRunOptions)
+  bool record_stress = true;  // soft objects' and soft fingers' von Mises stress, settled grasp
+  bool full_trials = false;   // run decided trials to the end (trial::TrialRunOptions)
   // [farm] batch: candidates per work unit; 0: 4 per worker thread.
   int work_unit_size = 0;
   // [farm] max_candidates: the most candidates (objects x candidates per gripper, summed over

@@ -111,6 +111,9 @@ FarmPlan make_plan(const Job& job, MPI_Comm comm, int threads, LiveProgress& pro
             ->gripper_record();
     plan.dataset.grippers.push_back(std::move(record));
   }
+  for (io::CandidateSlot& slot : plan.dataset.candidates) {
+    slot.finger_stress = job.record_stress && !plan.dataset.grippers[slot.gripper].tets.empty();
+  }
   plan.dataset.closing_frames = static_cast<std::uint32_t>(job.trial.closing_frames);
   plan.dataset.validation_frames = static_cast<std::uint32_t>(job.trial.validation_frames);
   progress.log_plan();

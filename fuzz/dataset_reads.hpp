@@ -1,7 +1,8 @@
 #pragma once
 // The reads `grip inspect` makes of a dataset (and its crash probe, app/dataset_probe.cpp):
 // the layout, provenance, every object and gripper record, the summary (the candidate table
-// and every committed row against its checksums) and a few trajectories and stress fields.
+// and every committed row against its checksums) and a few trajectories and stress fields (of
+// objects and fingers).
 // Shared by the two dataset fuzz targets.
 #include <cstdint>
 #include <filesystem>
@@ -22,6 +23,7 @@ inline void read_like_inspect(const std::filesystem::path& file) {
   for (std::uint64_t id = 0; id < layout.candidate_count && id < 4; ++id) {
     reader.trajectory(id);
     reader.stress(id);
+    reader.finger_stress(id);
   }
 }
 

@@ -82,12 +82,14 @@ struct TrajectoryRecord {
   bool operator==(const TrajectoryRecord&) const = default;
 };
 
-// What a worker hands the writer for one candidate. The trajectory and stress are stored
+// What a worker hands the writer for one candidate. The trajectory and stresses are stored
 // only where the plan gave the candidate a slot for them.
 struct CandidateResult {
   CandidateRecord record;
   std::optional<TrajectoryRecord> trajectory;
   std::optional<std::vector<float>> stress;  // Pa, von Mises per object tet, settled grasp
+  // Pa, von Mises per tet of the gripper's soft fingers (GripperRecord::tets), settled grasp
+  std::optional<std::vector<float>> finger_stress;
 };
 
 }  // namespace grip::io

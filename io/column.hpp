@@ -22,15 +22,16 @@ namespace grip::io {
 // Where a column lives, which record fills it, and when it is written. Provenance, object and
 // gripper columns hold one record's values whole; the others one row per slot.
 enum class Place : std::uint8_t {
-  kProvenance,  // /provenance/NAME: the whole dataset from the Provenance, at creation
-  kObject,      // /objects/OOOOOO/NAME: the whole dataset from the ObjectRecord, at creation
-  kStress,      // /objects/OOOOOO/NAME: one row per stress slot, from a CandidateResult
-  kTrajectory,  // /objects/OOOOOO/trajectories/GGG/NAME: one row per frame slot
-  kGripper,     // /grippers/GGG/NAME: the whole dataset from the GripperRecord, at creation
-  kPlan,        // /candidates/NAME: one row per candidate, from the DatasetLayout, at creation
-  kResult,      // /candidates/NAME: one row per candidate, from its CandidateResult, per batch
-  kDone,        // /candidates/NAME: one row per candidate, set once its batch is committed
-  kChecksum,    // /candidates/NAME: one row per candidate, its rows' checksums, per batch
+  kProvenance,    // /provenance/NAME: the whole dataset from the Provenance, at creation
+  kObject,        // /objects/OOOOOO/NAME: the whole dataset from the ObjectRecord, at creation
+  kStress,        // /objects/OOOOOO/NAME: one row per stress slot, from a CandidateResult
+  kTrajectory,    // /objects/OOOOOO/trajectories/GGG/NAME: one row per frame slot
+  kGripper,       // /grippers/GGG/NAME: the whole dataset from the GripperRecord, at creation
+  kFingerStress,  // /grippers/GGG/NAME: one row per finger stress slot, from a CandidateResult
+  kPlan,          // /candidates/NAME: one row per candidate, from the DatasetLayout, at creation
+  kResult,        // /candidates/NAME: one row per candidate, from its CandidateResult, per batch
+  kDone,          // /candidates/NAME: one row per candidate, set once its batch is committed
+  kChecksum,      // /candidates/NAME: one row per candidate, its rows' checksums, per batch
 };
 
 // Element types. Files store them little-endian; status and failure are HDF5 enumerations.
@@ -119,7 +120,8 @@ struct Column {
   // The extents of one row, or of the whole dataset for a column that holds a record whole.
   Dims (*extents)(const Sizes&);
   // Per place: Provenance, ObjectRecord, CandidateResult (stress), TrajectoryRecord,
-  // GripperRecord, DatasetLayout, CandidateResult, none (done, checksum).
+  // GripperRecord, CandidateResult (finger stress), DatasetLayout, CandidateResult, none (done,
+  // checksum).
   std::variant<std::monostate, Access<Provenance>, Access<ObjectRecord>, Access<GripperRecord>,
                Access<TrajectoryRecord>, Access<DatasetLayout>, Access<CandidateResult>>
       access;

@@ -21,8 +21,9 @@ template <hsize_t kWidth>
 Dims rows_of(const Sizes& s) {
   return {s.count / kWidth, kWidth};
 }
-// A stress slot's row: one value per object tet.
+// A stress slot's row: one value per object tet, or per tet of the gripper's soft fingers.
 Dims per_tet(const Sizes& s) { return {s.object.tets}; }
+Dims per_finger_tet(const Sizes& s) { return {s.gripper.tets}; }
 // A frame slot's row, per frame: object and gripper vertex vectors, object pose, hand poses,
 // joints.
 Dims object_vectors(const Sizes& s) { return {s.frames, s.object.vertices, 3}; }
@@ -49,7 +50,7 @@ constexpr Access<CandidateResult> record_field() {
   return field<&CandidateResult::record, kMembers...>();
 }
 
-// 1 where the result has its optional part (trajectory or stress); not read back.
+// 1 where the result has its optional part (trajectory or a stress); not read back.
 template <auto kPart>
 constexpr Access<CandidateResult> present() {
   return {column_access::values_holding<std::uint8_t>(),
@@ -124,6 +125,12 @@ constexpr std::array kColumns = {
            field<&GripperRecord::vertices>()},
     Column{"triangles", P::kGripper, E::kInt32, F::kNever, rows_of<3>,
            field<&GripperRecord::triangles>()},
+    Column{"tet_vertices", P::kGripper, E::kFloat64, F::kNever, rows_of<3>,
+           field<&GripperRecord::tet_vertices>()},
+    Column{"tets", P::kGripper, E::kInt32, F::kNever, rows_of<4>, field<&GripperRecord::tets>()},
+    // /grippers/GGG: finger stress per finger stress slot
+    Column{"finger_stress", P::kFingerStress, E::kFloat32, F::kNever, per_finger_tet,
+           field<&CandidateResult::finger_stress>()},
     // /candidates: the plan's columns, the done flags, then the results'
     Column{"object", P::kPlan, E::kUint32, F::kNever, one_value, field<&DatasetLayout::object>()},
     Column{"gripper", P::kPlan, E::kUint32, F::kNever, one_value, field<&DatasetLayout::gripper>()},
@@ -131,6 +138,8 @@ constexpr std::array kColumns = {
            field<&DatasetLayout::frame_slot>()},
     Column{"stress_slot", P::kPlan, E::kInt64, F::kNever, one_value,
            field<&DatasetLayout::stress_slot>()},
+    Column{"finger_stress_slot", P::kPlan, E::kInt64, F::kNever, one_value,
+           field<&DatasetLayout::finger_stress_slot>()},
     Column{"done", P::kDone, E::kUint8, F::kZero, one_value, std::monostate{}},
     Column{"checksum", P::kChecksum, E::kUint32, F::kZero, checksum_row, std::monostate{}},
     Column{"status", P::kResult, E::kStatus, F::kZero, one_value,
@@ -167,6 +176,8 @@ constexpr std::array kColumns = {
            present<&CandidateResult::trajectory>()},
     Column{"stress_written", P::kResult, E::kUint8, F::kZero, one_value,
            present<&CandidateResult::stress>()},
+    Column{"finger_stress_written", P::kResult, E::kUint8, F::kZero, one_value,
+           present<&CandidateResult::finger_stress>()},
 };
 
 // The record each place's columns are read from and written to (the Column::access alternative).
@@ -183,6 +194,7 @@ constexpr std::size_t access_index(Place place) {
     case Place::kPlan:
       return 5;
     case Place::kStress:
+    case Place::kFingerStress:
     case Place::kResult:
       return 6;
     case Place::kDone:
@@ -213,13 +225,16 @@ constexpr int group_of(Place place) {
     case Place::kObject:
     case Place::kStress:
       return 1;
+    case Place::kGripper:
+    case Place::kFingerStress:
+      return 3;
     case Place::kPlan:
     case Place::kResult:
     case Place::kDone:
     case Place::kChecksum:
       return 2;
     default:
-      return 3 + static_cast<int>(place);
+      return 4 + static_cast<int>(place);
   }
 }
 
@@ -245,8 +260,8 @@ static_assert(names_unique_per_group(), "a column name appears twice in one grou
 std::span<const Column> dataset_columns() { return kColumns; }
 
 bool checksummed(const Column& column) {
-  return column.place == Place::kStress || column.place == Place::kTrajectory ||
-         column.place == Place::kResult;
+  return column.place == Place::kStress || column.place == Place::kFingerStress ||
+         column.place == Place::kTrajectory || column.place == Place::kResult;
 }
 
 std::size_t checksum_entries() {

@@ -81,9 +81,11 @@ std::vector<Damage> find_damage(hid_t file, const DatasetLayout& layout,
   Checker checker(file);
   const std::vector<std::uint8_t> trajectory = flags(file, "/candidates/trajectory_written");
   const std::vector<std::uint8_t> stress = flags(file, "/candidates/stress_written");
+  const std::vector<std::uint8_t> finger_stress = flags(file, "/candidates/finger_stress_written");
   Rows table;
   std::vector<Rows> frame_rows(layout.trajectory_slots.size());
   std::vector<Rows> stress_rows(layout.objects.size());
+  std::vector<Rows> finger_stress_rows(layout.grippers.size());
   for (std::uint64_t id = 0; id < layout.candidate_count; ++id) {
     if (!check[id]) continue;
     table.emplace_back(id, id);
@@ -94,9 +96,13 @@ std::vector<Damage> find_damage(hid_t file, const DatasetLayout& layout,
     if (stress[id] && layout.stress_slot[id] >= 0) {
       stress_rows[o].emplace_back(layout.stress_slot[id], id);
     }
+    if (finger_stress[id] && layout.finger_stress_slot[id] >= 0) {
+      finger_stress_rows[layout.gripper[id]].emplace_back(layout.finger_stress_slot[id], id);
+    }
   }
   for (Rows& rows : frame_rows) std::sort(rows.begin(), rows.end());
   for (Rows& rows : stress_rows) std::sort(rows.begin(), rows.end());
+  for (Rows& rows : finger_stress_rows) std::sort(rows.begin(), rows.end());
 
   const auto grippers = static_cast<std::uint32_t>(layout.grippers.size());
   for (const Column& column : dataset_columns()) {
@@ -116,6 +122,13 @@ std::vector<Damage> find_damage(hid_t file, const DatasetLayout& layout,
         sizes.object = layout.objects[o];
         checker.check(column, object_group(o) + "/" + column.name, row_size(column, sizes),
                       stress_rows[o]);
+      }
+    } else if (column.place == Place::kFingerStress) {
+      for (std::uint32_t g = 0; g < finger_stress_rows.size(); ++g) {
+        Sizes sizes = Sizes::of(layout);
+        sizes.gripper = layout.grippers[g];
+        checker.check(column, gripper_group(g) + "/" + column.name, row_size(column, sizes),
+                      finger_stress_rows[g]);
       }
     }
   }

@@ -33,6 +33,10 @@ std::string trajectory_group(std::uint32_t object, std::uint32_t gripper) {
 
 std::string stress_dataset(std::uint32_t object) { return object_group(object) + "/stress"; }
 
+std::string finger_stress_dataset(std::uint32_t gripper) {
+  return gripper_group(gripper) + "/finger_stress";
+}
+
 namespace {
 
 [[noreturn]] void plan_error(const std::string& message) {
@@ -68,9 +72,17 @@ DatasetLayout DatasetLayout::from_plan(const DatasetPlan& plan) {
       plan_error("gripper " + std::to_string(g) + " ('" + gripper.name + "') has " +
                  std::to_string(gripper.hands) + " hands; use 1, or 2 for bimanual");
     }
-    if (gripper.vertices.size() % 3 != 0 || gripper.triangles.size() % 3 != 0) {
+    if (gripper.vertices.size() % 3 != 0 || gripper.triangles.size() % 3 != 0 ||
+        gripper.tet_vertices.size() % 3 != 0 || gripper.tets.size() % 4 != 0) {
       plan_error("gripper " + std::to_string(g) + " ('" + gripper.name +
-                 "') has vertices or triangles that are not whole (3 values each)");
+                 "') has vertices, triangles or tets that are not whole (3, 3, 4 values)");
+    }
+    const auto tet_vertices = static_cast<std::int64_t>(gripper.tet_vertices.size() / 3);
+    if (std::any_of(gripper.tets.begin(), gripper.tets.end(),
+                    [&](std::int32_t i) { return i < 0 || i >= tet_vertices; })) {
+      plan_error("gripper " + std::to_string(g) + " ('" + gripper.name +
+                 "') has a tet index outside its " + std::to_string(tet_vertices) +
+                 " tet vertices");
     }
     if (gripper.vertex_count() % gripper.hands != 0) {
       plan_error("gripper " + std::to_string(g) + " ('" + gripper.name + "') has " +
@@ -78,9 +90,12 @@ DatasetLayout DatasetLayout::from_plan(const DatasetPlan& plan) {
                  " vertices, not as many for each of its " + std::to_string(gripper.hands) +
                  " hands");
     }
-    const Gripper sizes{gripper.hands, static_cast<std::uint32_t>(gripper.joint_names.size()),
+    const Gripper sizes{gripper.hands,
+                        static_cast<std::uint32_t>(gripper.joint_names.size()),
                         static_cast<std::uint32_t>(gripper.finger_names.size()),
-                        gripper.vertex_count() / gripper.hands};
+                        gripper.vertex_count() / gripper.hands,
+                        gripper.tets.size() / 4,
+                        0};
     layout.grippers.push_back(sizes);
     layout.max_hands = std::max(layout.max_hands, sizes.hands);
     layout.max_joints = std::max(layout.max_joints, sizes.joints);
@@ -100,12 +115,20 @@ DatasetLayout DatasetLayout::from_plan(const DatasetPlan& plan) {
       plan_error("candidate " + std::to_string(id) + " asks for stress, but object '" +
                  object.name + "' is not a soft object with tets");
     }
+    const GripperRecord& gripper = plan.grippers[slot.gripper];
+    if (slot.finger_stress && (!gripper.soft || gripper.tets.empty())) {
+      plan_error("candidate " + std::to_string(id) + " asks for finger stress, but gripper '" +
+                 gripper.name + "' has no soft fingers with tets");
+    }
     layout.object.push_back(slot.object);
     layout.gripper.push_back(slot.gripper);
     auto& frame_slots = layout.trajectory_slots[layout.pair(slot.object, slot.gripper)];
     layout.frame_slot.push_back(slot.frames ? static_cast<std::int64_t>(frame_slots++) : -1);
     auto& stress_slots = layout.objects[slot.object].stress_slots;
     layout.stress_slot.push_back(slot.stress ? static_cast<std::int64_t>(stress_slots++) : -1);
+    auto& finger_slots = layout.grippers[slot.gripper].stress_slots;
+    layout.finger_stress_slot.push_back(
+        slot.finger_stress ? static_cast<std::int64_t>(finger_slots++) : -1);
   }
   return layout;
 }
@@ -200,6 +223,13 @@ void check_plan_indices(const DatasetLayout& layout) {
           "outside the " + counted(stress_slots, "row") + " of " + stress_dataset(o) + " (" +
               valid_range(stress_slots, true) + ")");
     }
+    const std::uint64_t finger_slots = layout.grippers[g].stress_slots;
+    const std::int64_t finger = layout.finger_stress_slot[id];
+    if (finger < -1 || (finger >= 0 && static_cast<std::uint64_t>(finger) >= finger_slots)) {
+      bad("finger_stress_slot", finger,
+          "outside the " + counted(finger_slots, "row") + " of " + finger_stress_dataset(g) + " (" +
+              valid_range(finger_slots, true) + ")");
+    }
   }
 }
 
@@ -236,6 +266,11 @@ void read_grippers(hid_t file, std::uint32_t count, DatasetLayout& layout) {
     }
     gripper.vertices = vertices / gripper.hands;
     rows_of(file, path + "/triangles", {3});
+    rows_of(file, path + "/tet_vertices", {3});
+    gripper.tets = rows_of(file, path + "/tets", {4});
+    if (h5::exists(file, finger_stress_dataset(g))) {
+      gripper.stress_slots = rows_of(file, finger_stress_dataset(g), {gripper.tets});
+    }
     if (gripper.joints > layout.max_joints || gripper.fingers > layout.max_fingers) {
       throw DatasetError(path + " has " + std::to_string(gripper.joints) + " joints and " +
                          std::to_string(gripper.fingers) + " fingers, more than the table's " +

@@ -10,10 +10,11 @@
 namespace grip::io {
 
 struct CandidateSlot {
-  std::uint32_t object = 0;   // index into DatasetPlan::objects
-  std::uint32_t gripper = 0;  // index into DatasetPlan::grippers
-  bool frames = false;        // store this candidate's trajectory
-  bool stress = false;        // store its object's stress (soft objects only)
+  std::uint32_t object = 0;    // index into DatasetPlan::objects
+  std::uint32_t gripper = 0;   // index into DatasetPlan::grippers
+  bool frames = false;         // store this candidate's trajectory
+  bool stress = false;         // store its object's stress (soft objects only)
+  bool finger_stress = false;  // store its fingers' stress (soft fingers only)
 };
 
 struct DatasetPlan {

@@ -188,4 +188,15 @@ std::optional<std::vector<float>> DatasetReader::stress(std::uint64_t id) const 
   return std::move(result.stress);
 }
 
+std::optional<std::vector<float>> DatasetReader::finger_stress(std::uint64_t id) const {
+  if (id >= layout_.candidate_count) {
+    throw DatasetError(path_.string() + ": no candidate " + std::to_string(id));
+  }
+  if (!committed(id, "finger_stress_written")) return std::nullopt;
+  CandidateResult result;
+  read_record_row(file_, gripper_group(layout_.gripper[id]), Place::kFingerStress,
+                  static_cast<std::uint64_t>(layout_.finger_stress_slot[id]), result);
+  return std::move(result.finger_stress);
+}
+
 }  // namespace grip::io

@@ -1,6 +1,6 @@
 #pragma once
 // Reads a grip dataset back (serial HDF5, no MPI needed): provenance, objects, grippers, the
-// candidate table and, per candidate, its trajectory and stress where they were written.
+// candidate table and, per candidate, its trajectory and stresses where they were written.
 // Used by `grip inspect`, tests and any C++ consumer; Python readers use h5py directly
 // (examples/read_dataset.py).
 #include <cstdint>
@@ -46,6 +46,8 @@ class DatasetReader {
   // Whether trajectory(id) holds one, without reading it.
   bool has_trajectory(std::uint64_t id) const;
   std::optional<std::vector<float>> stress(std::uint64_t id) const;
+  // Von Mises stress per tet of the soft fingers (GripperRecord::tets), settled grasp.
+  std::optional<std::vector<float>> finger_stress(std::uint64_t id) const;
 
  private:
   bool committed(std::uint64_t id, const char* written_column) const;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numeric>
+#include <optional>
 #include <utility>
 
 #include "io/dataset_error.hpp"
@@ -70,7 +71,12 @@ DatasetSummary summarize(const DatasetReader& reader) {
     summary.damaged.push_back({std::move(damage), round});
   }
   const std::vector<CandidateRecord> records = reader.candidates();
-  std::vector<double> d1, d2, wall_time;
+  std::vector<double> d1, d2, wall_time, peak_object_stress, peak_finger_stress;
+  const auto add_peak = [](const std::optional<std::vector<float>>& stress,
+                           std::vector<double>& peaks) {
+    if (stress && !stress->empty())
+      peaks.push_back(*std::max_element(stress->begin(), stress->end()));
+  };
   for (std::uint64_t id = 0; id < layout.candidate_count; ++id) {
     Tally& gripper = summary.by_gripper[layout.gripper[id]];
     Tally& object = summary.by_object[layout.object[id]];
@@ -88,12 +94,16 @@ DatasetSummary summarize(const DatasetReader& reader) {
       ++object.success;
       d1.push_back(r.d1);
       d2.push_back(r.d2);
+      add_peak(reader.stress(id), peak_object_stress);
+      add_peak(reader.finger_stress(id), peak_finger_stress);
     } else if (static_cast<std::uint8_t>(r.failure) < kFailureKindCount) {
       ++summary.failures[static_cast<std::uint8_t>(r.failure)];
     }
   }
   summary.d1 = statistics(std::move(d1));
   summary.d2 = statistics(std::move(d2));
+  summary.peak_object_stress = statistics(std::move(peak_object_stress));
+  summary.peak_finger_stress = statistics(std::move(peak_finger_stress));
   summary.wall_time = statistics(std::move(wall_time));
   return summary;
 }

@@ -39,10 +39,14 @@ struct DatasetSummary {
   std::uint64_t candidates = 0;
   std::uint64_t done = 0;  // done flags set and every row matching its checksums
   std::uint64_t success = 0;
-  std::vector<Tally> by_gripper;                            // in gripper order
-  std::vector<Tally> by_object;                             // in object order
-  Statistics d1;                                            // m, over successful candidates
-  Statistics d2;                                            // m, over successful candidates
+  std::vector<Tally> by_gripper;  // in gripper order
+  std::vector<Tally> by_object;   // in object order
+  Statistics d1;                  // m, over successful candidates
+  Statistics d2;                  // m, over successful candidates
+  // Pa, the largest von Mises stress of each successful candidate's soft object (fingers) at
+  // the settled grasp, over those whose stress was kept.
+  Statistics peak_object_stress;
+  Statistics peak_finger_stress;
   Statistics wall_time;                                     // s, over done candidates
   std::array<std::uint64_t, kFailureKindCount> failures{};  // done failures by FailureKind
   std::vector<DamagedRow> damaged;  // by candidate; its candidates are not counted as done

@@ -19,6 +19,11 @@ struct GripperRecord {
   // many vertices each (a left hand mirrors the right: the same names, another surface).
   std::vector<double> vertices;
   std::vector<std::int32_t> triangles;  // 3 per triangle, into all hands' vertices
+  // A soft gripper's fingers as the solver meshes them, where they lie in `vertices`: 3 per
+  // vertex, m, and 4 per tet into them, hand after hand, finger after finger in finger_names'
+  // order. Empty for rigid fingers. Finger stress follows this tet order.
+  std::vector<double> tet_vertices;
+  std::vector<std::int32_t> tets;
 
   std::size_t vertex_count() const { return vertices.size() / 3; }  // of all hands
 };

@@ -189,8 +189,8 @@ void write_object(hid_t file, std::uint32_t index, const ObjectRecord& object,
   }
 }
 
-void write_gripper(hid_t file, std::uint32_t index, const GripperRecord& gripper, int rank,
-                   hid_t transfer) {
+void write_gripper(hid_t file, std::uint32_t index, const GripperRecord& gripper,
+                   const DatasetLayout& layout, int rank, hid_t transfer) {
   const h5::Handle group = make_group(file, gripper_group(index));
   h5::write_attribute(group, "name", gripper.name);
   h5::write_attribute(group, "kind", gripper.kind);
@@ -199,6 +199,10 @@ void write_gripper(hid_t file, std::uint32_t index, const GripperRecord& gripper
   for (const Column& column : dataset_columns()) {
     if (column.place == Place::kGripper) {
       create_record_column(group, column, gripper, rank, transfer);
+    } else if (column.place == Place::kFingerStress && layout.grippers[index].stress_slots > 0) {
+      Sizes sizes = Sizes::of(layout);
+      sizes.gripper = layout.grippers[index];
+      create_row_column(group, column, sizes.gripper.stress_slots, sizes, nullptr, rank, transfer);
     }
   }
 }
@@ -266,7 +270,7 @@ void write_layout(hid_t file, const DatasetPlan& plan, const DatasetLayout& layo
   }
   make_group(file, "/grippers");
   for (std::uint32_t g = 0; g < plan.grippers.size(); ++g) {
-    write_gripper(file, g, plan.grippers[g], rank, transfer);
+    write_gripper(file, g, plan.grippers[g], layout, rank, transfer);
   }
   write_candidate_table(file, layout, rank, transfer);
 }

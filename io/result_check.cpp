@@ -59,6 +59,13 @@ std::string check_result(const CandidateResult& result, const DatasetLayout& lay
     problem = size_problem(Place::kStress, result);
     if (!problem.empty()) return problem;
   }
+  if (result.finger_stress) {
+    if (layout.finger_stress_slot[r.id] < 0) {
+      return which + " has finger stress but no finger stress slot";
+    }
+    problem = size_problem(Place::kFingerStress, result);
+    if (!problem.empty()) return problem;
+  }
   return "";
 }
 

@@ -108,11 +108,13 @@ std::vector<std::uint64_t> ids_of(const std::vector<const CandidateResult*>& sor
 std::vector<std::uint8_t> touched_by(const DatasetLayout& layout,
                                      const std::vector<const CandidateResult*>& sorted) {
   const std::size_t pairs = layout.trajectory_slots.size();
-  std::vector<std::uint8_t> touched(pairs + layout.objects.size(), 0);
+  const std::size_t objects = layout.objects.size();
+  std::vector<std::uint8_t> touched(pairs + objects + layout.grippers.size(), 0);
   for (const auto* result : sorted) {
     const std::uint64_t id = result->record.id;
     if (result->trajectory) touched[layout.pair(layout.object[id], layout.gripper[id])] = 1;
     if (result->stress) touched[pairs + layout.object[id]] = 1;
+    if (result->finger_stress) touched[pairs + objects + layout.gripper[id]] = 1;
   }
   return touched;
 }
@@ -131,6 +133,13 @@ RowWriter::RowWriter(hid_t file, const DatasetLayout& layout, std::string name)
     }
   }
   const std::uint32_t grippers = static_cast<std::uint32_t>(layout.grippers.size());
+  for (std::uint32_t g = 0; g < grippers; ++g) {
+    for (const Column& column : dataset_columns()) {
+      if (column.place == Place::kFingerStress && layout.grippers[g].stress_slots > 0) {
+        open(gripper_group(g) + "/" + column.name);
+      }
+    }
+  }
   for (std::uint32_t o = 0; o < layout.objects.size(); ++o) {
     for (const Column& column : dataset_columns()) {
       if (column.place == Place::kStress && layout.objects[o].stress_slots > 0) {
@@ -209,26 +218,46 @@ struct RowWriter::ResultRows {
     }
   }
 
-  void write_stress(std::uint32_t o) {
+  // The stress rows of one object (kStress) or one gripper (kFingerStress): the results that
+  // `have` one there, at their `slot`s.
+  template <typename Has, typename Slot>
+  void write_stress(Place place, const std::string& group, const Sizes& sizes, Has have,
+                    Slot slot) {
     std::vector<std::uint64_t> slots;
     std::vector<std::size_t> positions;
     std::vector<const CandidateResult*> stressed;
     for (std::size_t i = 0; i < sorted.size(); ++i) {
-      const std::uint64_t id = sorted[i]->record.id;
-      if (sorted[i]->stress && layout.object[id] == o) {
-        slots.push_back(static_cast<std::uint64_t>(layout.stress_slot[id]));
+      if (have(*sorted[i])) {
+        slots.push_back(static_cast<std::uint64_t>(slot(sorted[i]->record.id)));
         positions.push_back(i);
         stressed.push_back(sorted[i]);
       }
     }
-    const std::string group = object_group(o) + "/";
-    Sizes sizes = Sizes::of(layout);
-    sizes.object = layout.objects[o];
     for (const Column& column : dataset_columns()) {
-      if (column.place != Place::kStress) continue;
-      write(column, group + column.name, slots, positions, row_size(column, sizes),
+      if (column.place != place) continue;
+      write(column, group + "/" + column.name, slots, positions, row_size(column, sizes),
             packed_rows(column, stressed, layout));
     }
+  }
+
+  void write_object_stress(std::uint32_t o) {
+    Sizes sizes = Sizes::of(layout);
+    sizes.object = layout.objects[o];
+    write_stress(
+        Place::kStress, object_group(o), sizes,
+        [&](const CandidateResult& r) { return r.stress && layout.object[r.record.id] == o; },
+        [&](std::uint64_t id) { return layout.stress_slot[id]; });
+  }
+
+  void write_finger_stress(std::uint32_t g) {
+    Sizes sizes = Sizes::of(layout);
+    sizes.gripper = layout.grippers[g];
+    write_stress(
+        Place::kFingerStress, gripper_group(g), sizes,
+        [&](const CandidateResult& r) {
+          return r.finger_stress && layout.gripper[r.record.id] == g;
+        },
+        [&](std::uint64_t id) { return layout.finger_stress_slot[id]; });
   }
 };
 
@@ -239,7 +268,8 @@ void RowWriter::write_results(const DatasetLayout& layout,
                          collective ? collective_ : independent_};
   const std::vector<std::uint64_t> rows = ids_of(sorted);
   result_rows.write_table(rows);
-  // Trajectories and stress live in per-object datasets, written in the same order everywhere.
+  // Trajectories and stress live in per-object and per-gripper datasets, written in the same
+  // order everywhere.
   const std::size_t pairs = layout.trajectory_slots.size();
   const std::uint32_t gripper_count = static_cast<std::uint32_t>(layout.grippers.size());
   for (std::size_t p = 0; p < pairs; ++p) {
@@ -248,7 +278,10 @@ void RowWriter::write_results(const DatasetLayout& layout,
                                    static_cast<std::uint32_t>(p % gripper_count));
   }
   for (std::uint32_t o = 0; o < layout.objects.size(); ++o) {
-    if (touched[pairs + o]) result_rows.write_stress(o);
+    if (touched[pairs + o]) result_rows.write_object_stress(o);
+  }
+  for (std::uint32_t g = 0; g < gripper_count; ++g) {
+    if (touched[pairs + layout.objects.size() + g]) result_rows.write_finger_stress(g);
   }
   write_rows(dataset("/candidates/checksum"), rows, H5T_NATIVE_UINT32, result_rows.checksums.data(),
              result_rows.transfer, collective);

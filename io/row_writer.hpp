@@ -19,8 +19,9 @@ namespace grip::io {
 // Results in id order: a union of row hyperslabs is written in row order.
 std::vector<const CandidateResult*> sorted_by_id(std::span<const CandidateResult> results);
 std::vector<std::uint64_t> ids_of(const std::vector<const CandidateResult*>& sorted);
-// The per-object datasets the results write into, as flags: trajectories per (object, gripper)
-// pair, then stress per object. In a collective write every rank joins any rank's.
+// The per-object and per-gripper datasets the results write into, as flags: trajectories per
+// (object, gripper) pair, then stress per object, then finger stress per gripper. In a
+// collective write every rank joins any rank's.
 std::vector<std::uint8_t> touched_by(const DatasetLayout& layout,
                                      const std::vector<const CandidateResult*>& sorted);
 
@@ -32,8 +33,8 @@ class RowWriter {
   RowWriter(hid_t file, const DatasetLayout& layout, std::string name);
 
   // Writes `sorted`'s rows and checksums into every row dataset in `touched` (candidate table,
-  // then trajectories per pair, then stress per object): collectively, every rank joining each,
-  // or independently, one write per run of consecutive rows.
+  // then trajectories per pair, stress per object, finger stress per gripper): collectively,
+  // every rank joining each, or independently, one write per run of consecutive rows.
   void write_results(const DatasetLayout& layout, const std::vector<const CandidateResult*>& sorted,
                      const std::vector<std::uint8_t>& touched, bool collective) const;
   // Sets the done flags of `rows` (ascending).

@@ -1,7 +1,7 @@
 // `grip inspect DATASET.h5`: the dataset's provenance, then what it holds: objects, grippers,
-// candidates done, success rates by gripper and by object, D1/D2 statistics and failures by
-// kind; committed rows that do not match their checksums are reported (exit 1). Reads with
-// serial HDF5; needs no MPI.
+// candidates done, success rates by gripper and by object, D1/D2 and peak stress statistics and
+// failures by kind; committed rows that do not match their checksums are reported (exit 1).
+// Reads with serial HDF5; needs no MPI.
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -119,6 +119,12 @@ int inspect(const std::string& dataset, bool show_job) {
               "median", "max");
   print_statistics("D1 (mm)", summary.d1, 1e3);
   print_statistics("D2 (mm)", summary.d2, 1e3);
+  if (summary.peak_object_stress.count > 0) {
+    print_statistics("object peak (kPa)", summary.peak_object_stress, 1e-3);
+  }
+  if (summary.peak_finger_stress.count > 0) {
+    print_statistics("finger peak (kPa)", summary.peak_finger_stress, 1e-3);
+  }
   std::printf("done candidates\n");
   print_statistics("wall (s)", summary.wall_time, 1.0);
 

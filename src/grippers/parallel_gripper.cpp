@@ -34,6 +34,24 @@ geometry::SurfaceMesh ParallelGripper::surface(double opening) const {
   return mesh;
 }
 
+geometry::TetMesh ParallelGripper::finger_tets(double opening) const {
+  geometry::TetMesh both;
+  if (!soft_finger) return both;
+  for (const Jaw jaw : {Jaw::kPositive, Jaw::kNegative}) {
+    const geometry::TetMesh finger = soft_finger_of(jaw)->mesh;
+    const Eigen::Isometry3d pose = finger_pose(jaw, opening);
+    const Eigen::Index v0 = both.vertices.rows();
+    const Eigen::Index t0 = both.tets.rows();
+    both.vertices.conservativeResize(v0 + finger.vertices.rows(), 3);
+    both.tets.conservativeResize(t0 + finger.tets.rows(), 4);
+    for (Eigen::Index i = 0; i < finger.vertices.rows(); ++i) {
+      both.vertices.row(v0 + i) = (pose * finger.vertices.row(i).transpose()).transpose();
+    }
+    both.tets.bottomRows(finger.tets.rows()) = finger.tets.array() + static_cast<int>(v0);
+  }
+  return both;
+}
+
 geometry::SurfaceMesh ParallelGripper::finger_surface_of(Jaw jaw) const {
   if (jaw == Jaw::kPositive || second_finger == SecondFinger::kSame) return finger_surface;
   // The reflection x -> -x turns every triangle inside out: two corners swap back.

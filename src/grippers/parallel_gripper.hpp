@@ -52,6 +52,9 @@ struct ParallelGripper {
 
   // Both fingers at `opening`, in the gripper frame.
   geometry::SurfaceMesh surface(double opening) const;
+  // Both soft fingers' tet meshes at `opening`, kPositive's first, in the gripper frame; empty
+  // for rigid fingers.
+  geometry::TetMesh finger_tets(double opening) const;
 
   // Jaw `jaw`'s finger in its finger frame: its surface, and its tet model when soft (a mirrored
   // finger keeps the vertex numbering and the mount vertices of the kPositive one).

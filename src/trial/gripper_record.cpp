@@ -21,6 +21,17 @@ void add_surface(io::GripperRecord& record, const geometry::SurfaceMesh& surface
   }
 }
 
+// Appends one hand's soft fingers (empty when rigid) after the hands before it.
+void add_tets(io::GripperRecord& record, const geometry::TetMesh& fingers) {
+  const auto offset = static_cast<std::int32_t>(record.tet_vertices.size() / 3);
+  for (Eigen::Index v = 0; v < fingers.vertices.rows(); ++v) {
+    for (int k = 0; k < 3; ++k) record.tet_vertices.push_back(fingers.vertices(v, k));
+  }
+  for (Eigen::Index t = 0; t < fingers.tets.rows(); ++t) {
+    for (int k = 0; k < 4; ++k) record.tets.push_back(fingers.tets(t, k) + offset);
+  }
+}
+
 // A bimanual setting is its own gripper record, named apart from the one-gripper setting.
 std::string setting_name(const std::string& name, int hands) {
   return hands == 2 ? name + "-bimanual" : name;
@@ -38,7 +49,11 @@ io::GripperRecord ParallelTrialScene::gripper_record() const {
   record.joint_names = {"opening"};
   record.finger_names = {"positive", "negative"};
   const geometry::SurfaceMesh surface = gripper.surface(gripper.max_opening);
-  for (int g = 0; g < gripper_count(); ++g) add_surface(record, surface);
+  const geometry::TetMesh fingers = gripper.finger_tets(gripper.max_opening);
+  for (int g = 0; g < gripper_count(); ++g) {
+    add_surface(record, surface);
+    add_tets(record, fingers);
+  }
   return record;
 }
 

@@ -30,6 +30,9 @@ class ParallelTrialGripper final : public SceneTrialGripper<ParallelTrialScene> 
   const std::vector<int>& finger_bodies(int finger) const override {
     return finger_bodies_[finger];
   }
+  Eigen::VectorXd finger_stress(const solver::EnvironmentHandle& environment) const override {
+    return scene_.finger_stress(environment);
+  }
 
   std::vector<double> place(solver::EnvironmentHandle& environment, std::size_t k) const override {
     std::vector<double> travel;

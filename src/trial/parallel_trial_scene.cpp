@@ -217,6 +217,24 @@ Eigen::VectorXd ParallelTrialScene::body_stress(const solver::EnvironmentHandle&
                                    material.poisson);
 }
 
+Eigen::VectorXd ParallelTrialScene::finger_stress(
+    const solver::EnvironmentHandle& environment) const {
+  if (!gripper_.soft_finger) return {};
+  std::vector<Eigen::VectorXd> fingers;
+  Eigen::Index total = 0;
+  for (const JawBodies& jaw : jaws_) {
+    fingers.push_back(body_stress(environment, jaw.finger));
+    total += fingers.back().size();
+  }
+  Eigen::VectorXd stress(total);
+  Eigen::Index at = 0;
+  for (const Eigen::VectorXd& finger : fingers) {
+    stress.segment(at, finger.size()) = finger;
+    at += finger.size();
+  }
+  return stress;
+}
+
 geometry::Vertices ParallelTrialScene::finger_vertices(const solver::EnvironmentHandle& environment,
                                                        int first, int last) const {
   std::vector<geometry::Vertices> bodies;

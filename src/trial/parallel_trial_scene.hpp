@@ -106,6 +106,9 @@ class ParallelTrialScene final : public TrialScene {
 
   // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
   Eigen::VectorXd body_stress(const solver::EnvironmentHandle& environment, int body) const;
+  // Every soft finger's, gripper after gripper, kPositive's first (the gripper record's order);
+  // empty for rigid fingers.
+  Eigen::VectorXd finger_stress(const solver::EnvironmentHandle& environment) const;
 
  private:
   // The fingers' body vertices of grippers [first, last), in jaws() order.

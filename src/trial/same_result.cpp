@@ -16,7 +16,8 @@ bool same_result(const io::CandidateResult& a, const io::CandidateResult& b) {
   }
   same_nan(x.record.d1, y.record.d1);
   same_nan(x.record.d2, y.record.d2);
-  return x.record == y.record && x.trajectory == y.trajectory && x.stress == y.stress;
+  return x.record == y.record && x.trajectory == y.trajectory && x.stress == y.stress &&
+         x.finger_stress == y.finger_stress;
 }
 
 }  // namespace grip::trial

@@ -351,7 +351,7 @@ class ProtocolRunner {
     return f;
   }
 
-  // D1/D2 and the soft object's stress, once, at the settled grasp.
+  // D1/D2 and the soft object's and soft fingers' stress, once, at the settled grasp.
   void measure(int i) {
     TrialState& state = states_[i];
     if (state.metrics_done) return;
@@ -365,6 +365,11 @@ class ProtocolRunner {
       const Eigen::VectorXd stress = gripper_.body_stress(env, gripper_.object_body());
       state.outcome.result.stress =
           std::vector<float>(stress.data(), stress.data() + stress.size());
+    }
+    const Eigen::VectorXd fingers = gripper_.finger_stress(env);
+    if (fingers.size() > 0) {
+      state.outcome.result.finger_stress =
+          std::vector<float>(fingers.data(), fingers.data() + fingers.size());
     }
   }
 

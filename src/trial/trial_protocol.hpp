@@ -104,6 +104,9 @@ class TrialGripper {
   // Von Mises stress per tet of one body now (Pa); empty for a body that is not FEM.
   virtual Eigen::VectorXd body_stress(const solver::EnvironmentHandle& environment,
                                       int body) const = 0;
+  // Von Mises stress per tet of the soft fingers now (Pa), in the order of the gripper record's
+  // tets; empty when the fingers are rigid.
+  virtual Eigen::VectorXd finger_stress(const solver::EnvironmentHandle&) const { return {}; }
 };
 
 // One outcome per candidate, in order; each record's wall_time is the batch's wall time divided

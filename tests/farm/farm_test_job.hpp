@@ -55,7 +55,7 @@ inline void write_file(const std::filesystem::path& path, const std::string& tex
 }
 
 // Every committed record equal bit for bit (wall time aside: the one column that may
-// differ), with the same trajectories and stress.
+// differ), with the same trajectories and stresses.
 inline void expect_same_dataset(const std::filesystem::path& a, const std::filesystem::path& b) {
   const io::DatasetReader ra(a), rb(b);
   EXPECT_EQ(ra.job_id(), rb.job_id());
@@ -63,8 +63,8 @@ inline void expect_same_dataset(const std::filesystem::path& a, const std::files
   ASSERT_EQ(ca.size(), cb.size());
   EXPECT_EQ(ra.done(), rb.done());
   for (std::size_t i = 0; i < ca.size(); ++i) {
-    EXPECT_TRUE(trial::same_result({ca[i], ra.trajectory(i), ra.stress(i)},
-                                   {cb[i], rb.trajectory(i), rb.stress(i)}))
+    EXPECT_TRUE(trial::same_result({ca[i], ra.trajectory(i), ra.stress(i), ra.finger_stress(i)},
+                                   {cb[i], rb.trajectory(i), rb.stress(i), rb.finger_stress(i)}))
         << "candidate " << i << " differs between " << a << " and " << b;
   }
 }

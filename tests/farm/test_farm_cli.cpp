@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "tests/app/run_grip.hpp"
 #include "tests/farm/farm_test_job.hpp"
@@ -292,10 +293,16 @@ TEST_F(FarmCli, ADescribedSoftGripperRunsThroughSynthTrialAndAJob) {
   const io::GripperRecord gripper = reader.gripper(0);
   EXPECT_EQ(gripper.name, "test-soft-jaws");
   EXPECT_TRUE(gripper.soft);
-  EXPECT_EQ(gripper.vertex_count(), 2u * 138u);  // both box fingers' surfaces
+  EXPECT_EQ(gripper.vertex_count(), 2u * 138u);    // both box fingers' surfaces
+  EXPECT_EQ(gripper.tets.size(), 2u * 480u * 4u);  // ... and their tets
   const std::vector<io::CandidateRecord> records = reader.candidates();
   ASSERT_EQ(records.size(), 2u);
   for (const io::CandidateRecord& r : records) {
+    // The job keeps stress by default: the squeezed fingers' is in the dataset.
+    const std::optional<std::vector<float>> finger_stress = reader.finger_stress(r.id);
+    ASSERT_TRUE(finger_stress.has_value());
+    ASSERT_EQ(finger_stress->size(), 2u * 480u);
+    EXPECT_GT(*std::max_element(finger_stress->begin(), finger_stress->end()), 0.0f);
     EXPECT_NE(r.status, io::Status::kPending);
     EXPECT_NE(r.failure, io::FailureKind::kInitialPenetration);
     EXPECT_NE(r.failure, io::FailureKind::kNewtonLimit);

@@ -42,9 +42,11 @@ TEST(FuzzDatasetSeeds, TheValidDatasetIsOfTheCurrentFormatAndReadsWhole) {
   EXPECT_EQ(summary.candidates, 4u);
   EXPECT_EQ(summary.done, 4u);
   EXPECT_TRUE(summary.damaged.empty());
-  // What the values target mutates covers trajectories, stress and a two-hand gripper.
+  // What the values target mutates covers trajectories, stress, finger stress and a two-hand
+  // gripper.
   EXPECT_TRUE(reader.trajectory(0).has_value());
   EXPECT_TRUE(reader.stress(1).has_value());
+  EXPECT_TRUE(reader.finger_stress(0).has_value());
   EXPECT_EQ(reader.gripper(1).hands, 2u);
 }
 

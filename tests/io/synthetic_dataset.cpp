@@ -40,6 +40,10 @@ GripperRecord gripper(const std::string& name, std::uint32_t hands, std::uint32_
     const auto first = static_cast<std::int32_t>(h * vertices);
     g.triangles.insert(g.triangles.end(), {first, first + 1, first + 2});
   }
+  if (g.soft) {  // two soft fingers of one tet each
+    g.tet_vertices = g.vertices;
+    g.tets = {0, 1, 2, 3, 2, 3, 4, 5};
+  }
   return g;
 }
 
@@ -70,6 +74,7 @@ DatasetPlan synthetic_plan(std::uint32_t candidates) {
     slot.gripper = (id / 3) % 2;
     slot.frames = id % 4 != 1;
     slot.stress = slot.object == 1 && id % 5 != 0;
+    slot.finger_stress = slot.gripper == 0 && id % 2 == 0;
     plan.candidates.push_back(slot);
   }
   return plan;
@@ -124,6 +129,9 @@ CandidateResult synthetic_result(const DatasetLayout& layout, std::uint64_t id,
     result.trajectory = std::move(t);
   }
   if (layout.stress_slot[id] >= 0) result.stress = values<float>(random, o.tets, 0, 1e6);
+  if (layout.finger_stress_slot[id] >= 0) {
+    result.finger_stress = values<float>(random, g.tets, 0, 1e6);
+  }
   return result;
 }
 

@@ -134,6 +134,14 @@ TEST_F(DamagedDataset, IndicesOutOfRangeAreRefusedNamingTheDatasetRowValueAndRan
   path = fresh("stress_slot");
   on_rank_zero([&] { testing::set_element<std::int64_t>(path, "/candidates/stress_slot", 4, -7); });
   expect_refused(path, "/candidates/stress_slot row 4 is -7, outside the ");
+
+  // Gripper 1 (two rigid hands) has no finger stress rows.
+  path = fresh("finger_stress_slot");
+  on_rank_zero(
+      [&] { testing::set_element<std::int64_t>(path, "/candidates/finger_stress_slot", 3, 0); });
+  expect_refused(path,
+                 "/candidates/finger_stress_slot row 3 is 0, outside the 0 rows of "
+                 "/grippers/001/finger_stress (valid: -1)");
 }
 
 TEST_F(DamagedDataset, ShapesAndSizeAttributesThatDisagreeAreRefused) {
@@ -147,9 +155,9 @@ TEST_F(DamagedDataset, ShapesAndSizeAttributesThatDisagreeAreRefused) {
 }
 
 TEST_F(DamagedDataset, PlanColumnsChangedWithinRangeFailTheirChecksum) {
-  // Candidate 0 moved to gripper 1 (in range, and its trajectory slot 0 exists there too).
+  // Candidate 1 moved to gripper 1 (in range: it has no trajectory or finger stress slot).
   const auto path = fresh("plan_checksum");
-  on_rank_zero([&] { testing::set_element<std::uint32_t>(path, "/candidates/gripper", 0, 1); });
+  on_rank_zero([&] { testing::set_element<std::uint32_t>(path, "/candidates/gripper", 1, 1); });
   expect_refused(path,
                  "/candidates/gripper does not match the checksum written when the dataset "
                  "was created");
@@ -234,6 +242,7 @@ TEST_F(DamagedDataset, FlippedBytesInCommittedRowsAreReportedAndRedoneByResume) 
     for (std::uint64_t id = 0; id < 12; ++id) {
       EXPECT_EQ(reader.trajectory(id), undamaged.trajectory(id)) << id;
       EXPECT_EQ(reader.stress(id), undamaged.stress(id)) << id;
+      EXPECT_EQ(reader.finger_stress(id), undamaged.finger_stress(id)) << id;
     }
   }
   MPI_Barrier(MPI_COMM_WORLD);

@@ -37,6 +37,7 @@ std::string documented_group(Place place) {
     case Place::kTrajectory:
       return "/objects/OOOOOO/trajectories/GGG";
     case Place::kGripper:
+    case Place::kFingerStress:
       return "/grippers/GGG";
     case Place::kPlan:
     case Place::kResult:

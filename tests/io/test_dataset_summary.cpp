@@ -61,14 +61,23 @@ TEST(DatasetSummary, CountsCommittedCandidatesOnly) {
   std::array<std::uint64_t, kFailureKindCount> failures{};
   double d2_sum = 0;
   double d2_max = 0;
+  std::vector<double> peak_object, peak_finger;  // per successful candidate with that stress
   for (const std::uint64_t id : written) {
-    const CandidateRecord r = testing::synthetic_result(reader.layout(), id, kSeed).record;
+    const CandidateResult result = testing::synthetic_result(reader.layout(), id, kSeed);
+    const CandidateRecord& r = result.record;
     ++object_done[plan.candidates[id].object];
     if (r.status == Status::kSuccess) {
       ++success;
       ++gripper_success[plan.candidates[id].gripper];
       d2_sum += r.d2;
       d2_max = std::max(d2_max, r.d2);
+      if (result.stress) {
+        peak_object.push_back(*std::max_element(result.stress->begin(), result.stress->end()));
+      }
+      if (result.finger_stress) {
+        peak_finger.push_back(
+            *std::max_element(result.finger_stress->begin(), result.finger_stress->end()));
+      }
     } else {
       ++failures[static_cast<std::size_t>(r.failure)];
     }
@@ -89,6 +98,14 @@ TEST(DatasetSummary, CountsCommittedCandidatesOnly) {
   EXPECT_NEAR(summary.d2.mean, d2_sum / static_cast<double>(success), 1e-15);
   EXPECT_EQ(summary.d2.max, d2_max);
   EXPECT_EQ(summary.d1.max, 0.0);  // the synthetic successes never penetrate
+  ASSERT_FALSE(peak_object.empty());
+  ASSERT_FALSE(peak_finger.empty());
+  EXPECT_EQ(summary.peak_object_stress.count, peak_object.size());
+  EXPECT_EQ(summary.peak_object_stress.max,
+            *std::max_element(peak_object.begin(), peak_object.end()));
+  EXPECT_EQ(summary.peak_finger_stress.count, peak_finger.size());
+  EXPECT_EQ(summary.peak_finger_stress.min,
+            *std::min_element(peak_finger.begin(), peak_finger.end()));
 }
 
 }  // namespace

@@ -68,6 +68,7 @@ void expect_dataset(const std::filesystem::path& path, const DatasetPlan& plan,
     EXPECT_EQ(records[id], expected.record) << "candidate " << id;
     EXPECT_EQ(reader.trajectory(id), expected.trajectory) << "candidate " << id;
     EXPECT_EQ(reader.stress(id), expected.stress) << "candidate " << id;
+    EXPECT_EQ(reader.finger_stress(id), expected.finger_stress) << "candidate " << id;
   }
 }
 

@@ -157,6 +157,7 @@ void kill_and_resume(std::uint64_t seed, const fs::path& folder, const fs::path&
   for (std::uint64_t id = 0; id < kCandidates; ++id) {
     EXPECT_EQ(resumed.trajectory(id), expected.trajectory(id)) << id;
     EXPECT_EQ(resumed.stress(id), expected.stress(id)) << id;
+    EXPECT_EQ(resumed.finger_stress(id), expected.finger_stress(id)) << id;
   }
   EXPECT_TRUE(testing::file_bytes(dataset) == testing::file_bytes(reference));
 }

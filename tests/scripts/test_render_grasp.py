@@ -2,7 +2,8 @@
 """examples/render_grasp.py on a dataset a tiny farm job makes: a soft capsule and a rigid
 cylinder, one candidate each. Each record is drawn to a valid PNG of the expected size, an
 unknown record is refused, and the script's von Mises formula gives the stress the trial
-stored at the settled grasp.
+stored at the settled grasp. A second job grasps the cylinder with the soft fin-ray: its
+settled fingers are coloured by their stored stress, every surface triangle by a finger tet.
 
   test_render_grasp.py GRIP_EXECUTABLE SOURCE_DIR
 
@@ -41,6 +42,9 @@ metric_samples = 2000
 closing_frames = 4
 validation_frames = 6
 """
+
+FIN_RAY_JOB = JOB.replace('category = "capsule"\nsoft = true\ntet_edge = 0.012\n\n[[objects]]\n',
+                          "").replace('"parallel-jaw"', '"fin-ray"')
 
 
 def fail(message):
@@ -119,6 +123,27 @@ def main():
             fail(f"von Mises recomputed from the settled frame differs from the stored field "
                  f"by {difference:.2e} of its maximum {stored.max():.3g} Pa")
         print(f"von Mises at the settled grasp: within {difference:.1e} of the stored field")
+
+        fin_ray_job, fin_ray = os.path.join(folder, "fin_ray.toml"), os.path.join(folder, "f.h5")
+        with open(fin_ray_job, "w", encoding="utf-8") as f:
+            f.write(FIN_RAY_JOB)
+        farm = subprocess.run([grip, "-q", "farm", fin_ray_job, "--output", fin_ray, "--threads",
+                               "1"], capture_output=True, text=True, check=False)
+        if farm.returncode != 0:
+            fail(f"grip farm (fin-ray) exit {farm.returncode}: {farm.stderr}")
+        out = os.path.join(folder, "fin_ray.png")
+        run = render(script, fin_ray, "--record", "0", "--out", out)
+        if run.returncode != 0 or png_size(out) != (900, 440):
+            fail(f"fin-ray record: exit {run.returncode}\n{run.stdout}{run.stderr}")
+        with h5py.File(fin_ray, "r") as f:
+            gripper, table = f["grippers/000"], f["candidates"]
+            stored = gripper["finger_stress"][table["finger_stress_slot"][0]].astype(float)
+            faces = render_grasp.finger_faces(gripper, stored)
+        if not (np.isfinite(faces).all() and faces.max() > 0 and faces.max() <= stored.max()):
+            fail(f"finger faces: {np.isfinite(faces).sum()} of {len(faces)} found a finger tet, "
+                 f"largest {faces.max():.3g} Pa against the stored {stored.max():.3g} Pa")
+        print(f"fin-ray fingers: {len(faces)} surface triangles coloured, peak "
+              f"{faces.max() / 1e3:.0f} kPa")
     return 0
 
 

@@ -3,8 +3,9 @@
 // apart from the fingers' sag, and is squeezed out without friction; an off-centre one turns
 // with the fingers without slipping unless the object is too heavy; a ball held with friction
 // is lost without it; a trial not steady in time is unsettled; a grasp closing on air fails; a
-// squeezed soft box is stressed under the fingers; IPC leaves D1 = 0 and D2 within d_hat; and
-// a batch matches solo runs for any thread count.
+// squeezed soft box is stressed under the fingers, and squeezing fingers are stressed where
+// they bend; IPC leaves D1 = 0 and D2 within d_hat; and a batch matches solo runs for any
+// thread count.
 #include "src/trial/parallel_trial_scene.hpp"
 #include "src/trial/trial.hpp"
 
@@ -17,6 +18,7 @@
 
 #include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/primitives.hpp"
+#include "src/metrics/von_mises.hpp"
 #include "src/scene/primitives.hpp"
 #include "src/trial/same_result.hpp"
 #include "tests/trial/short_trial.hpp"
@@ -440,6 +442,55 @@ TEST(GraspTrial, SqueezedSoftBoxIsStressedUnderTheFingers) {
   double peak_x = 0;
   for (int c = 0; c < 4; ++c) peak_x += 0.25 * soft.tets->vertices(soft.tets->tets(peak, c), 0);
   EXPECT_LT(std::abs(peak_x), half_width + 0.005);
+}
+
+TEST(GraspTrial, SqueezingFinRayFingersAreStressedWhereTheyBendAndNotAtRest) {
+  // The centred 4 cm box of the first test, squeezed to 10 N; the stress is taken at the
+  // settled grasp, so one step per gravity phase is enough.
+  TrialObject box = rigid_cylinder(3.5);
+  box.surface = geometry::make_box(Eigen::Vector3d(0.04, 0.03, 0.03));
+  TrialParameters p = fin_ray_parameters(0.04);
+  p.final_opening = 0.01;
+  p.grip_force = 10.0;
+  p.phase_duration = p.sim.dt;
+  p.validation_frames = 6;
+  const ParallelTrialScene scene(box, one_layer_fin_ray(), p);
+  const io::GripperRecord record = scene.gripper_record();
+  geometry::TetMesh fingers;  // both fingers as the dataset records them, at rest
+  fingers.vertices = Eigen::Map<const geometry::Vertices>(record.tet_vertices.data(),
+                                                          record.tet_vertices.size() / 3, 3);
+  fingers.tets =
+      Eigen::Map<const geometry::Tetrahedra>(record.tets.data(), record.tets.size() / 4, 4);
+  const Eigen::Index per_finger = one_layer_fin_ray().soft_finger->mesh.tets.rows();
+  ASSERT_EQ(fingers.tets.rows(), 2 * per_finger);
+  // At rest the recorded fingers carry no stress (the pose only turns them).
+  const grippers::FinRayMaterial& material = one_layer_fin_ray().soft_finger->material;
+  const Eigen::VectorXd rest = metrics::von_mises_stress(
+      fingers, fingers.vertices, material.youngs_modulus, material.poisson_ratio);
+  EXPECT_LT(rest.cwiseAbs().maxCoeff(), 1e-6);
+
+  const TrialOutcome outcome = run_trials(scene, parallel_candidates({centred(0.04)})).front();
+  ASSERT_EQ(outcome.result.record.failure, io::FailureKind::kNone) << outcome.failure_reason;
+  ASSERT_TRUE(outcome.result.finger_stress.has_value());
+  const std::vector<float>& stress = *outcome.result.finger_stress;
+  ASSERT_EQ(stress.size(), static_cast<std::size_t>(fingers.tets.rows()));
+  std::array<double, 2> total{};
+  for (int finger = 0; finger < 2; ++finger) {
+    std::vector<float> own(stress.begin() + finger * per_finger,
+                           stress.begin() + (finger + 1) * per_finger);
+    EXPECT_TRUE(std::all_of(own.begin(), own.end(), [](float s) { return s >= 0.0f; }));
+    total[finger] = std::accumulate(own.begin(), own.end(), 0.0);
+    // Bending concentrates stress: the most stressed tet carries far more than the median.
+    std::nth_element(own.begin(), own.begin() + per_finger / 2, own.end());
+    const double median = own[per_finger / 2];
+    const double peak = *std::max_element(own.begin(), own.end());
+    EXPECT_GT(peak, 1e5) << "finger " << finger;  // Pa; squeezed at 10 N
+    EXPECT_GT(peak, 5.0 * median) << "finger " << finger;
+  }
+  // The grasp is symmetric: both fingers bend alike, in the record's finger order.
+  EXPECT_NEAR(total[0], total[1], 0.1 * total[0]);
+  // A rigid gripper has no soft fingers to record.
+  EXPECT_TRUE(ParallelTrialScene(box, rigid_jaws(), p).gripper_record().tets.empty());
 }
 
 TEST(GraspTrial, BatchMatchesSoloRunsForAnyThreadCount) {
