@@ -17,6 +17,9 @@ frame closing_frames - 1, the end of closing, where grip takes the stress. Each 
   friction_forces
   gripper_contact_forces,           (g, 3) float32: the same on the gripper's vertices, from
   gripper_friction_forces           format 9 on (absent from a format 8 file's items)
+  finger_stress     (k,) float32    von Mises per tet of the soft fingers (Pa; the gripper's
+                                    tets), 0 without a row; format 10 on, like has_finger_stress
+  has_finger_stress bool scalar     the candidate's finger stress row was written
   status, failure   int64 scalars   the verdict's codes (their names: the dataset's
                                     status_names, failure_names)
   success           bool scalar     status == success
@@ -40,10 +43,12 @@ import torch
 MIN_FORMAT_VERSION = 8
 OBJECT_KEYS = ("object_vertices", "rest_vertices", "stress", "contact_forces", "friction_forces")
 GRIPPER_KEYS = ("gripper_vertices", "gripper_contact_forces", "gripper_friction_forces")
+FINGER_KEYS = ("finger_stress",)
 OPTIONAL_TRAJECTORY = ("gripper_contact_forces", "gripper_friction_forces")
 # The table's columns an item needs, read whole once (they are small; the frames are not).
 TABLE_COLUMNS = ("done", "trajectory_written", "stress_written", "object", "gripper", "status",
                  "failure", "frame_slot", "stress_slot", "closing_forces")
+FINGER_COLUMNS = ("finger_stress_written", "finger_stress_slot")  # format 10 on
 
 
 def text(value):
@@ -99,7 +104,10 @@ class GraspStressDataset(torch.utils.data.Dataset):
                                  "soft": bool(f["objects"][k].attrs["soft"])} for k in keys]
             self.gripper_names = [text(f["grippers"][k].attrs["name"])
                                   for k in sorted(f["grippers"])]
-            column = {name: table[name][:] for name in TABLE_COLUMNS}
+            self.finger_tets = [len(f["grippers"][k]["tets"]) if "tets" in f["grippers"][k] else 0
+                                for k in sorted(f["grippers"])]
+            names = TABLE_COLUMNS + (FINGER_COLUMNS if FINGER_COLUMNS[0] in table else ())
+            column = {name: table[name][:] for name in names}
         committed = column["done"] == 1
         keep = committed & (column["trajectory_written"] == 1)
         # Committed rows left out because the job stored no trajectory for them (frames = false).
@@ -178,6 +186,14 @@ class GraspStressDataset(torch.utils.data.Dataset):
         for name in OPTIONAL_TRAJECTORY:
             if name in frames:
                 item[name] = torch.from_numpy(frames[name][slot, frame])
+        if "finger_stress_written" in column:
+            has_finger_stress = bool(column["finger_stress_written"])
+            finger_stress = np.zeros(self.finger_tets[gripper], dtype=np.float32)
+            if has_finger_stress:
+                finger_stress = f["grippers"][f"{gripper:03d}"]["finger_stress"][
+                    int(column["finger_stress_slot"])]
+            item["finger_stress"] = torch.from_numpy(finger_stress)
+            item["has_finger_stress"] = torch.tensor(has_finger_stress)
         return item
 
 
@@ -192,15 +208,17 @@ def pad(tensors):
 
 
 def collate_padded(items):
-    """DataLoader collate_fn: per-vertex tensors zero padded with object_mask / gripper_mask
-    (True on real points), triangles and strings as lists, the rest stacked. For no padding at
-    all, pass collate_fn=list and get the items themselves."""
+    """DataLoader collate_fn: per-vertex (per-finger-tet) tensors zero padded with object_mask /
+    gripper_mask / finger_mask (True on real values), triangles and strings as lists, the rest
+    stacked. For no padding at all, pass collate_fn=list and get the items themselves."""
     batch = {}
+    masks = {**dict.fromkeys(OBJECT_KEYS, "object_mask"),
+             **dict.fromkeys(GRIPPER_KEYS, "gripper_mask"),
+             **dict.fromkeys(FINGER_KEYS, "finger_mask")}
     for key in items[0]:
         values = [item[key] for item in items]
-        if key in OBJECT_KEYS or key in GRIPPER_KEYS:
-            batch[key], mask = pad(values)
-            batch["object_mask" if key in OBJECT_KEYS else "gripper_mask"] = mask
+        if key in masks:
+            batch[key], batch[masks[key]] = pad(values)
         elif key == "triangles" or isinstance(values[0], str):
             batch[key] = values
         else:

@@ -114,6 +114,16 @@ def check_loader(dataset_path, folder):
     if finger_push < 1.0 or (gripper_total + object_total).norm() > 1e-3 * finger_push:
         fail(f"gripper forces {gripper_total.tolist()} do not balance the object's "
              f"{object_total.tolist()}")
+    # Format 10 on: the soft fingers' stress row of the candidate, as the file holds it.
+    with h5py.File(dataset_path, "r") as f:
+        table, gripper = f["candidates"], f["grippers"]["000"]
+        row = int(item["candidate"])
+        stored = gripper["finger_stress"][table["finger_stress_slot"][row]]
+    if not item["has_finger_stress"] or not np.array_equal(item["finger_stress"].numpy(), stored) \
+            or not stored.max() > 0:
+        fail(f"finger stress of candidate {row} is not the file's row (max {stored.max():.3g} Pa)")
+    if batch["finger_stress"].shape != (2, len(stored)) or not batch["finger_mask"].all():
+        fail(f"batched finger stress {tuple(batch['finger_stress'].shape)}")
     print(f"loader: {len(dataset)} items, settled frames, vertex stress checked by hand")
 
 
