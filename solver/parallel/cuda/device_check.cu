@@ -1,9 +1,11 @@
 // grip-gpu-check: the data-parallel engine's stages on a GPU against the host launcher on the
 // same batches (scripts/gpu-check.sh runs it). Batches of 1 to 512 soft-box environments, each
 // deformed differently, go through the elastic stages (per-tet energy, gradient and projected
-// Hessian; per-vertex gradient gather; per-environment energy) and the barrier stage (512
+// Hessian; per-vertex gradient gather; per-environment energy), the barrier stage (512
 // contact pairs per environment, point-triangle and edge-edge, some nearly parallel, at 5 % to
-// 120 % of d_hat) on the device (CudaLauncher) and on one host core (SerialLauncher); it reports
+// 120 % of d_hat) and the friction stage (the same pairs as lagged friction contacts, sliding
+// 0.1 to 10 times eps_v h) on the device (CudaLauncher) and on one host core (SerialLauncher); it
+// reports
 // the largest relative differences, the device's and the host's times, and device memory per
 // environment, as JSON and Markdown in OUTDIR.
 // Exit status: 0 when every difference is within its tolerance, 1 when one is not, 2 when no
@@ -22,10 +24,12 @@
 #include <string>
 #include <vector>
 
+#include "solver/kernels/relative_velocity.hpp"
 #include "solver/parallel/contact_stages.hpp"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
 #include "solver/parallel/elastic_stages.hpp"
 #include "solver/parallel/fem_batch.hpp"
+#include "solver/parallel/friction_stages.hpp"
 #include "solver/parallel/launch.hpp"
 
 namespace {
@@ -219,9 +223,11 @@ ContactPairs contact_pairs(int environments, std::vector<double>& positions) {
   return pairs;
 }
 
-struct BarrierValues {
+// Per contact pair (or friction contact): energy, 12-gradient, 12x12 Hessian.
+struct StageValues3 {
   std::vector<double> energy, gradient, hessian;
 };
+using BarrierValues = StageValues3;
 
 BarrierValues host_barrier(const ContactPairs& pairs, const std::vector<double>& x, double& ms) {
   const int n = pairs.pairs().count;
@@ -255,6 +261,74 @@ BarrierValues device_barrier(const ContactPairs& pairs, const std::vector<double
   return {energy.to_host(), gradient.to_host(), hessian.to_host()};
 }
 
+// The same pairs as lagged friction contacts (normal +z, tangent basis x and y; a point over
+// the triangle at barycentric (0.4, 0.3, 0.3), edges crossing at their midpoints), each with mu
+// lambda from 0.1 to 50 N, and start positions from which the first vertex slid 0.1 to 10
+// times eps_v h = 1e-5 m.
+FrictionContacts friction_contacts(int environments, const std::vector<double>& positions,
+                                   std::vector<double>& start) {
+  constexpr double kEps = 1e-5;
+  FrictionContacts contacts;
+  std::uint64_t seed = 0x9e3779b97f4a7c15ull;
+  const auto uniform = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(seed >> 11) / static_cast<double>(1ull << 53);
+  };
+  Eigen::Matrix<double, 3, 2> basis;
+  basis << 1.0, 0.0, 0.0, 1.0, 0.0, 0.0;
+  const Eigen::Matrix<double, 12, 2> point_triangle = grip::solver::kernels::tangent_operator<4>(
+      grip::solver::kernels::point_triangle_relative_velocity_jacobian(Eigen::Vector2d(0.3, 0.3)),
+      basis);
+  const Eigen::Matrix<double, 12, 2> edge_edge = grip::solver::kernels::tangent_operator<4>(
+      grip::solver::kernels::edge_edge_relative_velocity_jacobian(Eigen::Vector2d(0.5, 0.5)),
+      basis);
+  start = positions;
+  for (int e = 0; e < environments; ++e) {
+    contacts.begin_environment(4 * kPairsPerEnvironment, kEps);
+    for (int k = 0; k < kPairsPerEnvironment; ++k) {
+      const int vertex[4] = {4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3};
+      contacts.add(vertex, k % 2 == 1 ? edge_edge : point_triangle, 0.1 + 50.0 * uniform());
+      const double slide = std::pow(10.0, -1.0 + 2.0 * uniform()) * kEps, angle = 7.0 * k;
+      const std::size_t first = 3 * (std::size_t(e) * 4 * kPairsPerEnvironment + 4 * k);
+      start[first] -= slide * std::cos(angle);
+      start[first + 1] -= slide * std::sin(angle);
+    }
+  }
+  return contacts;
+}
+
+StageValues3 host_friction(const FrictionContacts& contacts, const std::vector<double>& x,
+                           const std::vector<double>& start, double& ms) {
+  const int n = contacts.buffers().count;
+  StageValues3 v{std::vector<double>(n), std::vector<double>(12 * std::size_t(n)),
+                 std::vector<double>(144 * std::size_t(n))};
+  const auto begin = std::chrono::steady_clock::now();
+  SerialLauncher{}(n, FrictionStage{contacts.buffers(), x.data(), start.data(), v.energy.data(),
+                                    v.gradient.data(), v.hessian.data()});
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  return v;
+}
+
+StageValues3 device_friction(const FrictionContacts& contacts, const std::vector<double>& x,
+                             const std::vector<double>& start, int repeats, double& ms,
+                             double& bytes) {
+  DeviceArray<int> vertex(contacts.vertex()), environment(contacts.environment());
+  DeviceArray<double> tangent(contacts.tangent()), mu_lambda(contacts.mu_lambda()),
+      eps(contacts.eps()), positions(x), start_positions(start);
+  const int n = contacts.buffers().count;
+  DeviceArray<double> energy(n), gradient(12 * std::size_t(n)), hessian(144 * std::size_t(n));
+  const FrictionBuffers buffers{
+      n, vertex.data(), tangent.data(), mu_lambda.data(), environment.data(), eps.data()};
+  ms = device_median_ms(repeats, [&] {
+    CudaLauncher{}(n, FrictionStage{buffers, positions.data(), start_positions.data(),
+                                    energy.data(), gradient.data(), hessian.data()});
+  });
+  bytes = 8.0 * double(positions.size() + start_positions.size() + tangent.size() +
+                       mu_lambda.size() + energy.size() + gradient.size() + hessian.size()) +
+          4.0 * double(vertex.size() + environment.size());
+  return {energy.to_host(), gradient.to_host(), hessian.to_host()};
+}
+
 struct SizeResult {
   int environments = 0;
   int tets = 0;
@@ -262,10 +336,15 @@ struct SizeResult {
   double energy = 0.0, gradient = 0.0, hessian = 0.0;  // relative differences
   double barrier_device_ms = 0.0, barrier_host_ms = 0.0, barrier_bytes = 0.0;
   double barrier_energy = 0.0, barrier_gradient = 0.0, barrier_hessian = 0.0;
+  double friction_device_ms = 0.0, friction_host_ms = 0.0, friction_bytes = 0.0;
+  double friction_energy = 0.0, friction_gradient = 0.0, friction_hessian = 0.0;
   bool pass() const {
+    // The friction Hessian needs no eigen-solve: it is held to the gradient's tolerance.
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
            hessian <= kHessianTolerance && barrier_energy <= kEnergyTolerance &&
-           barrier_gradient <= kGradientTolerance && barrier_hessian <= kHessianTolerance;
+           barrier_gradient <= kGradientTolerance && barrier_hessian <= kHessianTolerance &&
+           friction_energy <= kEnergyTolerance && friction_gradient <= kGradientTolerance &&
+           friction_hessian <= kGradientTolerance;
   }
 };
 
@@ -294,6 +373,17 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   result.barrier_energy = relative_difference(on_device.energy, on_host.energy, 1);
   result.barrier_gradient = relative_difference(on_device.gradient, on_host.gradient, 12);
   result.barrier_hessian = relative_difference(on_device.hessian, on_host.hessian, 144);
+  std::vector<double> start;
+  const FrictionContacts contacts = friction_contacts(environments, positions, start);
+  const StageValues3 friction_device = device_friction(
+      contacts, positions, start, repeats, result.friction_device_ms, result.friction_bytes);
+  const StageValues3 friction_host =
+      host_friction(contacts, positions, start, result.friction_host_ms);
+  result.friction_energy = relative_difference(friction_device.energy, friction_host.energy, 1);
+  result.friction_gradient =
+      relative_difference(friction_device.gradient, friction_host.gradient, 12);
+  result.friction_hessian =
+      relative_difference(friction_device.hessian, friction_host.hessian, 144);
   return result;
 }
 
@@ -326,17 +416,18 @@ void write_reports(const std::string& directory, const std::string& device,
   if (!json || !md) throw std::runtime_error("cannot write to " + directory);
   json << "{" << device << ", \"tets_per_environment\": " << tets_per_environment
        << ", \"stages\": \"elastic (energy, gradient, projected Hessian), gradient gather, "
-          "environment energy; barrier\", \"pairs_per_environment\": "
+          "environment energy; barrier; friction\", \"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"sizes\": [";
-  md << "Elastic and barrier stages on " << gpu_name << ": " << tets_per_environment << " tets and "
-     << kPairsPerEnvironment
-     << " contact pairs per environment; host: one core, serial launcher.\n\n"
+  md << "Elastic, barrier and friction stages on " << gpu_name << ": " << tets_per_environment
+     << " tets and " << kPairsPerEnvironment
+     << " contact pairs (and as many friction contacts) per environment; host: one core, serial "
+        "launcher.\n\n"
      << "| environments | tets | device ms | host ms | host/device | device MiB per env | "
         "energy diff | gradient diff | Hessian diff | pairs | barrier device ms | barrier host ms "
-        "| "
-        "barrier diffs (energy, gradient, Hessian) | within tolerance |\n"
+        "| barrier diffs (energy, gradient, Hessian) | friction device ms | friction host ms | "
+        "friction diffs (energy, gradient, Hessian) | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
-        "| --- |\n";
+        "| ---: | ---: | --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     const SizeResult& r = results[i];
     const double per_env_mib = r.timing.device_bytes / r.environments / double(1 << 20);
@@ -354,10 +445,21 @@ void write_reports(const std::string& directory, const std::string& device,
          << ", \"barrier_energy_relative_difference\": " << r.barrier_energy
          << ", \"barrier_gradient_relative_difference\": " << r.barrier_gradient
          << ", \"barrier_hessian_relative_difference\": " << r.barrier_hessian
+         << ", \"friction_device_ms\": " << r.friction_device_ms
+         << ", \"friction_host_ms\": " << r.friction_host_ms
+         << ", \"friction_device_mib_per_environment\": "
+         << r.friction_bytes / r.environments / double(1 << 20)
+         << ", \"friction_energy_relative_difference\": " << r.friction_energy
+         << ", \"friction_gradient_relative_difference\": " << r.friction_gradient
+         << ", \"friction_hessian_relative_difference\": " << r.friction_hessian
          << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
     md << "| " << r.environments << " | " << r.tets << " | " << r.timing.device_ms << " | "
        << r.timing.host_ms << " | " << r.timing.host_ms / r.timing.device_ms << " | " << per_env_mib
        << " | " << r.energy << " | " << r.gradient << " | " << r.hessian << " | "
+       << r.environments * kPairsPerEnvironment << " | " << r.barrier_device_ms << " | "
+       << r.barrier_host_ms << " | " << r.barrier_energy << ", " << r.barrier_gradient << ", "
+       << r.barrier_hessian << " | " << r.friction_device_ms << " | " << r.friction_host_ms << " | "
+       << r.friction_energy << ", " << r.friction_gradient << ", " << r.friction_hessian << " | "
        << (r.pass() ? "yes" : "NO") << " |\n";
   }
   json << "]}\n";
