@@ -48,10 +48,12 @@ fail() {
   exit 1
 }
 
-# The rigid cylinder's trials take 0.2 s, the soft capsules' 2 to 9 s each (on one core of the
-# 2-core development machine): about 50 s of trials on two ranks, so that the one-minute time
-# limit's warning, 10 to 40 s into a run, stops the run after the scancel's. On a machine much
-# faster than that one the job could end before the warning; the test then fails saying so.
+# The rigid cylinder's trials take 0.05 s, the soft capsules' (tet_edge 5 mm) 0.5 to 8 s each
+# (on one core of the 2-core development machine): about 75 s of trials on two ranks, so that
+# the one-minute time limit's warning, 10 to 40 s into a run (slurmctld checks time limits every
+# 30 s), stops the run after the scancel's. At tet_edge 10 mm the job took 18 s and ended before
+# the warning; a machine 1.8 times faster than that one could still do so, and the test then fails
+# saying so.
 cat >"$dir/job.toml" <<'EOF'
 [job]
 name = "slurm-test"
@@ -64,7 +66,7 @@ category = "cylinder"
 category = "capsule"
 count = 2
 soft = true
-tet_edge = 0.01
+tet_edge = 0.005
 
 [[grippers]]
 name = "parallel-jaw"
