@@ -1,5 +1,7 @@
 #include "solver/batch/model_batch.hpp"
 
+#include "solver/body/driven_bodies.hpp"
+
 namespace grip::solver::parallel {
 
 FemBatch fem_batch(const std::vector<const Model*>& environments) {
@@ -22,6 +24,24 @@ FemBatch fem_batch(const std::vector<const Model*>& environments) {
     }
   }
   batch.finish();
+  return batch;
+}
+
+AffineBatch affine_batch(const std::vector<const Model*>& environments) {
+  AffineBatch batch;
+  for (const Model* model : environments) {
+    batch.begin_environment(model->dof_count());
+    for (const BodyModel& body : model->bodies()) {
+      const auto* affine = dynamic_cast<const AffineBodies*>(body.kind);
+      if (!affine) continue;
+      const auto* driven = dynamic_cast<const DrivenBodies*>(body.kind);
+      const int i = body.local;
+      batch.add_body(body.dof_offset,
+                     {affine->mass_matrix(i).data(), affine->mass_matrix_inverse(i).data(),
+                      affine->density(i), affine->volume(i), affine->orthogonality_stiffness(i),
+                      driven == nullptr, driven ? driven->drive_stiffness(i) : 0.0});
+    }
+  }
   return batch;
 }
 

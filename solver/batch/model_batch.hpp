@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "solver/model/model.hpp"
+#include "solver/parallel/affine_batch.hpp"
 #include "solver/parallel/fem_batch.hpp"
 
 namespace grip::solver::parallel {
@@ -12,5 +13,9 @@ namespace grip::solver::parallel {
 // Every deforming body's tets of every environment (one model per environment; models may
 // repeat).
 FemBatch fem_batch(const std::vector<const Model*>& environments);
+
+// Every affine and driven body of every environment, with the values the CPU engine's
+// AffineBodies and DrivenBodies hold.
+AffineBatch affine_batch(const std::vector<const Model*>& environments);
 
 }  // namespace grip::solver::parallel

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "solver/kernels/affine_body.hpp"
+#include "solver/kernels/psd_projection.hpp"
 
 namespace grip::solver {
 namespace {
@@ -185,8 +186,11 @@ void AffineBodies::add_elastic_derivatives(int i, const Eigen::VectorXd& q, doub
   gradient.segment<12>(o) += scale * kernels::affine_body_orthogonality_gradient(
                                          qb, orthogonality_stiffness_[i], volume_[i]);
   if (!hessian) return;
-  const Matrix12d h = scale * kernels::affine_body_orthogonality_hessian(
-                                  qb, orthogonality_stiffness_[i], volume_[i], true);
+  // The 9x9 block in the rows of A, projected; p's rows and columns are zero.
+  Matrix12d h = Matrix12d::Zero();
+  h.block<9, 9>(3, 3) = kernels::project_to_psd<9>(
+      kernels::affine_body_orthogonality_block(qb, orthogonality_stiffness_[i], volume_[i]));
+  h *= scale;
   for (int r = 0; r < 12; ++r) {
     for (int c = 0; c <= r; ++c) hessian->emplace_back(o + r, o + c, h(r, c));
   }

@@ -49,11 +49,21 @@ class AffineBodies : public BodySubsystem {
                                const StepDamping* damping, Eigen::VectorXd& gradient,
                                Triplets* hessian) const override;
 
+  // What the data-parallel engine copies into its flat buffers (parallel/affine_batch.hpp).
+  const Matrix12d& mass_matrix(int i) const { return mass_matrix_[static_cast<std::size_t>(i)]; }
+  const Matrix12d& mass_matrix_inverse(int i) const {
+    return mass_matrix_inverse_[static_cast<std::size_t>(i)];
+  }
+  double density(int i) const { return density_[static_cast<std::size_t>(i)]; }
+  double volume(int i) const { return volume_[static_cast<std::size_t>(i)]; }
+  double orthogonality_stiffness(int i) const {
+    return orthogonality_stiffness_[static_cast<std::size_t>(i)];
+  }
+
  protected:
   void build(const BodyDescription& description) override;
   // The body's DOFs in `dofs` set to the rigid pose `pose` of its description's frame.
   void set_pose(int i, const Pose& pose, Eigen::VectorXd& dofs) const;
-  const Matrix12d& mass_matrix(int i) const { return mass_matrix_[static_cast<std::size_t>(i)]; }
   // 12 x 12 lower-triangle triplets of s M, M the body's mass matrix.
   void add_mass_triplets(int i, double s, Triplets& hessian) const;
 

@@ -23,6 +23,7 @@ class DrivenBodies final : public AffineBodies {
   void add_drive_derivatives(int i, const Eigen::VectorXd& q, const Eigen::VectorXd& target,
                              double scale, Eigen::VectorXd& gradient,
                              Triplets* hessian) const override;
+  double drive_stiffness(int i) const { return drive_stiffness_[static_cast<std::size_t>(i)]; }
 
  private:
   void build(const BodyDescription& description) override;

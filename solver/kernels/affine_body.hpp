@@ -1,14 +1,14 @@
 #pragma once
 // Affine body (ABD, Lan et al. 2022) kinematics and orthogonality potential: a stiff body's
 // 12 DOFs q, the world position of a rest-space point and its 3x12 Jacobian, and
-// kappa V ||A A^T - I||_F^2 with its gradient and (optionally PSD-projected) Hessian.
+// kappa V ||A A^T - I||_F^2 with its gradient and Hessian (its PSD projection is the caller's:
+// psd_projection.hpp on the host, jacobi_psd_projection.hpp on a device).
 //
 // DOF layout: q = (p, a1, a2, a3), where p is the translation and a_i are the ROWS of the
 // 3x3 affine matrix A, so that x = A xbar + p, i.e. x_i = p_i + a_i . xbar.
 #include <Eigen/Core>
 
 #include "solver/kernels/hd.hpp"
-#include "solver/kernels/psd_projection.hpp"
 
 namespace grip::solver::kernels {
 
@@ -65,12 +65,13 @@ GRIP_HD inline Vector12d affine_body_orthogonality_gradient(const Vector12d& q, 
   return g;
 }
 
-// d^2 V_perp / da_i da_j = 4 kappa V (delta_ij (A^T A - I) + a_j a_i^T + (a_i . a_j) I); the
-// translation rows and columns are zero. With project_psd, the 9x9 A block (the only nonzero
-// part) is replaced by its nearest positive semi-definite matrix (numerical eigen-decomposition,
-// negative eigenvalues clamped to zero).
-GRIP_HD inline Matrix12d affine_body_orthogonality_hessian(const Vector12d& q, double stiffness,
-                                                           double volume, bool project_psd) {
+// d^2 V_perp / da_i da_j = 4 kappa V (delta_ij (A^T A - I) + a_j a_i^T + (a_i . a_j) I): the 9x9
+// block of the Hessian in (a1, a2, a3), its only nonzero part (the translation's rows and
+// columns are zero). Not projected: device code projects it by Jacobi rotations
+// (jacobi_psd_projection.hpp).
+GRIP_HD inline Eigen::Matrix<double, 9, 9> affine_body_orthogonality_block(const Vector12d& q,
+                                                                           double stiffness,
+                                                                           double volume) {
   const Eigen::Matrix3d a = affine_body_matrix(q);
   const Eigen::Matrix3d m = a.transpose() * a - Eigen::Matrix3d::Identity();
   Eigen::Matrix<double, 9, 9> block;
@@ -83,9 +84,7 @@ GRIP_HD inline Matrix12d affine_body_orthogonality_hessian(const Vector12d& q, d
       block.block<3, 3>(3 * i, 3 * j) = 4.0 * stiffness * volume * b;
     }
   }
-  Matrix12d h = Matrix12d::Zero();
-  h.block<9, 9>(3, 3) = project_psd ? project_to_psd<9>(block) : block;
-  return h;
+  return block;
 }
 
 }  // namespace grip::solver::kernels

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
+#include "solver/kernels/psd_projection.hpp"
 #include "tests/kernels/finite_difference.hpp"
 
 namespace {
@@ -19,6 +20,14 @@ using grip::test::relatively_close;
 
 constexpr double kStiffness = 1e8;  // Pa
 constexpr double kVolume = 2e-4;    // m^3
+
+// The 12x12 Hessian: the kernel's 9x9 block in the rows of A, PSD-projected if asked.
+Matrix12d orthogonality_hessian(const Vector12d& q, bool project) {
+  const Eigen::Matrix<double, 9, 9> block = affine_body_orthogonality_block(q, kStiffness, kVolume);
+  Matrix12d h = Matrix12d::Zero();
+  h.block<9, 9>(3, 3) = project ? project_to_psd<9>(block) : block;
+  return h;
+}
 
 Eigen::Matrix3d random_rotation(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
@@ -94,7 +103,7 @@ TEST(AffineBody, OrthogonalityDerivativesMatchCentralDifferences) {
     const double scale = kStiffness * kVolume;
     ASSERT_TRUE(relatively_close(gradient(q), fd_gradient<12>(q, energy, h), 1e-6, 1e-7 * scale))
         << "trial " << trial;
-    ASSERT_TRUE(relatively_close(affine_body_orthogonality_hessian(q, kStiffness, kVolume, false),
+    ASSERT_TRUE(relatively_close(orthogonality_hessian(q, false),
                                  fd_jacobian<12, 12>(q, gradient, h), 1e-7, 1e-7 * scale))
         << "trial " << trial;
   }
@@ -110,8 +119,8 @@ TEST(AffineBody, ProjectedHessianIsPsdAndUnchangedWhenAlreadyPsd) {
     a *= trial % 2 ? 0.3 : 1.0;
     for (int i = 0; i < 9; ++i) a(i) += 0.2 * u(rng);
     const Vector12d q = affine_body_dofs(a, Eigen::Vector3d::Zero());
-    const Matrix12d h = affine_body_orthogonality_hessian(q, kStiffness, kVolume, false);
-    const Matrix12d p = affine_body_orthogonality_hessian(q, kStiffness, kVolume, true);
+    const Matrix12d h = orthogonality_hessian(q, false);
+    const Matrix12d p = orthogonality_hessian(q, true);
     const Eigen::SelfAdjointEigenSolver<Matrix12d> before(h);
     const Eigen::SelfAdjointEigenSolver<Matrix12d> after(p);
     const double tol = 1e-12 * h.norm();
@@ -126,9 +135,8 @@ TEST(AffineBody, ProjectedHessianIsPsdAndUnchangedWhenAlreadyPsd) {
   EXPECT_GT(indefinite, 100);
   // At a rotation the potential is at its minimum: the Hessian is PSD and stays unchanged.
   const Vector12d q = affine_body_dofs(random_rotation(rng), Eigen::Vector3d::Zero());
-  const Matrix12d h = affine_body_orthogonality_hessian(q, kStiffness, kVolume, false);
-  EXPECT_LT((affine_body_orthogonality_hessian(q, kStiffness, kVolume, true) - h).norm(),
-            1e-10 * h.norm());
+  const Matrix12d h = orthogonality_hessian(q, false);
+  EXPECT_LT((orthogonality_hessian(q, true) - h).norm(), 1e-10 * h.norm());
 }
 
 }  // namespace

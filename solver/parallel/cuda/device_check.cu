@@ -3,9 +3,10 @@
 // deformed differently, go through the elastic stages (per-tet energy, gradient and projected
 // Hessian; per-vertex gradient gather; per-environment energy), the barrier stage (512
 // contact pairs per environment, point-triangle and edge-edge, some nearly parallel, at 5 % to
-// 120 % of d_hat) and the friction stage (the same pairs as lagged friction contacts, sliding
-// 0.1 to 10 times eps_v h) on the device (CudaLauncher) and on one host core (SerialLauncher); it
-// reports
+// 120 % of d_hat), the friction stage (the same pairs as lagged friction contacts, sliding
+// 0.1 to 10 times eps_v h) and the affine stages (17 affine bodies per environment, as a hand's
+// 16 driven links and its object: prediction, inertia, orthogonality, drive) on the device
+// (CudaLauncher) and on one host core (SerialLauncher); it reports
 // the largest relative differences, the device's and the host's times, and device memory per
 // environment, as JSON and Markdown in OUTDIR.
 // Exit status: 0 when every difference is within its tolerance, 1 when one is not, 2 when no
@@ -25,6 +26,8 @@
 #include <vector>
 
 #include "solver/kernels/relative_velocity.hpp"
+#include "solver/parallel/affine_batch.hpp"
+#include "solver/parallel/affine_stages.hpp"
 #include "solver/parallel/contact_stages.hpp"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
 #include "solver/parallel/elastic_stages.hpp"
@@ -329,6 +332,115 @@ StageValues3 device_friction(const FrictionContacts& contacts, const std::vector
   return {energy.to_host(), gradient.to_host(), hessian.to_host()};
 }
 
+constexpr int kAffinePerEnvironment = 17;  // a LEAP hand's 16 driven links and its object
+
+// Per environment 17 boxes of 1 to 5 cm as affine bodies, the first falling (the object), the
+// others driven (the links), each with the analytic mass matrix of a box about its centre
+// (m I for p, the second moments for the rows of A) and its diagonal inverse; states whose
+// matrices are scaled by 0.8 to 1.2 and jittered, so that some orthogonality Hessians need
+// projecting; random velocities, and drive targets off the state by up to 5 mm.
+struct AffineScene {
+  AffineBatch batch;
+  std::vector<double> q, v, target, h, gravity;
+};
+
+AffineScene affine_scene(int environments) {
+  AffineScene scene;
+  std::uint64_t seed = 0x853c49e6748fea9bull;
+  const auto uniform = [&] {  // in [-1, 1)
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return 2.0 * static_cast<double>(seed >> 11) / static_cast<double>(1ull << 53) - 1.0;
+  };
+  for (int e = 0; e < environments; ++e) {
+    scene.batch.begin_environment(12 * kAffinePerEnvironment);
+    scene.h.push_back(e % 2 ? 0.005 : 0.01);
+    scene.gravity.insert(scene.gravity.end(), {0.5 * uniform(), 0.0, -9.81});
+    for (int b = 0; b < kAffinePerEnvironment; ++b) {
+      const double size[3] = {0.03 + 0.02 * uniform(), 0.03 + 0.02 * uniform(),
+                              0.03 + 0.02 * uniform()};
+      const double density = 1000.0, volume = size[0] * size[1] * size[2], mass = density * volume;
+      std::vector<double> m(144, 0.0), inverse(144, 0.0);
+      for (int k = 0; k < 12; ++k) {
+        const double diagonal = k < 3 ? mass : mass * size[(k - 3) % 3] * size[(k - 3) % 3] / 12.0;
+        m[13 * k] = diagonal;
+        inverse[13 * k] = 1.0 / diagonal;
+      }
+      scene.batch.add_body(
+          12 * b, {m.data(), inverse.data(), density, volume, 1e9, b == 0, b == 0 ? 0.0 : 2e4});
+      for (int k = 0; k < 12; ++k) {
+        const double identity = k >= 3 && (k - 3) % 4 == 0 ? 1.0 : 0.0;
+        const double x =
+            k < 3 ? 0.1 * uniform() : identity * (1.0 + 0.2 * uniform()) + 0.1 * uniform();
+        scene.q.push_back(x);
+        scene.v.push_back(0.3 * uniform());
+        scene.target.push_back(x + 0.005 * uniform());
+      }
+    }
+  }
+  return scene;
+}
+
+// Per body its three energies (inertia, orthogonality, drive, one after the other), the
+// batch's inertia target and gradient (the three stages' sum), the 81-value Hessian blocks.
+struct AffineValues {
+  std::vector<double> energy, q_tilde, gradient, hessian;
+};
+
+// The four affine stages in order, with `launch`; the gradient must start at zero.
+template <class Launcher>
+void affine_stages(Launcher&& launch, const AffineBuffers& bodies, const double* q, const double* v,
+                   const double* target, const double* h, const double* gravity, double* q_tilde,
+                   double* energy, double* gradient, double* hessian) {
+  launch(bodies.count, AffinePredictionStage{bodies, q, v, h, gravity, q_tilde});
+  launch(bodies.count, AffineInertiaStage{bodies, q, q_tilde, energy, gradient});
+  launch(bodies.count,
+         OrthogonalityStage{bodies, q, true, energy + bodies.count, gradient, hessian});
+  launch(bodies.count, DriveStage{bodies, q, target, energy + 2 * bodies.count, gradient});
+}
+
+AffineValues host_affine(const AffineScene& a, double& ms) {
+  const int n = a.batch.bodies().count;
+  AffineValues v{std::vector<double>(3 * std::size_t(n)), std::vector<double>(a.q.size()),
+                 std::vector<double>(a.q.size(), 0.0), std::vector<double>(81 * std::size_t(n))};
+  const auto begin = std::chrono::steady_clock::now();
+  affine_stages(SerialLauncher{}, a.batch.bodies(), a.q.data(), a.v.data(), a.target.data(),
+                a.h.data(), a.gravity.data(), v.q_tilde.data(), v.energy.data(), v.gradient.data(),
+                v.hessian.data());
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  return v;
+}
+
+AffineValues device_affine(const AffineScene& a, int repeats, double& ms, double& bytes) {
+  const AffineBatch& batch = a.batch;
+  DeviceArray<int> dof(batch.dof()), environment(batch.environment());
+  DeviceArray<double> m(batch.mass_matrix()), inverse(batch.mass_matrix_inverse()),
+      weight(batch.weight_mass()), volume(batch.volume()),
+      stiffness(batch.orthogonality_stiffness()), drive(batch.drive_stiffness()), q(a.q), v(a.v),
+      target(a.target), h(a.h), gravity(a.gravity);
+  const int n = batch.bodies().count;
+  DeviceArray<double> q_tilde(a.q.size()), energy(3 * std::size_t(n)), gradient(a.q.size()),
+      hessian(81 * std::size_t(n));
+  const AffineBuffers bodies{n,
+                             dof.data(),
+                             environment.data(),
+                             m.data(),
+                             inverse.data(),
+                             weight.data(),
+                             volume.data(),
+                             stiffness.data(),
+                             drive.data()};
+  ms = device_median_ms(repeats, [&] {
+    cuda_check(cudaMemset(gradient.data(), 0, gradient.size() * sizeof(double)), "cudaMemset");
+    affine_stages(CudaLauncher{}, bodies, q.data(), v.data(), target.data(), h.data(),
+                  gravity.data(), q_tilde.data(), energy.data(), gradient.data(), hessian.data());
+  });
+  bytes = 8.0 * double(m.size() + inverse.size() + weight.size() + volume.size() +
+                       stiffness.size() + drive.size() + q.size() + v.size() + target.size() +
+                       q_tilde.size() + energy.size() + gradient.size() + hessian.size()) +
+          4.0 * double(dof.size() + environment.size());
+  return {energy.to_host(), q_tilde.to_host(), gradient.to_host(), hessian.to_host()};
+}
+
 struct SizeResult {
   int environments = 0;
   int tets = 0;
@@ -338,13 +450,17 @@ struct SizeResult {
   double barrier_energy = 0.0, barrier_gradient = 0.0, barrier_hessian = 0.0;
   double friction_device_ms = 0.0, friction_host_ms = 0.0, friction_bytes = 0.0;
   double friction_energy = 0.0, friction_gradient = 0.0, friction_hessian = 0.0;
+  double affine_device_ms = 0.0, affine_host_ms = 0.0, affine_bytes = 0.0;
+  double affine_target = 0.0, affine_energy = 0.0, affine_gradient = 0.0, affine_hessian = 0.0;
   bool pass() const {
     // The friction Hessian needs no eigen-solve: it is held to the gradient's tolerance.
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
            hessian <= kHessianTolerance && barrier_energy <= kEnergyTolerance &&
            barrier_gradient <= kGradientTolerance && barrier_hessian <= kHessianTolerance &&
            friction_energy <= kEnergyTolerance && friction_gradient <= kGradientTolerance &&
-           friction_hessian <= kGradientTolerance;
+           friction_hessian <= kGradientTolerance && affine_target <= kGradientTolerance &&
+           affine_energy <= kEnergyTolerance && affine_gradient <= kGradientTolerance &&
+           affine_hessian <= kHessianTolerance;
   }
 };
 
@@ -384,6 +500,14 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
       relative_difference(friction_device.gradient, friction_host.gradient, 12);
   result.friction_hessian =
       relative_difference(friction_device.hessian, friction_host.hessian, 144);
+  const AffineScene affine = affine_scene(environments);
+  const AffineValues affine_device =
+      device_affine(affine, repeats, result.affine_device_ms, result.affine_bytes);
+  const AffineValues affine_host = host_affine(affine, result.affine_host_ms);
+  result.affine_target = relative_difference(affine_device.q_tilde, affine_host.q_tilde, 12);
+  result.affine_energy = relative_difference(affine_device.energy, affine_host.energy, 1);
+  result.affine_gradient = relative_difference(affine_device.gradient, affine_host.gradient, 12);
+  result.affine_hessian = relative_difference(affine_device.hessian, affine_host.hessian, 81);
   return result;
 }
 
@@ -408,6 +532,52 @@ std::string device_description(std::string& name) {
   return out.str();
 }
 
+// One size's row of gpu-check.json.
+void write_json_row(std::ostream& json, const SizeResult& r) {
+  const auto mib = [&](double bytes) { return bytes / r.environments / double(1 << 20); };
+  json << "{\"environments\": " << r.environments << ", \"tets\": " << r.tets
+       << ", \"device_ms\": " << r.timing.device_ms << ", \"host_ms\": " << r.timing.host_ms
+       << ", \"device_mib_per_environment\": " << mib(r.timing.device_bytes)
+       << ", \"energy_relative_difference\": " << r.energy
+       << ", \"gradient_relative_difference\": " << r.gradient
+       << ", \"hessian_relative_difference\": " << r.hessian
+       << ", \"pairs\": " << r.environments * kPairsPerEnvironment
+       << ", \"barrier_device_ms\": " << r.barrier_device_ms
+       << ", \"barrier_host_ms\": " << r.barrier_host_ms
+       << ", \"barrier_device_mib_per_environment\": " << mib(r.barrier_bytes)
+       << ", \"barrier_energy_relative_difference\": " << r.barrier_energy
+       << ", \"barrier_gradient_relative_difference\": " << r.barrier_gradient
+       << ", \"barrier_hessian_relative_difference\": " << r.barrier_hessian
+       << ", \"friction_device_ms\": " << r.friction_device_ms
+       << ", \"friction_host_ms\": " << r.friction_host_ms
+       << ", \"friction_device_mib_per_environment\": " << mib(r.friction_bytes)
+       << ", \"friction_energy_relative_difference\": " << r.friction_energy
+       << ", \"friction_gradient_relative_difference\": " << r.friction_gradient
+       << ", \"friction_hessian_relative_difference\": " << r.friction_hessian
+       << ", \"affine_device_ms\": " << r.affine_device_ms
+       << ", \"affine_host_ms\": " << r.affine_host_ms
+       << ", \"affine_device_mib_per_environment\": " << mib(r.affine_bytes)
+       << ", \"affine_target_relative_difference\": " << r.affine_target
+       << ", \"affine_energy_relative_difference\": " << r.affine_energy
+       << ", \"affine_gradient_relative_difference\": " << r.affine_gradient
+       << ", \"affine_hessian_relative_difference\": " << r.affine_hessian
+       << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
+}
+
+// One size's row of gpu-check.md.
+void write_markdown_row(std::ostream& md, const SizeResult& r) {
+  md << "| " << r.environments << " | " << r.tets << " | " << r.timing.device_ms << " | "
+     << r.timing.host_ms << " | " << r.timing.host_ms / r.timing.device_ms << " | "
+     << r.timing.device_bytes / r.environments / double(1 << 20) << " | " << r.energy << " | "
+     << r.gradient << " | " << r.hessian << " | " << r.environments * kPairsPerEnvironment << " | "
+     << r.barrier_device_ms << " | " << r.barrier_host_ms << " | " << r.barrier_energy << ", "
+     << r.barrier_gradient << ", " << r.barrier_hessian << " | " << r.friction_device_ms << " | "
+     << r.friction_host_ms << " | " << r.friction_energy << ", " << r.friction_gradient << ", "
+     << r.friction_hessian << " | " << r.affine_device_ms << " | " << r.affine_host_ms << " | "
+     << r.affine_target << ", " << r.affine_energy << ", " << r.affine_gradient << ", "
+     << r.affine_hessian << " | " << (r.pass() ? "yes" : "NO") << " |\n";
+}
+
 void write_reports(const std::string& directory, const std::string& device,
                    const std::string& gpu_name, const std::vector<SizeResult>& results,
                    int tets_per_environment) {
@@ -416,51 +586,25 @@ void write_reports(const std::string& directory, const std::string& device,
   if (!json || !md) throw std::runtime_error("cannot write to " + directory);
   json << "{" << device << ", \"tets_per_environment\": " << tets_per_environment
        << ", \"stages\": \"elastic (energy, gradient, projected Hessian), gradient gather, "
-          "environment energy; barrier; friction\", \"pairs_per_environment\": "
-       << kPairsPerEnvironment << ", \"sizes\": [";
-  md << "Elastic, barrier and friction stages on " << gpu_name << ": " << tets_per_environment
-     << " tets and " << kPairsPerEnvironment
-     << " contact pairs (and as many friction contacts) per environment; host: one core, serial "
-        "launcher.\n\n"
+          "environment energy; barrier; friction; affine (prediction, inertia, orthogonality, "
+          "drive)\", \"pairs_per_environment\": "
+       << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
+       << ", \"sizes\": [";
+  md << "Elastic, barrier, friction and affine stages on " << gpu_name << ": "
+     << tets_per_environment << " tets, " << kPairsPerEnvironment
+     << " contact pairs (and as many friction contacts) and " << kAffinePerEnvironment
+     << " affine bodies per environment; host: one core, serial launcher.\n\n"
      << "| environments | tets | device ms | host ms | host/device | device MiB per env | "
         "energy diff | gradient diff | Hessian diff | pairs | barrier device ms | barrier host ms "
         "| barrier diffs (energy, gradient, Hessian) | friction device ms | friction host ms | "
-        "friction diffs (energy, gradient, Hessian) | within tolerance |\n"
+        "friction diffs (energy, gradient, Hessian) | affine device ms | affine host ms | affine "
+        "diffs (target, energy, gradient, Hessian) | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
-        "| ---: | ---: | --- | --- |\n";
+        "| ---: | ---: | --- | ---: | ---: | --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
-    const SizeResult& r = results[i];
-    const double per_env_mib = r.timing.device_bytes / r.environments / double(1 << 20);
-    json << (i ? ", " : "") << "{\"environments\": " << r.environments << ", \"tets\": " << r.tets
-         << ", \"device_ms\": " << r.timing.device_ms << ", \"host_ms\": " << r.timing.host_ms
-         << ", \"device_mib_per_environment\": " << per_env_mib
-         << ", \"energy_relative_difference\": " << r.energy
-         << ", \"gradient_relative_difference\": " << r.gradient
-         << ", \"hessian_relative_difference\": " << r.hessian
-         << ", \"pairs\": " << r.environments * kPairsPerEnvironment
-         << ", \"barrier_device_ms\": " << r.barrier_device_ms
-         << ", \"barrier_host_ms\": " << r.barrier_host_ms
-         << ", \"barrier_device_mib_per_environment\": "
-         << r.barrier_bytes / r.environments / double(1 << 20)
-         << ", \"barrier_energy_relative_difference\": " << r.barrier_energy
-         << ", \"barrier_gradient_relative_difference\": " << r.barrier_gradient
-         << ", \"barrier_hessian_relative_difference\": " << r.barrier_hessian
-         << ", \"friction_device_ms\": " << r.friction_device_ms
-         << ", \"friction_host_ms\": " << r.friction_host_ms
-         << ", \"friction_device_mib_per_environment\": "
-         << r.friction_bytes / r.environments / double(1 << 20)
-         << ", \"friction_energy_relative_difference\": " << r.friction_energy
-         << ", \"friction_gradient_relative_difference\": " << r.friction_gradient
-         << ", \"friction_hessian_relative_difference\": " << r.friction_hessian
-         << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
-    md << "| " << r.environments << " | " << r.tets << " | " << r.timing.device_ms << " | "
-       << r.timing.host_ms << " | " << r.timing.host_ms / r.timing.device_ms << " | " << per_env_mib
-       << " | " << r.energy << " | " << r.gradient << " | " << r.hessian << " | "
-       << r.environments * kPairsPerEnvironment << " | " << r.barrier_device_ms << " | "
-       << r.barrier_host_ms << " | " << r.barrier_energy << ", " << r.barrier_gradient << ", "
-       << r.barrier_hessian << " | " << r.friction_device_ms << " | " << r.friction_host_ms << " | "
-       << r.friction_energy << ", " << r.friction_gradient << ", " << r.friction_hessian << " | "
-       << (r.pass() ? "yes" : "NO") << " |\n";
+    if (i > 0) json << ", ";
+    write_json_row(json, results[i]);
+    write_markdown_row(md, results[i]);
   }
   json << "]}\n";
 }
