@@ -45,4 +45,26 @@ AffineBatch affine_batch(const std::vector<const Model*>& environments) {
   return batch;
 }
 
+CollisionBatch collision_batch(const std::vector<const Model*>& environments) {
+  CollisionBatch batch;
+  for (const Model* model : environments) {
+    batch.begin_environment(model->dof_count());
+    const CollisionMesh& mesh = model->collision();
+    for (int v = 0; v < mesh.size(); ++v) {
+      const BodyModel& body = model->bodies()[static_cast<std::size_t>(mesh.vertex_body[v])];
+      const int local = mesh.vertex_local[v];
+      if (!body.has_dofs()) {
+        batch.add_scripted_vertex();
+      } else if (body.deforms()) {
+        batch.add_fem_vertex(body.kind->vertex_block(body.local, local));
+      } else {
+        const Eigen::Vector3d rest = body.kind->rest_vertex(body.local, local);
+        batch.add_affine_vertex(body.kind->vertex_block(body.local, local), rest.x(), rest.y(),
+                                rest.z());
+      }
+    }
+  }
+  return batch;
+}
+
 }  // namespace grip::solver::parallel

@@ -6,6 +6,7 @@
 
 #include "solver/model/model.hpp"
 #include "solver/parallel/affine_batch.hpp"
+#include "solver/parallel/collision_batch.hpp"
 #include "solver/parallel/fem_batch.hpp"
 
 namespace grip::solver::parallel {
@@ -17,5 +18,9 @@ FemBatch fem_batch(const std::vector<const Model*>& environments);
 // Every affine and driven body of every environment, with the values the CPU engine's
 // AffineBodies and DrivenBodies hold.
 AffineBatch affine_batch(const std::vector<const Model*>& environments);
+
+// Every collision vertex of every environment, in the model's collision order
+// (CollisionMesh), with the DOFs it moves with.
+CollisionBatch collision_batch(const std::vector<const Model*>& environments);
 
 }  // namespace grip::solver::parallel

@@ -1,5 +1,7 @@
 #include "solver/potential/stencil.hpp"
 
+#include <stdexcept>
+
 namespace grip::solver {
 namespace {
 
@@ -28,6 +30,9 @@ Stencil::Stencil(const Model& model, const std::array<int, 4>& vertex) {
       ++blocks_;
     }
   }
+  // A contact is a point and a triangle or two edges: on two bodies at most. More would overrun
+  // the Jacobian's fixed capacity.
+  if (dofs > kMaxDofs) throw std::logic_error("Stencil: a contact's vertices span over 24 DOFs");
   jacobian_.setZero(12, dofs);
   for (int i = 0; i < 4; ++i) {
     if (local[i] < 0) continue;

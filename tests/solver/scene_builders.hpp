@@ -34,6 +34,30 @@ inline BodyDescription soft_box(const std::string& name, const Eigen::Vector3d& 
   return body;
 }
 
+// A 2 cm affine cube pulled by a drive of `stiffness` (N/m) towards its script's pose (here
+// its start pose): a driven body, as a hand's link.
+inline BodyDescription driven_cube(const std::string& name, const Eigen::Vector3d& position,
+                                   double stiffness) {
+  BodyDescription cube = rigid_box(name, BodyType::kAffine, {0.02, 0.02, 0.02}, position);
+  cube.drive_stiffness = stiffness;
+  cube.script.keyframes = {{0.0, cube.pose}, {0.1, cube.pose}};
+  return cube;
+}
+
+// One body of each kind: a kinematic floor rising 1 cm in 0.1 s, a soft box, an affine box and
+// a driven cube, so that affine DOFs come after FEM ones; for the data-parallel engine's tests.
+inline SceneDescription every_kind_of_body() {
+  SceneDescription scene;
+  BodyDescription floor = rigid_box("floor", BodyType::kKinematic, {0.3, 0.3, 0.02}, {0, 0, -0.01});
+  floor.script.keyframes = {{0.0, floor.pose}, {0.1, floor.pose}};
+  floor.script.keyframes[1].pose.position.z() += 0.01;
+  BodyDescription box = rigid_box("box", BodyType::kAffine, {0.04, 0.03, 0.02}, {0.0, 0.0, 0.1});
+  box.material.density = 800.0;
+  scene.bodies = {floor, soft_box("soft", {0.03, 0.02, 0.02}, 0.01, {0.1, 0, 0.05}, 2e5), box,
+                  driven_cube("link", {-0.1, 0, 0.05}, 2e4)};
+  return scene;
+}
+
 // A 4 cm affine box resting on a kinematic ramp tilted by theta about y (gravity along -z),
 // 0.2 mm above the reach of the barrier so it settles onto it. Body 0 is the ramp, body 1 the
 // box; downhill is tilt * x.

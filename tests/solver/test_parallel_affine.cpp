@@ -24,26 +24,8 @@ namespace {
 
 using parallel::AffineBatch;
 
-BodyDescription driven_cube(const std::string& name, const Eigen::Vector3d& position,
-                            double stiffness) {
-  BodyDescription cube = testing::rigid_box(name, BodyType::kAffine, {0.02, 0.02, 0.02}, position);
-  cube.drive_stiffness = stiffness;
-  cube.script.keyframes = {{0.0, cube.pose}, {0.1, cube.pose}};
-  return cube;
-}
-
-// A floor, an affine box, a soft box and a driven cube: affine DOFs after FEM ones.
-std::shared_ptr<const Model> mixed_scene() {
-  SceneDescription scene;
-  BodyDescription box =
-      testing::rigid_box("box", BodyType::kAffine, {0.04, 0.03, 0.02}, {0.0, 0.0, 0.1});
-  box.material.density = 800.0;
-  scene.bodies = {
-      testing::rigid_box("floor", BodyType::kKinematic, {0.3, 0.3, 0.02}, {0, 0, -0.01}),
-      testing::soft_box("soft", {0.03, 0.02, 0.02}, 0.01, {0.1, 0, 0.05}, 2e5), box,
-      driven_cube("link", {-0.1, 0, 0.05}, 2e4)};
-  return Model::build(scene);
-}
+// One body of each kind, the affine ones after an FEM one.
+std::shared_ptr<const Model> mixed_scene() { return Model::build(testing::every_kind_of_body()); }
 
 // A turned box of other density and stiffness, and a stiffer driven cube.
 std::shared_ptr<const Model> turned_scene() {
@@ -53,7 +35,7 @@ std::shared_ptr<const Model> turned_scene() {
   box.pose.rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
   box.material.density = 2500.0;
   box.orthogonality_stiffness *= 3.0;
-  scene.bodies = {box, driven_cube("link", {0.1, 0.1, 0.1}, 5e4)};
+  scene.bodies = {box, testing::driven_cube("link", {0.1, 0.1, 0.1}, 5e4)};
   return Model::build(scene);
 }
 

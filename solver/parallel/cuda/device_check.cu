@@ -5,8 +5,10 @@
 // contact pairs per environment, point-triangle and edge-edge, some nearly parallel, at 5 % to
 // 120 % of d_hat), the friction stage (the same pairs as lagged friction contacts, sliding
 // 0.1 to 10 times eps_v h) and the affine stages (17 affine bodies per environment, as a hand's
-// 16 driven links and its object: prediction, inertia, orthogonality, drive) on the device
-// (CudaLauncher) and on one host core (SerialLauncher); it reports
+// 16 driven links and its object: prediction, inertia, orthogonality, drive) and the map
+// between DOFs and collision vertices (positions of the box's vertices, the affine bodies'
+// corners and 8 scripted vertices; 512 contact pairs' gradients gathered into the DOFs) on the
+// device (CudaLauncher) and on one host core (SerialLauncher); it reports
 // the largest relative differences, the device's and the host's times, and device memory per
 // environment, as JSON and Markdown in OUTDIR.
 // Exit status: 0 when every difference is within its tolerance, 1 when one is not, 2 when no
@@ -28,12 +30,14 @@
 #include "solver/kernels/relative_velocity.hpp"
 #include "solver/parallel/affine_batch.hpp"
 #include "solver/parallel/affine_stages.hpp"
+#include "solver/parallel/collision_batch.hpp"
 #include "solver/parallel/contact_stages.hpp"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
 #include "solver/parallel/elastic_stages.hpp"
 #include "solver/parallel/fem_batch.hpp"
 #include "solver/parallel/friction_stages.hpp"
 #include "solver/parallel/launch.hpp"
+#include "solver/parallel/map_stages.hpp"
 
 namespace {
 
@@ -441,6 +445,119 @@ AffineValues device_affine(const AffineScene& a, int repeats, double& ms, double
   return {energy.to_host(), q_tilde.to_host(), gradient.to_host(), hessian.to_host()};
 }
 
+// Per environment: the soft box's vertices (FEM, its DOFs first), the 8 corners of each of the
+// affine scene's bodies (their DOFs next), 8 scripted vertices a step's way from their start
+// to their target; 512 contact pairs of four distinct vertices with random gradients.
+struct MapScene {
+  CollisionBatch batch;
+  std::vector<double> q, start, target, progress, pair_gradient;
+  std::vector<int> pair_vertex;
+  ContactIncidence incidence;
+};
+
+MapScene map_scene(const BoxMesh& mesh, const std::vector<double>& fem_q, const AffineScene& affine,
+                   int environments) {
+  MapScene scene;
+  std::uint64_t seed = 0xda3e39cb94b95bdbull;
+  const auto uniform = [&] {  // in [0, 1)
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(seed >> 11) / static_cast<double>(1ull << 53);
+  };
+  const int fem_dofs = static_cast<int>(mesh.rest.size()), affine_dofs = 12 * kAffinePerEnvironment;
+  for (int e = 0; e < environments; ++e) {
+    scene.batch.begin_environment(fem_dofs + affine_dofs);
+    scene.q.insert(scene.q.end(), fem_q.begin() + std::size_t(e) * fem_dofs,
+                   fem_q.begin() + std::size_t(e + 1) * fem_dofs);
+    scene.q.insert(scene.q.end(), affine.q.begin() + std::size_t(e) * affine_dofs,
+                   affine.q.begin() + std::size_t(e + 1) * affine_dofs);
+    for (int v = 0; 3 * v < fem_dofs; ++v) scene.batch.add_fem_vertex(3 * v);
+    for (int b = 0; b < kAffinePerEnvironment; ++b) {
+      for (int c = 0; c < 8; ++c) {
+        scene.batch.add_affine_vertex(fem_dofs + 12 * b, c & 1 ? 0.01 : -0.01, c & 2 ? 0.01 : -0.01,
+                                      c & 4 ? 0.01 : -0.01);
+      }
+    }
+    for (int v = 0; v < 8; ++v) scene.batch.add_scripted_vertex();
+    scene.progress.push_back(uniform());
+  }
+  for (int v = 0; v < scene.batch.vertex_count(); ++v) {
+    for (int k = 0; k < 3; ++k) {
+      scene.start.push_back(0.1 * uniform());
+      scene.target.push_back(0.1 * uniform());
+    }
+  }
+  for (int e = 0; e < environments; ++e) {
+    const int first = scene.batch.vertex_begin()[e], n = scene.batch.vertex_begin()[e + 1] - first;
+    for (int k = 0; k < kPairsPerEnvironment; ++k) {
+      int four[4];
+      for (int c = 0; c < 4; ++c) {
+        bool repeated = true;
+        while (repeated) {
+          four[c] = first + std::min(n - 1, static_cast<int>(n * uniform()));
+          repeated = std::find(four, four + c, four[c]) != four + c;
+        }
+      }
+      scene.pair_vertex.insert(scene.pair_vertex.end(), four, four + 4);
+      for (int c = 0; c < 12; ++c) scene.pair_gradient.push_back(2.0 * uniform() - 1.0);
+    }
+  }
+  scene.incidence = contact_incidence(scene.batch, scene.pair_vertex.data(),
+                                      static_cast<int>(scene.pair_vertex.size() / 4));
+  return scene;
+}
+
+struct MapValues {
+  std::vector<double> x, gradient;
+};
+
+template <class Launcher>
+void map_stages(Launcher&& launch, const CollisionVertexBuffers& vertices,
+                const ContactIncidenceBuffers& incidence, const double* q, const double* start,
+                const double* target, const double* progress, const int* pair_vertex,
+                const double* pair_gradient, double* x, double* gradient) {
+  launch(vertices.count, PositionStage{vertices, q, start, target, progress, x});
+  launch(incidence.count,
+         ContactGatherStage{incidence, pair_vertex, vertices.rest, pair_gradient, gradient});
+}
+
+MapValues host_map(const MapScene& m, double& ms) {
+  MapValues v{std::vector<double>(3 * std::size_t(m.batch.vertex_count())),
+              std::vector<double>(m.q.size(), 0.0)};
+  const auto begin = std::chrono::steady_clock::now();
+  map_stages(SerialLauncher{}, m.batch.vertices(), incidence_buffers(m.batch, m.incidence),
+             m.q.data(), m.start.data(), m.target.data(), m.progress.data(), m.pair_vertex.data(),
+             m.pair_gradient.data(), v.x.data(), v.gradient.data());
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  return v;
+}
+
+MapValues device_map(const MapScene& m, int repeats, double& ms, double& bytes) {
+  const CollisionBatch& batch = m.batch;
+  DeviceArray<unsigned char> motion(batch.motion());
+  DeviceArray<int> dof(batch.dof()), environment(batch.environment()), block(batch.block()),
+      block_dof(batch.block_dof()), block_size(batch.block_size()), begin(m.incidence.begin),
+      slots(m.incidence.slots), pair_vertex(m.pair_vertex);
+  DeviceArray<double> rest(batch.rest()), q(m.q), start(m.start), target(m.target),
+      progress(m.progress), pair_gradient(m.pair_gradient),
+      x(3 * std::size_t(batch.vertex_count())), gradient(m.q.size());
+  const CollisionVertexBuffers vertices{batch.vertex_count(), motion.data(),      dof.data(),
+                                        rest.data(),          environment.data(), block.data()};
+  const ContactIncidenceBuffers incidence{batch.block_count(), block_dof.data(), block_size.data(),
+                                          begin.data(), slots.data()};
+  ms = device_median_ms(repeats, [&] {
+    cuda_check(cudaMemset(gradient.data(), 0, gradient.size() * sizeof(double)), "cudaMemset");
+    map_stages(CudaLauncher{}, vertices, incidence, q.data(), start.data(), target.data(),
+               progress.data(), pair_vertex.data(), pair_gradient.data(), x.data(),
+               gradient.data());
+  });
+  bytes = 8.0 * double(rest.size() + q.size() + start.size() + target.size() + progress.size() +
+                       pair_gradient.size() + x.size() + gradient.size()) +
+          4.0 * double(dof.size() + environment.size() + block.size() + block_dof.size() +
+                       block_size.size() + begin.size() + slots.size() + pair_vertex.size()) +
+          double(motion.size());
+  return {x.to_host(), gradient.to_host()};
+}
+
 struct SizeResult {
   int environments = 0;
   int tets = 0;
@@ -452,6 +569,8 @@ struct SizeResult {
   double friction_energy = 0.0, friction_gradient = 0.0, friction_hessian = 0.0;
   double affine_device_ms = 0.0, affine_host_ms = 0.0, affine_bytes = 0.0;
   double affine_target = 0.0, affine_energy = 0.0, affine_gradient = 0.0, affine_hessian = 0.0;
+  double map_device_ms = 0.0, map_host_ms = 0.0, map_bytes = 0.0;
+  double map_position = 0.0, map_gradient = 0.0;
   bool pass() const {
     // The friction Hessian needs no eigen-solve: it is held to the gradient's tolerance.
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
@@ -460,7 +579,8 @@ struct SizeResult {
            friction_energy <= kEnergyTolerance && friction_gradient <= kGradientTolerance &&
            friction_hessian <= kGradientTolerance && affine_target <= kGradientTolerance &&
            affine_energy <= kEnergyTolerance && affine_gradient <= kGradientTolerance &&
-           affine_hessian <= kHessianTolerance;
+           affine_hessian <= kHessianTolerance && map_position <= kGradientTolerance &&
+           map_gradient <= kGradientTolerance;
   }
 };
 
@@ -508,6 +628,11 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   result.affine_energy = relative_difference(affine_device.energy, affine_host.energy, 1);
   result.affine_gradient = relative_difference(affine_device.gradient, affine_host.gradient, 12);
   result.affine_hessian = relative_difference(affine_device.hessian, affine_host.hessian, 81);
+  const MapScene map = map_scene(mesh, q, affine, environments);
+  const MapValues map_device = device_map(map, repeats, result.map_device_ms, result.map_bytes);
+  const MapValues map_host = host_map(map, result.map_host_ms);
+  result.map_position = relative_difference(map_device.x, map_host.x, 3);
+  result.map_gradient = relative_difference(map_device.gradient, map_host.gradient, 12);
   return result;
 }
 
@@ -561,6 +686,10 @@ void write_json_row(std::ostream& json, const SizeResult& r) {
        << ", \"affine_energy_relative_difference\": " << r.affine_energy
        << ", \"affine_gradient_relative_difference\": " << r.affine_gradient
        << ", \"affine_hessian_relative_difference\": " << r.affine_hessian
+       << ", \"map_device_ms\": " << r.map_device_ms << ", \"map_host_ms\": " << r.map_host_ms
+       << ", \"map_device_mib_per_environment\": " << mib(r.map_bytes)
+       << ", \"map_position_relative_difference\": " << r.map_position
+       << ", \"map_gradient_relative_difference\": " << r.map_gradient
        << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
 }
 
@@ -575,7 +704,8 @@ void write_markdown_row(std::ostream& md, const SizeResult& r) {
      << r.friction_host_ms << " | " << r.friction_energy << ", " << r.friction_gradient << ", "
      << r.friction_hessian << " | " << r.affine_device_ms << " | " << r.affine_host_ms << " | "
      << r.affine_target << ", " << r.affine_energy << ", " << r.affine_gradient << ", "
-     << r.affine_hessian << " | " << (r.pass() ? "yes" : "NO") << " |\n";
+     << r.affine_hessian << " | " << r.map_device_ms << " | " << r.map_host_ms << " | "
+     << r.map_position << ", " << r.map_gradient << " | " << (r.pass() ? "yes" : "NO") << " |\n";
 }
 
 void write_reports(const std::string& directory, const std::string& device,
@@ -587,10 +717,10 @@ void write_reports(const std::string& directory, const std::string& device,
   json << "{" << device << ", \"tets_per_environment\": " << tets_per_environment
        << ", \"stages\": \"elastic (energy, gradient, projected Hessian), gradient gather, "
           "environment energy; barrier; friction; affine (prediction, inertia, orthogonality, "
-          "drive)\", \"pairs_per_environment\": "
+          "drive); map (positions, contact gradient gather)\", \"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
        << ", \"sizes\": [";
-  md << "Elastic, barrier, friction and affine stages on " << gpu_name << ": "
+  md << "Elastic, barrier, friction, affine and map stages on " << gpu_name << ": "
      << tets_per_environment << " tets, " << kPairsPerEnvironment
      << " contact pairs (and as many friction contacts) and " << kAffinePerEnvironment
      << " affine bodies per environment; host: one core, serial launcher.\n\n"
@@ -598,9 +728,10 @@ void write_reports(const std::string& directory, const std::string& device,
         "energy diff | gradient diff | Hessian diff | pairs | barrier device ms | barrier host ms "
         "| barrier diffs (energy, gradient, Hessian) | friction device ms | friction host ms | "
         "friction diffs (energy, gradient, Hessian) | affine device ms | affine host ms | affine "
-        "diffs (target, energy, gradient, Hessian) | within tolerance |\n"
+        "diffs (target, energy, gradient, Hessian) | map device ms | map host ms | map diffs "
+        "(positions, gradient) | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
-        "| ---: | ---: | --- | ---: | ---: | --- | --- |\n";
+        "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);

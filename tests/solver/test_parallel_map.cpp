@@ -1,0 +1,203 @@
+// The data-parallel engine's map between DOFs and collision vertices (solver/parallel/
+// map_stages.hpp) on the host launchers, against the CPU engine's collision_positions and
+// Stencil: a batch of environments of two models that mix scripted, FEM, affine and driven
+// bodies, the DOFs moved off their start (affine matrices off rotations), the scripted floor part
+// way to its target; random contact pairs with random position-space gradients gathered into
+// the DOFs. Also: the incidence lists every slot of a vertex with DOFs once, the serial and TBB
+// launchers agree bit for bit, and an environment's values do not depend on its batch.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+#include <vector>
+
+#include "solver/batch/model_batch.hpp"
+#include "solver/batch/tbb_launcher.hpp"
+#include "solver/environment.hpp"
+#include "solver/newton/step_targets.hpp"
+#include "solver/parallel/launch.hpp"
+#include "solver/parallel/map_stages.hpp"
+#include "solver/potential/stencil.hpp"
+#include "tests/solver/scene_builders.hpp"
+
+namespace grip::solver {
+namespace {
+
+using parallel::CollisionBatch;
+
+std::shared_ptr<const Model> mixed_scene() { return Model::build(testing::every_kind_of_body()); }
+
+// Two soft boxes and a turned affine box over a scripted floor.
+std::shared_ptr<const Model> soft_scene() {
+  SceneDescription scene = testing::every_kind_of_body();
+  scene.bodies[2].pose.rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
+  scene.bodies[3] = testing::soft_box("soft 2", {0.02, 0.02, 0.03}, 0.01, {-0.1, 0, 0.05}, 1e6);
+  return Model::build(scene);
+}
+
+constexpr int kPairsPerEnvironment = 60;
+constexpr double kProgress = 0.3;
+
+struct Batch {
+  std::vector<std::shared_ptr<const Model>> models;
+  CollisionBatch collision;
+  std::vector<Eigen::VectorXd> states;
+  std::vector<StepTargets> targets;
+  std::vector<double> q, start, target, progress;  // the batch's DOFs; scripted vertices' rows
+  std::vector<int> pair_vertex;                    // 4 per pair, the batch's numbering
+  std::vector<double> pair_gradient;               // 12 per pair
+};
+
+// Each environment's DOFs moved at random (affine matrices by up to 10 %), its scripted floor's
+// step targets, and random pairs of four distinct collision vertices on at most two bodies,
+// with random gradients.
+Batch make_batch(const std::vector<std::shared_ptr<const Model>>& models) {
+  Batch b;
+  b.models = models;
+  std::vector<const Model*> environments;
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const auto& model : models) {
+    environments.push_back(model.get());
+    const Environment env(model);
+    Eigen::VectorXd q = env.dofs();
+    for (Eigen::Index d = 0; d < q.size(); ++d) q[d] += 0.01 * unit(random);
+    b.states.push_back(q);
+    b.q.insert(b.q.end(), q.data(), q.data() + q.size());
+    b.targets.push_back(step_targets(*model, env.state(), 0.01));
+    const StepTargets& t = b.targets.back();
+    b.start.insert(b.start.end(), t.kinematic_start.data(),
+                   t.kinematic_start.data() + t.kinematic_start.size());
+    b.target.insert(b.target.end(), t.kinematic_target.data(),
+                    t.kinematic_target.data() + t.kinematic_target.size());
+    b.progress.push_back(kProgress);
+  }
+  b.collision = parallel::collision_batch(environments);
+  for (int e = 0; e < b.collision.environment_count(); ++e) {
+    const CollisionMesh& mesh = models[e]->collision();
+    std::mt19937 pairs_random(100 + e);  // an environment's pairs whatever its batch
+    std::uniform_int_distribution<int> body(0, mesh.body_count() - 1);
+    // A pair's vertices lie on two bodies (or one): a point and a triangle, or two edges.
+    const auto on = [&](int of) {
+      std::uniform_int_distribution<int> vertex(mesh.body_first_vertex[of],
+                                                mesh.body_first_vertex[of + 1] - 1);
+      return vertex(pairs_random);
+    };
+    for (int k = 0; k < kPairsPerEnvironment; ++k) {
+      const int first_body = body(pairs_random), second_body = body(pairs_random);
+      const int split = 1 + k % 2;
+      std::set<int> four;
+      while (static_cast<int>(four.size()) < split) four.insert(on(first_body));
+      while (four.size() < 4) four.insert(on(second_body));
+      for (const int v : four) b.pair_vertex.push_back(b.collision.vertex_begin()[e] + v);
+      for (int c = 0; c < 12; ++c) b.pair_gradient.push_back(unit(pairs_random));
+    }
+  }
+  return b;
+}
+
+struct Values {
+  std::vector<double> x;         // 3 per collision vertex
+  std::vector<double> gradient;  // the batch's DOFs
+};
+
+template <class Launcher>
+Values run_stages(const Batch& b, Launcher&& launch) {
+  Values v{std::vector<double>(3 * static_cast<std::size_t>(b.collision.vertex_count())),
+           std::vector<double>(b.q.size(), 0.0)};
+  launch(b.collision.vertex_count(),
+         parallel::PositionStage{b.collision.vertices(), b.q.data(), b.start.data(),
+                                 b.target.data(), b.progress.data(), v.x.data()});
+  const int pairs = static_cast<int>(b.pair_vertex.size() / 4);
+  const parallel::ContactIncidence incidence =
+      parallel::contact_incidence(b.collision, b.pair_vertex.data(), pairs);
+  launch(b.collision.block_count(),
+         parallel::ContactGatherStage{parallel::incidence_buffers(b.collision, incidence),
+                                      b.pair_vertex.data(), b.collision.rest().data(),
+                                      b.pair_gradient.data(), v.gradient.data()});
+  return v;
+}
+
+TEST(ParallelMap, PositionsMatchTheCpuEngineBitForBit) {
+  const Batch b = make_batch({mixed_scene(), soft_scene(), mixed_scene()});
+  const Values v = run_stages(b, parallel::SerialLauncher{});
+  for (int e = 0; e < 3; ++e) {
+    SCOPED_TRACE("environment " + std::to_string(e));
+    const Vertices cpu = collision_positions(*b.models[e], b.states[e], b.targets[e], kProgress);
+    const int first = b.collision.vertex_begin()[e];
+    ASSERT_EQ(cpu.rows(), b.collision.vertex_begin()[e + 1] - first);
+    for (Eigen::Index i = 0; i < cpu.rows(); ++i) {
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(v.x[3 * (first + i) + k], cpu(i, k)) << "vertex " << i;
+    }
+    // The floor moved part of the way, so the scripted rows were not a copy of either end.
+    EXPECT_NE(b.targets[e].kinematic_start, b.targets[e].kinematic_target);
+  }
+}
+
+TEST(ParallelMap, GatheredGradientsMatchTheCpuEnginesStencils) {
+  const Batch b = make_batch({mixed_scene(), soft_scene(), mixed_scene()});
+  const Values v = run_stages(b, parallel::SerialLauncher{});
+  for (int e = 0; e < 3; ++e) {
+    SCOPED_TRACE("environment " + std::to_string(e));
+    const Model& model = *b.models[e];
+    const int first_vertex = b.collision.vertex_begin()[e];
+    Eigen::VectorXd cpu = Eigen::VectorXd::Zero(model.dof_count());
+    for (int k = e * kPairsPerEnvironment; k < (e + 1) * kPairsPerEnvironment; ++k) {
+      std::array<int, 4> vertex;
+      for (int c = 0; c < 4; ++c) vertex[c] = b.pair_vertex[4 * k + c] - first_vertex;
+      const Stencil::Vector12 g(&b.pair_gradient[12 * k]);
+      Stencil(model, vertex).scatter_gradient(g, cpu);
+    }
+    const Eigen::Map<const Eigen::VectorXd> gathered(v.gradient.data() + b.collision.dof_begin()[e],
+                                                     model.dof_count());
+    EXPECT_GT(cpu.lpNorm<Eigen::Infinity>(), 0.0);
+    EXPECT_LE((gathered - cpu).lpNorm<Eigen::Infinity>(), 1e-14 * cpu.lpNorm<Eigen::Infinity>());
+  }
+}
+
+TEST(ParallelMap, EverySlotOfAVertexWithDofsIsInOneBlock) {
+  const Batch b = make_batch({mixed_scene(), soft_scene()});
+  const int pairs = static_cast<int>(b.pair_vertex.size() / 4);
+  const parallel::ContactIncidence incidence =
+      parallel::contact_incidence(b.collision, b.pair_vertex.data(), pairs);
+  std::vector<int> seen(4 * static_cast<std::size_t>(pairs), 0);
+  int scripted = 0;
+  for (int block = 0; block < b.collision.block_count(); ++block) {
+    for (int s = incidence.begin[block]; s < incidence.begin[block + 1]; ++s) {
+      const int slot = incidence.slots[s];
+      ++seen[slot];
+      EXPECT_EQ(b.collision.block()[b.pair_vertex[slot]], block);
+      if (s > incidence.begin[block]) {
+        EXPECT_LT(incidence.slots[s - 1], slot);
+      }
+    }
+  }
+  for (std::size_t slot = 0; slot < seen.size(); ++slot) {
+    const bool has_dofs = b.collision.block()[b.pair_vertex[slot]] >= 0;
+    scripted += !has_dofs;
+    EXPECT_EQ(seen[slot], has_dofs ? 1 : 0) << "slot " << slot;
+  }
+  EXPECT_GT(scripted, 0);  // the floor's vertices were drawn too
+}
+
+TEST(ParallelMap, TbbAndSerialLaunchersAgreeBitForBit) {
+  const Batch b = make_batch({mixed_scene(), soft_scene(), mixed_scene()});
+  const Values serial = run_stages(b, parallel::SerialLauncher{});
+  const Values threaded = run_stages(b, parallel::TbbLauncher(2));
+  EXPECT_EQ(serial.x, threaded.x);
+  EXPECT_EQ(serial.gradient, threaded.gradient);
+}
+
+TEST(ParallelMap, AnEnvironmentsValuesDoNotDependOnItsBatch) {
+  const Batch three = make_batch({soft_scene(), mixed_scene(), soft_scene()});
+  const Batch alone = make_batch({soft_scene()});
+  const Values in_batch = run_stages(three, parallel::SerialLauncher{});
+  const Values solo = run_stages(alone, parallel::SerialLauncher{});
+  ASSERT_TRUE(
+      std::equal(alone.pair_vertex.begin(), alone.pair_vertex.end(), three.pair_vertex.begin()));
+  EXPECT_TRUE(std::equal(solo.x.begin(), solo.x.end(), in_batch.x.begin()));
+  EXPECT_TRUE(std::equal(solo.gradient.begin(), solo.gradient.end(), in_batch.gradient.begin()));
+}
+
+}  // namespace
+}  // namespace grip::solver
