@@ -2,8 +2,8 @@
 # The device check: builds grip-gpu-check from this tree with nvcc alone (CUDA and Eigen's
 # headers: from .gpu-carry/, which scripts/gpu-carry.sh fills, or the system's), runs it, and
 # writes gpu-check.json, gpu-check.md and the GPU's nvidia-smi report into OUTDIR. It compares
-# the data-parallel engine's stages (elastic, barrier, friction, affine, map) on the GPU with
-# the host launcher on the same batches, and times them at 1 to 512 environments
+# the data-parallel engine's stages (elastic, FEM inertia, barrier, CCD, friction, affine, map)
+# on the GPU with the host launcher on the same batches, and times them at 1 to 512 environments
 # (docs/architecture.md, "Engines"). Sized to finish well inside 8 minutes: the build takes
 # about 2 minutes of one core, the host's share of the largest batch (1.2 million tets, 262,144
 # pairs and as many friction contacts, one core) well under one. Exit status: grip-gpu-check's

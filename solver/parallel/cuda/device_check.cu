@@ -1,14 +1,17 @@
 // grip-gpu-check: the data-parallel engine's stages on a GPU against the host launcher on the
 // same batches (scripts/gpu-check.sh runs it). Batches of 1 to 512 soft-box environments, each
 // deformed differently, go through the elastic stages (per-tet energy, gradient and projected
-// Hessian; per-vertex gradient gather; per-environment energy), the barrier stage (512
+// Hessian; per-vertex gradient gather; per-environment energy; the vertices' inertia target and
+// inertia), the barrier stage (512
 // contact pairs per environment, point-triangle and edge-edge, some nearly parallel, at 5 % to
 // 120 % of d_hat), the friction stage (the same pairs as lagged friction contacts, sliding
 // 0.1 to 10 times eps_v h) and the affine stages (17 affine bodies per environment, as a hand's
 // 16 driven links and its object: prediction, inertia, orthogonality, drive) and the map
 // between DOFs and collision vertices (positions of the box's vertices, the affine bodies'
-// corners and 8 scripted vertices; 512 contact pairs' gradients gathered into the DOFs) on the
-// device (CudaLauncher) and on one host core (SerialLauncher); it reports
+// corners and 8 scripted vertices; 512 contact pairs' gradients gathered into the DOFs) and the
+// step bound (additive CCD over the barrier's pairs, each closing by up to 2.5 mm, and its
+// per-environment minimum) on the device (CudaLauncher) and on one host core (SerialLauncher);
+// it reports
 // the largest relative differences, the device's and the host's times, and device memory per
 // environment, as JSON and Markdown in OUTDIR.
 // Exit status: 0 when every difference is within its tolerance, 1 when one is not, 2 when no
@@ -30,12 +33,14 @@
 #include "solver/kernels/relative_velocity.hpp"
 #include "solver/parallel/affine_batch.hpp"
 #include "solver/parallel/affine_stages.hpp"
+#include "solver/parallel/ccd_stages.hpp"
 #include "solver/parallel/collision_batch.hpp"
 #include "solver/parallel/contact_stages.hpp"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
 #include "solver/parallel/elastic_stages.hpp"
 #include "solver/parallel/fem_batch.hpp"
 #include "solver/parallel/friction_stages.hpp"
+#include "solver/parallel/inertia_stages.hpp"
 #include "solver/parallel/launch.hpp"
 #include "solver/parallel/map_stages.hpp"
 
@@ -49,6 +54,9 @@ using namespace grip::solver::parallel;
 constexpr double kEnergyTolerance = 1e-10;
 constexpr double kGradientTolerance = 1e-10;
 constexpr double kHessianTolerance = 1e-7;
+// ACCD iterates: round-off that differs can end its advances at other points of the same
+// conservative bound.
+constexpr double kCcdTolerance = 1e-6;
 
 // A box of nx x ny x nz cubes of edge `cell`, six positively oriented tets per cube.
 struct BoxMesh {
@@ -184,6 +192,76 @@ StageValues device_stages(const FemBatch& batch, const std::vector<double>& q, i
       4.0 * double(dofs.size() + environment.size() + vertex_dof.size() + begin.size() +
                    slots.size());
   return {environment_energy.to_host(), gradient.to_host(), hessian.to_host()};
+}
+
+// The FEM vertices' inertia: targets from random velocities, each environment its own step and
+// gravity; per vertex its energy, the batch's gradient (inertia alone), the targets.
+struct InertiaValues {
+  std::vector<double> energy, gradient, q_tilde;
+};
+
+struct InertiaInputs {
+  std::vector<double> v, h, gravity;
+};
+
+InertiaInputs inertia_inputs(std::size_t dofs, int environments) {
+  InertiaInputs in;
+  std::uint64_t seed = 0x27d4eb2f165667c5ull;
+  const auto uniform = [&] {  // in [-1, 1)
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return 2.0 * static_cast<double>(seed >> 11) / static_cast<double>(1ull << 53) - 1.0;
+  };
+  for (std::size_t d = 0; d < dofs; ++d) in.v.push_back(0.5 * uniform());
+  for (int e = 0; e < environments; ++e) {
+    in.h.push_back(e % 2 ? 0.005 : 0.01);
+    in.gravity.insert(in.gravity.end(), {0.5 * uniform(), 0.0, -9.81});
+  }
+  return in;
+}
+
+// The targets at the step's start q; the inertia at the state the step moved by 4 ms of its
+// velocities (q_end), so that it is not zero.
+template <class Launcher>
+void inertia_stages(Launcher&& launch, const VertexBuffers& vertices, const double* q,
+                    const double* q_end, const double* v, const double* h, const double* gravity,
+                    double* q_tilde, double* energy, double* gradient) {
+  launch(vertices.count, PredictionStage{vertices, q, v, h, gravity, q_tilde});
+  launch(vertices.count, InertiaStage{vertices, q_end, q_tilde, energy, gradient});
+}
+
+std::vector<double> moved(const std::vector<double>& q, const std::vector<double>& v) {
+  std::vector<double> q_end(q.size());
+  for (std::size_t d = 0; d < q.size(); ++d) q_end[d] = q[d] + 0.004 * v[d];
+  return q_end;
+}
+
+InertiaValues host_inertia(const FemBatch& batch, const std::vector<double>& q,
+                           const InertiaInputs& in, double& ms) {
+  const VertexBuffers vertices = batch.vertices();
+  InertiaValues r{std::vector<double>(vertices.count), std::vector<double>(q.size(), 0.0),
+                  std::vector<double>(q.size(), 0.0)};
+  const std::vector<double> q_end = moved(q, in.v);
+  const auto begin = std::chrono::steady_clock::now();
+  inertia_stages(SerialLauncher{}, vertices, q.data(), q_end.data(), in.v.data(), in.h.data(),
+                 in.gravity.data(), r.q_tilde.data(), r.energy.data(), r.gradient.data());
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  return r;
+}
+
+InertiaValues device_inertia(const FemBatch& batch, const std::vector<double>& q,
+                             const InertiaInputs& in, int repeats, double& ms) {
+  DeviceArray<int> dof(batch.vertex_dof()), environment(batch.vertex_environment());
+  DeviceArray<double> mass(batch.vertex_mass()), dq(q), q_end(moved(q, in.v)), v(in.v), h(in.h),
+      gravity(in.gravity), q_tilde(q.size()), energy(batch.vertex_dof().size()), gradient(q.size());
+  const VertexBuffers vertices{static_cast<int>(batch.vertex_dof().size()), dof.data(),
+                               environment.data(), mass.data()};
+  cuda_check(cudaMemset(q_tilde.data(), 0, q_tilde.size() * sizeof(double)), "cudaMemset");
+  ms = device_median_ms(repeats, [&] {
+    cuda_check(cudaMemset(gradient.data(), 0, gradient.size() * sizeof(double)), "cudaMemset");
+    inertia_stages(CudaLauncher{}, vertices, dq.data(), q_end.data(), v.data(), h.data(),
+                   gravity.data(), q_tilde.data(), energy.data(), gradient.data());
+  });
+  return {energy.to_host(), gradient.to_host(), q_tilde.to_host()};
 }
 
 // The largest |a - b| over blocks of `block` values, each relative to its block's largest |b|.
@@ -558,6 +636,58 @@ MapValues device_map(const MapScene& m, int repeats, double& ms, double& bytes) 
   return {x.to_host(), gradient.to_host()};
 }
 
+// The barrier's pairs on a path: each pair's second primitive (a point-triangle pair's point,
+// an edge-edge pair's second edge) moved down by up to 2.5 mm towards the first, from its start
+// 0.05 to 1.2 mm above it, so that about half of the pairs meet.
+std::vector<double> ccd_end(const std::vector<double>& positions) {
+  std::uint64_t seed = 0x5851f42d4c957f2dull;
+  std::vector<double> end = positions;
+  for (std::size_t k = 0; 12 * k < positions.size(); ++k) {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    const double drop = 2.5e-3 * static_cast<double>(seed >> 11) / static_cast<double>(1ull << 53);
+    const bool edge_edge = k % 2 == 1;  // as contact_pairs alternates them
+    for (int c = edge_edge ? 2 : 0; c < (edge_edge ? 4 : 1); ++c) end[12 * k + 3 * c + 2] -= drop;
+  }
+  return end;
+}
+
+// Per pair its time of impact, then per environment the bound.
+struct CcdValues {
+  std::vector<double> toi, bound;
+};
+
+template <class Launcher>
+void ccd_stages(Launcher&& launch, int pairs, int environments, const int* vertex,
+                const unsigned char* edge_edge, const int* pair_begin, const double* start,
+                const double* end, double* toi, double* bound) {
+  launch(pairs, CcdStage{vertex, edge_edge, start, end, 0.1, toi});
+  launch(environments, EnvironmentMinStage{pair_begin, toi, bound});
+}
+
+CcdValues host_ccd(const ContactPairs& pairs, const std::vector<double>& start,
+                   const std::vector<double>& end, double& ms) {
+  const int n = pairs.pairs().count, environments = pairs.environment_count();
+  CcdValues v{std::vector<double>(n), std::vector<double>(environments)};
+  const auto begin = std::chrono::steady_clock::now();
+  ccd_stages(SerialLauncher{}, n, environments, pairs.vertex().data(), pairs.edge_edge().data(),
+             pairs.pair_begin().data(), start.data(), end.data(), v.toi.data(), v.bound.data());
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  return v;
+}
+
+CcdValues device_ccd(const ContactPairs& pairs, const std::vector<double>& start,
+                     const std::vector<double>& end, int repeats, double& ms) {
+  const int n = pairs.pairs().count, environments = pairs.environment_count();
+  DeviceArray<int> vertex(pairs.vertex()), pair_begin(pairs.pair_begin());
+  DeviceArray<unsigned char> edge_edge(pairs.edge_edge());
+  DeviceArray<double> x0(start), x1(end), toi(n), bound(environments);
+  ms = device_median_ms(repeats, [&] {
+    ccd_stages(CudaLauncher{}, n, environments, vertex.data(), edge_edge.data(), pair_begin.data(),
+               x0.data(), x1.data(), toi.data(), bound.data());
+  });
+  return {toi.to_host(), bound.to_host()};
+}
+
 struct SizeResult {
   int environments = 0;
   int tets = 0;
@@ -571,6 +701,10 @@ struct SizeResult {
   double affine_target = 0.0, affine_energy = 0.0, affine_gradient = 0.0, affine_hessian = 0.0;
   double map_device_ms = 0.0, map_host_ms = 0.0, map_bytes = 0.0;
   double map_position = 0.0, map_gradient = 0.0;
+  double ccd_device_ms = 0.0, ccd_host_ms = 0.0, ccd_toi = 0.0, ccd_bound = 0.0;
+  double inertia_device_ms = 0.0, inertia_host_ms = 0.0;
+  double inertia_target = 0.0, inertia_energy = 0.0, inertia_gradient = 0.0;
+  int ccd_impacts = 0;  // pairs that met on their path (host)
   bool pass() const {
     // The friction Hessian needs no eigen-solve: it is held to the gradient's tolerance.
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
@@ -580,9 +714,59 @@ struct SizeResult {
            friction_hessian <= kGradientTolerance && affine_target <= kGradientTolerance &&
            affine_energy <= kEnergyTolerance && affine_gradient <= kGradientTolerance &&
            affine_hessian <= kHessianTolerance && map_position <= kGradientTolerance &&
-           map_gradient <= kGradientTolerance;
+           map_gradient <= kGradientTolerance && ccd_toi <= kCcdTolerance &&
+           ccd_bound <= kCcdTolerance && inertia_target <= kGradientTolerance &&
+           inertia_energy <= kEnergyTolerance && inertia_gradient <= kGradientTolerance;
   }
 };
+
+// The contact stages (barrier, CCD, friction) over the same pairs.
+void check_contacts(int environments, int repeats, SizeResult& result) {
+  std::vector<double> positions;
+  const ContactPairs pairs = contact_pairs(environments, positions);
+  const BarrierValues on_device =
+      device_barrier(pairs, positions, repeats, result.barrier_device_ms, result.barrier_bytes);
+  const BarrierValues on_host = host_barrier(pairs, positions, result.barrier_host_ms);
+  result.barrier_energy = relative_difference(on_device.energy, on_host.energy, 1);
+  result.barrier_gradient = relative_difference(on_device.gradient, on_host.gradient, 12);
+  result.barrier_hessian = relative_difference(on_device.hessian, on_host.hessian, 144);
+  const std::vector<double> end = ccd_end(positions);
+  const CcdValues ccd_device = device_ccd(pairs, positions, end, repeats, result.ccd_device_ms);
+  const CcdValues ccd_host = host_ccd(pairs, positions, end, result.ccd_host_ms);
+  result.ccd_toi = relative_difference(ccd_device.toi, ccd_host.toi, 1);
+  result.ccd_bound = relative_difference(ccd_device.bound, ccd_host.bound, 1);
+  result.ccd_impacts = static_cast<int>(
+      std::count_if(ccd_host.toi.begin(), ccd_host.toi.end(), [](double t) { return t < 1.0; }));
+  std::vector<double> start;
+  const FrictionContacts contacts = friction_contacts(environments, positions, start);
+  const StageValues3 friction_device = device_friction(
+      contacts, positions, start, repeats, result.friction_device_ms, result.friction_bytes);
+  const StageValues3 friction_host =
+      host_friction(contacts, positions, start, result.friction_host_ms);
+  result.friction_energy = relative_difference(friction_device.energy, friction_host.energy, 1);
+  result.friction_gradient =
+      relative_difference(friction_device.gradient, friction_host.gradient, 12);
+  result.friction_hessian =
+      relative_difference(friction_device.hessian, friction_host.hessian, 144);
+}
+
+// The affine stages, then the map over the soft box's DOFs (state q) and the affine bodies'.
+void check_affine_and_map(const BoxMesh& mesh, const std::vector<double>& q, int environments,
+                          int repeats, SizeResult& result) {
+  const AffineScene affine = affine_scene(environments);
+  const AffineValues affine_device =
+      device_affine(affine, repeats, result.affine_device_ms, result.affine_bytes);
+  const AffineValues affine_host = host_affine(affine, result.affine_host_ms);
+  result.affine_target = relative_difference(affine_device.q_tilde, affine_host.q_tilde, 12);
+  result.affine_energy = relative_difference(affine_device.energy, affine_host.energy, 1);
+  result.affine_gradient = relative_difference(affine_device.gradient, affine_host.gradient, 12);
+  result.affine_hessian = relative_difference(affine_device.hessian, affine_host.hessian, 81);
+  const MapScene map = map_scene(mesh, q, affine, environments);
+  const MapValues map_device = device_map(map, repeats, result.map_device_ms, result.map_bytes);
+  const MapValues map_host = host_map(map, result.map_host_ms);
+  result.map_position = relative_difference(map_device.x, map_host.x, 3);
+  result.map_gradient = relative_difference(map_device.gradient, map_host.gradient, 12);
+}
 
 SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double cell) {
   FemBatch batch;
@@ -601,38 +785,15 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   result.energy = relative_difference(device.environment_energy, host.environment_energy, 1);
   result.gradient = relative_difference(device.gradient, host.gradient, q.size());
   result.hessian = relative_difference(device.hessian, host.hessian, 144);
-  std::vector<double> positions;
-  const ContactPairs pairs = contact_pairs(environments, positions);
-  const BarrierValues on_device =
-      device_barrier(pairs, positions, repeats, result.barrier_device_ms, result.barrier_bytes);
-  const BarrierValues on_host = host_barrier(pairs, positions, result.barrier_host_ms);
-  result.barrier_energy = relative_difference(on_device.energy, on_host.energy, 1);
-  result.barrier_gradient = relative_difference(on_device.gradient, on_host.gradient, 12);
-  result.barrier_hessian = relative_difference(on_device.hessian, on_host.hessian, 144);
-  std::vector<double> start;
-  const FrictionContacts contacts = friction_contacts(environments, positions, start);
-  const StageValues3 friction_device = device_friction(
-      contacts, positions, start, repeats, result.friction_device_ms, result.friction_bytes);
-  const StageValues3 friction_host =
-      host_friction(contacts, positions, start, result.friction_host_ms);
-  result.friction_energy = relative_difference(friction_device.energy, friction_host.energy, 1);
-  result.friction_gradient =
-      relative_difference(friction_device.gradient, friction_host.gradient, 12);
-  result.friction_hessian =
-      relative_difference(friction_device.hessian, friction_host.hessian, 144);
-  const AffineScene affine = affine_scene(environments);
-  const AffineValues affine_device =
-      device_affine(affine, repeats, result.affine_device_ms, result.affine_bytes);
-  const AffineValues affine_host = host_affine(affine, result.affine_host_ms);
-  result.affine_target = relative_difference(affine_device.q_tilde, affine_host.q_tilde, 12);
-  result.affine_energy = relative_difference(affine_device.energy, affine_host.energy, 1);
-  result.affine_gradient = relative_difference(affine_device.gradient, affine_host.gradient, 12);
-  result.affine_hessian = relative_difference(affine_device.hessian, affine_host.hessian, 81);
-  const MapScene map = map_scene(mesh, q, affine, environments);
-  const MapValues map_device = device_map(map, repeats, result.map_device_ms, result.map_bytes);
-  const MapValues map_host = host_map(map, result.map_host_ms);
-  result.map_position = relative_difference(map_device.x, map_host.x, 3);
-  result.map_gradient = relative_difference(map_device.gradient, map_host.gradient, 12);
+  const InertiaInputs inputs = inertia_inputs(q.size(), environments);
+  const InertiaValues inertia_device =
+      device_inertia(batch, q, inputs, repeats, result.inertia_device_ms);
+  const InertiaValues inertia_host = host_inertia(batch, q, inputs, result.inertia_host_ms);
+  result.inertia_target = relative_difference(inertia_device.q_tilde, inertia_host.q_tilde, 3);
+  result.inertia_energy = relative_difference(inertia_device.energy, inertia_host.energy, 1);
+  result.inertia_gradient = relative_difference(inertia_device.gradient, inertia_host.gradient, 3);
+  check_contacts(environments, repeats, result);
+  check_affine_and_map(mesh, q, environments, repeats, result);
   return result;
 }
 
@@ -705,7 +866,11 @@ void write_markdown_row(std::ostream& md, const SizeResult& r) {
      << r.friction_hessian << " | " << r.affine_device_ms << " | " << r.affine_host_ms << " | "
      << r.affine_target << ", " << r.affine_energy << ", " << r.affine_gradient << ", "
      << r.affine_hessian << " | " << r.map_device_ms << " | " << r.map_host_ms << " | "
-     << r.map_position << ", " << r.map_gradient << " | " << (r.pass() ? "yes" : "NO") << " |\n";
+     << r.map_position << ", " << r.map_gradient << " | " << r.ccd_device_ms << " | "
+     << r.ccd_host_ms << " | " << r.ccd_impacts << " | " << r.ccd_toi << ", " << r.ccd_bound
+     << " | " << r.inertia_device_ms << " | " << r.inertia_host_ms << " | " << r.inertia_target
+     << ", " << r.inertia_energy << ", " << r.inertia_gradient << " | " << (r.pass() ? "yes" : "NO")
+     << " |\n";
 }
 
 void write_reports(const std::string& directory, const std::string& device,
@@ -717,11 +882,13 @@ void write_reports(const std::string& directory, const std::string& device,
   json << "{" << device << ", \"tets_per_environment\": " << tets_per_environment
        << ", \"stages\": \"elastic (energy, gradient, projected Hessian), gradient gather, "
           "environment energy; barrier; friction; affine (prediction, inertia, orthogonality, "
-          "drive); map (positions, contact gradient gather)\", \"pairs_per_environment\": "
+          "drive); map (positions, contact gradient gather); CCD (time of impact, step bound); "
+          "FEM inertia (target, energy, gradient)\", "
+          "\"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
        << ", \"sizes\": [";
-  md << "Elastic, barrier, friction, affine and map stages on " << gpu_name << ": "
-     << tets_per_environment << " tets, " << kPairsPerEnvironment
+  md << "Elastic, FEM inertia, barrier, friction, affine, map and CCD stages on " << gpu_name
+     << ": " << tets_per_environment << " tets, " << kPairsPerEnvironment
      << " contact pairs (and as many friction contacts) and " << kAffinePerEnvironment
      << " affine bodies per environment; host: one core, serial launcher.\n\n"
      << "| environments | tets | device ms | host ms | host/device | device MiB per env | "
@@ -729,9 +896,12 @@ void write_reports(const std::string& directory, const std::string& device,
         "| barrier diffs (energy, gradient, Hessian) | friction device ms | friction host ms | "
         "friction diffs (energy, gradient, Hessian) | affine device ms | affine host ms | affine "
         "diffs (target, energy, gradient, Hessian) | map device ms | map host ms | map diffs "
-        "(positions, gradient) | within tolerance |\n"
+        "(positions, gradient) | CCD device ms | CCD host ms | impacts | CCD diffs (time of "
+        "impact, bound) | FEM inertia device ms | FEM inertia host ms | FEM inertia diffs "
+        "(target, energy, gradient) | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
-        "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | --- |\n";
+        "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | --- "
+        "| ---: | ---: | --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);
