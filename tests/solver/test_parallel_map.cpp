@@ -7,6 +7,7 @@
 // launchers agree bit for bit, and an environment's values do not depend on its batch.
 #include <gtest/gtest.h>
 
+#include <Eigen/Sparse>
 #include <random>
 #include <set>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "solver/batch/tbb_launcher.hpp"
 #include "solver/environment.hpp"
 #include "solver/newton/step_targets.hpp"
+#include "solver/parallel/block_assembly.hpp"
 #include "solver/parallel/launch.hpp"
 #include "solver/parallel/map_stages.hpp"
 #include "solver/potential/stencil.hpp"
@@ -46,6 +48,7 @@ struct Batch {
   std::vector<double> q, start, target, progress;  // the batch's DOFs; scripted vertices' rows
   std::vector<int> pair_vertex;                    // 4 per pair, the batch's numbering
   std::vector<double> pair_gradient;               // 12 per pair
+  std::vector<double> pair_hessian;                // 144 per pair, symmetric
 };
 
 // Each environment's DOFs moved at random (affine matrices by up to 10 %), its scripted floor's
@@ -91,6 +94,10 @@ Batch make_batch(const std::vector<std::shared_ptr<const Model>>& models) {
       while (four.size() < 4) four.insert(on(second_body));
       for (const int v : four) b.pair_vertex.push_back(b.collision.vertex_begin()[e] + v);
       for (int c = 0; c < 12; ++c) b.pair_gradient.push_back(unit(pairs_random));
+      Eigen::Matrix<double, 12, 12> h;
+      for (double& x : h.reshaped()) x = unit(pairs_random);
+      h = (h + h.transpose()).eval();
+      b.pair_hessian.insert(b.pair_hessian.end(), h.data(), h.data() + 144);
     }
   }
   return b;
@@ -180,12 +187,72 @@ TEST(ParallelMap, EverySlotOfAVertexWithDofsIsInOneBlock) {
   EXPECT_GT(scripted, 0);  // the floor's vertices were drawn too
 }
 
+// The pairs' Hessians assembled in 3x3 blocks, and environment e's blocks as the lower triangle
+// of a sparse matrix over its own DOFs.
+struct Assembled {
+  parallel::BlockPattern pattern;
+  std::vector<double> blocks;  // 9 per block
+};
+
+template <class Launcher>
+Assembled assemble(const Batch& b, Launcher&& launch) {
+  Assembled out;
+  out.pattern = parallel::contact_block_pattern(b.collision, b.pair_vertex.data(),
+                                                static_cast<int>(b.pair_vertex.size() / 4));
+  out.blocks.resize(9 * out.pattern.row.size());
+  launch(static_cast<int>(out.pattern.row.size()),
+         parallel::BlockAssemblyStage{out.pattern.buffers(), b.pair_vertex.data(),
+                                      b.collision.rest().data(), b.pair_hessian.data(),
+                                      out.blocks.data()});
+  return out;
+}
+
+Eigen::SparseMatrix<double> environment_lower(const Batch& b, const Assembled& a, int e) {
+  const int first = b.collision.dof_begin()[e], n = b.collision.dof_begin()[e + 1] - first;
+  Triplets triplets;
+  for (int k = a.pattern.environment_begin[e]; k < a.pattern.environment_begin[e + 1]; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) {
+        const int row = 3 * a.pattern.row[k] + r - first, col = 3 * a.pattern.column[k] + c - first;
+        if (row >= col) triplets.emplace_back(row, col, a.blocks[9 * k + 3 * c + r]);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> lower(n, n);
+  lower.setFromTriplets(triplets.begin(), triplets.end());
+  return lower;
+}
+
+TEST(ParallelMap, HessianBlocksMatchTheCpuEnginesStencils) {
+  const Batch b = make_batch({mixed_scene(), soft_scene(), mixed_scene()});
+  const Assembled a = assemble(b, parallel::SerialLauncher{});
+  for (int e = 0; e < 3; ++e) {
+    SCOPED_TRACE("environment " + std::to_string(e));
+    const Model& model = *b.models[e];
+    const int first_vertex = b.collision.vertex_begin()[e];
+    Eigen::VectorXd unused = Eigen::VectorXd::Zero(model.dof_count());
+    Triplets triplets;
+    for (int k = e * kPairsPerEnvironment; k < (e + 1) * kPairsPerEnvironment; ++k) {
+      std::array<int, 4> vertex;
+      for (int c = 0; c < 4; ++c) vertex[c] = b.pair_vertex[4 * k + c] - first_vertex;
+      const Stencil::Matrix12 h(&b.pair_hessian[144 * k]);
+      Stencil(model, vertex).scatter(Stencil::Vector12::Zero(), h, unused, triplets);
+    }
+    Eigen::SparseMatrix<double> cpu(model.dof_count(), model.dof_count());
+    cpu.setFromTriplets(triplets.begin(), triplets.end());
+    EXPECT_GT(cpu.norm(), 0.0);
+    EXPECT_LE((environment_lower(b, a, e) - cpu).norm(), 1e-14 * cpu.norm());
+  }
+}
+
 TEST(ParallelMap, TbbAndSerialLaunchersAgreeBitForBit) {
   const Batch b = make_batch({mixed_scene(), soft_scene(), mixed_scene()});
   const Values serial = run_stages(b, parallel::SerialLauncher{});
   const Values threaded = run_stages(b, parallel::TbbLauncher(2));
   EXPECT_EQ(serial.x, threaded.x);
   EXPECT_EQ(serial.gradient, threaded.gradient);
+  EXPECT_EQ(assemble(b, parallel::SerialLauncher{}).blocks,
+            assemble(b, parallel::TbbLauncher(2)).blocks);
 }
 
 TEST(ParallelMap, AnEnvironmentsValuesDoNotDependOnItsBatch) {
@@ -197,6 +264,11 @@ TEST(ParallelMap, AnEnvironmentsValuesDoNotDependOnItsBatch) {
       std::equal(alone.pair_vertex.begin(), alone.pair_vertex.end(), three.pair_vertex.begin()));
   EXPECT_TRUE(std::equal(solo.x.begin(), solo.x.end(), in_batch.x.begin()));
   EXPECT_TRUE(std::equal(solo.gradient.begin(), solo.gradient.end(), in_batch.gradient.begin()));
+  const Assembled solo_blocks = assemble(alone, parallel::SerialLauncher{});
+  const Assembled batch_blocks = assemble(three, parallel::SerialLauncher{});
+  EXPECT_EQ(solo_blocks.pattern.environment_begin[1], batch_blocks.pattern.environment_begin[1]);
+  EXPECT_TRUE(std::equal(solo_blocks.blocks.begin(), solo_blocks.blocks.end(),
+                         batch_blocks.blocks.begin()));
 }
 
 }  // namespace

@@ -8,7 +8,8 @@
 // 0.1 to 10 times eps_v h) and the affine stages (17 affine bodies per environment, as a hand's
 // 16 driven links and its object: prediction, inertia, orthogonality, drive) and the map
 // between DOFs and collision vertices (positions of the box's vertices, the affine bodies'
-// corners and 8 scripted vertices; 512 contact pairs' gradients gathered into the DOFs) and the
+// corners and 8 scripted vertices; 512 contact pairs' gradients gathered into the DOFs, their
+// Hessians assembled in 3x3 blocks) and the
 // step bound (additive CCD over the barrier's pairs, each closing by up to 2.5 mm, and its
 // per-environment minimum) on the device (CudaLauncher) and on one host core (SerialLauncher);
 // it reports
@@ -33,6 +34,7 @@
 #include "solver/kernels/relative_velocity.hpp"
 #include "solver/parallel/affine_batch.hpp"
 #include "solver/parallel/affine_stages.hpp"
+#include "solver/parallel/block_assembly.hpp"
 #include "solver/parallel/ccd_stages.hpp"
 #include "solver/parallel/collision_batch.hpp"
 #include "solver/parallel/contact_stages.hpp"
@@ -528,9 +530,10 @@ AffineValues device_affine(const AffineScene& a, int repeats, double& ms, double
 // to their target; 512 contact pairs of four distinct vertices with random gradients.
 struct MapScene {
   CollisionBatch batch;
-  std::vector<double> q, start, target, progress, pair_gradient;
+  std::vector<double> q, start, target, progress, pair_gradient, pair_hessian;
   std::vector<int> pair_vertex;
   ContactIncidence incidence;
+  BlockPattern pattern;  // the pairs' Hessian blocks
 };
 
 MapScene map_scene(const BoxMesh& mesh, const std::vector<double>& fem_q, const AffineScene& affine,
@@ -577,10 +580,20 @@ MapScene map_scene(const BoxMesh& mesh, const std::vector<double>& fem_q, const 
       }
       scene.pair_vertex.insert(scene.pair_vertex.end(), four, four + 4);
       for (int c = 0; c < 12; ++c) scene.pair_gradient.push_back(2.0 * uniform() - 1.0);
+      const std::size_t first_entry = scene.pair_hessian.size();
+      scene.pair_hessian.resize(first_entry + 144);
+      for (int r = 0; r < 12; ++r) {
+        for (int c = 0; c <= r; ++c) {
+          scene.pair_hessian[first_entry + 12 * c + r] =
+              scene.pair_hessian[first_entry + 12 * r + c] = 2.0 * uniform() - 1.0;
+        }
+      }
     }
   }
   scene.incidence = contact_incidence(scene.batch, scene.pair_vertex.data(),
                                       static_cast<int>(scene.pair_vertex.size() / 4));
+  scene.pattern = contact_block_pattern(scene.batch, scene.pair_vertex.data(),
+                                        static_cast<int>(scene.pair_vertex.size() / 4));
   return scene;
 }
 
@@ -688,6 +701,35 @@ CcdValues device_ccd(const ContactPairs& pairs, const std::vector<double>& start
   return {toi.to_host(), bound.to_host()};
 }
 
+// The pairs' Hessians in 3x3 blocks: per block its 9 values.
+std::vector<double> host_assembly(const MapScene& m, double& ms) {
+  std::vector<double> blocks(9 * m.pattern.row.size());
+  const auto begin = std::chrono::steady_clock::now();
+  SerialLauncher{}(static_cast<int>(m.pattern.row.size()),
+                   BlockAssemblyStage{m.pattern.buffers(), m.pair_vertex.data(),
+                                      m.batch.rest().data(), m.pair_hessian.data(), blocks.data()});
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  return blocks;
+}
+
+std::vector<double> device_assembly(const MapScene& m, int repeats, double& ms) {
+  const BlockPattern& p = m.pattern;
+  DeviceArray<int> row(p.row), column(p.column), begin(p.begin), slots(p.term_slots),
+      units(p.term_units), pair_vertex(m.pair_vertex);
+  DeviceArray<double> rest(m.batch.rest()), hessian(m.pair_hessian), blocks(9 * p.row.size());
+  const BlockPatternBuffers pattern{static_cast<int>(p.row.size()),
+                                    row.data(),
+                                    column.data(),
+                                    begin.data(),
+                                    slots.data(),
+                                    units.data()};
+  ms = device_median_ms(repeats, [&] {
+    CudaLauncher{}(pattern.count, BlockAssemblyStage{pattern, pair_vertex.data(), rest.data(),
+                                                     hessian.data(), blocks.data()});
+  });
+  return blocks.to_host();
+}
+
 struct SizeResult {
   int environments = 0;
   int tets = 0;
@@ -701,6 +743,8 @@ struct SizeResult {
   double affine_target = 0.0, affine_energy = 0.0, affine_gradient = 0.0, affine_hessian = 0.0;
   double map_device_ms = 0.0, map_host_ms = 0.0, map_bytes = 0.0;
   double map_position = 0.0, map_gradient = 0.0;
+  double assembly_device_ms = 0.0, assembly_host_ms = 0.0, assembly = 0.0;
+  int blocks = 0;
   double ccd_device_ms = 0.0, ccd_host_ms = 0.0, ccd_toi = 0.0, ccd_bound = 0.0;
   double inertia_device_ms = 0.0, inertia_host_ms = 0.0;
   double inertia_target = 0.0, inertia_energy = 0.0, inertia_gradient = 0.0;
@@ -714,9 +758,10 @@ struct SizeResult {
            friction_hessian <= kGradientTolerance && affine_target <= kGradientTolerance &&
            affine_energy <= kEnergyTolerance && affine_gradient <= kGradientTolerance &&
            affine_hessian <= kHessianTolerance && map_position <= kGradientTolerance &&
-           map_gradient <= kGradientTolerance && ccd_toi <= kCcdTolerance &&
-           ccd_bound <= kCcdTolerance && inertia_target <= kGradientTolerance &&
-           inertia_energy <= kEnergyTolerance && inertia_gradient <= kGradientTolerance;
+           map_gradient <= kGradientTolerance && assembly <= kGradientTolerance &&
+           ccd_toi <= kCcdTolerance && ccd_bound <= kCcdTolerance &&
+           inertia_target <= kGradientTolerance && inertia_energy <= kEnergyTolerance &&
+           inertia_gradient <= kGradientTolerance;
   }
 };
 
@@ -766,6 +811,11 @@ void check_affine_and_map(const BoxMesh& mesh, const std::vector<double>& q, int
   const MapValues map_host = host_map(map, result.map_host_ms);
   result.map_position = relative_difference(map_device.x, map_host.x, 3);
   result.map_gradient = relative_difference(map_device.gradient, map_host.gradient, 12);
+  const std::vector<double> blocks_device =
+      device_assembly(map, repeats, result.assembly_device_ms);
+  const std::vector<double> blocks_host = host_assembly(map, result.assembly_host_ms);
+  result.assembly = relative_difference(blocks_device, blocks_host, 9);
+  result.blocks = static_cast<int>(map.pattern.row.size());
 }
 
 SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double cell) {
@@ -851,6 +901,10 @@ void write_json_row(std::ostream& json, const SizeResult& r) {
        << ", \"map_device_mib_per_environment\": " << mib(r.map_bytes)
        << ", \"map_position_relative_difference\": " << r.map_position
        << ", \"map_gradient_relative_difference\": " << r.map_gradient
+       << ", \"hessian_blocks\": " << r.blocks
+       << ", \"assembly_device_ms\": " << r.assembly_device_ms
+       << ", \"assembly_host_ms\": " << r.assembly_host_ms
+       << ", \"assembly_relative_difference\": " << r.assembly
        << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
 }
 
@@ -866,11 +920,12 @@ void write_markdown_row(std::ostream& md, const SizeResult& r) {
      << r.friction_hessian << " | " << r.affine_device_ms << " | " << r.affine_host_ms << " | "
      << r.affine_target << ", " << r.affine_energy << ", " << r.affine_gradient << ", "
      << r.affine_hessian << " | " << r.map_device_ms << " | " << r.map_host_ms << " | "
-     << r.map_position << ", " << r.map_gradient << " | " << r.ccd_device_ms << " | "
-     << r.ccd_host_ms << " | " << r.ccd_impacts << " | " << r.ccd_toi << ", " << r.ccd_bound
-     << " | " << r.inertia_device_ms << " | " << r.inertia_host_ms << " | " << r.inertia_target
-     << ", " << r.inertia_energy << ", " << r.inertia_gradient << " | " << (r.pass() ? "yes" : "NO")
-     << " |\n";
+     << r.map_position << ", " << r.map_gradient << " | " << r.blocks << " | "
+     << r.assembly_device_ms << " | " << r.assembly_host_ms << " | " << r.assembly << " | "
+     << r.ccd_device_ms << " | " << r.ccd_host_ms << " | " << r.ccd_impacts << " | " << r.ccd_toi
+     << ", " << r.ccd_bound << " | " << r.inertia_device_ms << " | " << r.inertia_host_ms << " | "
+     << r.inertia_target << ", " << r.inertia_energy << ", " << r.inertia_gradient << " | "
+     << (r.pass() ? "yes" : "NO") << " |\n";
 }
 
 void write_reports(const std::string& directory, const std::string& device,
@@ -882,13 +937,14 @@ void write_reports(const std::string& directory, const std::string& device,
   json << "{" << device << ", \"tets_per_environment\": " << tets_per_environment
        << ", \"stages\": \"elastic (energy, gradient, projected Hessian), gradient gather, "
           "environment energy; barrier; friction; affine (prediction, inertia, orthogonality, "
-          "drive); map (positions, contact gradient gather); CCD (time of impact, step bound); "
+          "drive); map (positions, contact gradient gather, Hessian blocks); CCD (time of impact, "
+          "step bound); "
           "FEM inertia (target, energy, gradient)\", "
           "\"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
        << ", \"sizes\": [";
-  md << "Elastic, FEM inertia, barrier, friction, affine, map and CCD stages on " << gpu_name
-     << ": " << tets_per_environment << " tets, " << kPairsPerEnvironment
+  md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly and CCD stages on "
+     << gpu_name << ": " << tets_per_environment << " tets, " << kPairsPerEnvironment
      << " contact pairs (and as many friction contacts) and " << kAffinePerEnvironment
      << " affine bodies per environment; host: one core, serial launcher.\n\n"
      << "| environments | tets | device ms | host ms | host/device | device MiB per env | "
@@ -896,12 +952,13 @@ void write_reports(const std::string& directory, const std::string& device,
         "| barrier diffs (energy, gradient, Hessian) | friction device ms | friction host ms | "
         "friction diffs (energy, gradient, Hessian) | affine device ms | affine host ms | affine "
         "diffs (target, energy, gradient, Hessian) | map device ms | map host ms | map diffs "
-        "(positions, gradient) | CCD device ms | CCD host ms | impacts | CCD diffs (time of "
+        "(positions, gradient) | Hessian blocks | assembly device ms | assembly host ms | "
+        "assembly diff | CCD device ms | CCD host ms | impacts | CCD diffs (time of "
         "impact, bound) | FEM inertia device ms | FEM inertia host ms | FEM inertia diffs "
         "(target, energy, gradient) | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
-        "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | --- "
-        "| ---: | ---: | --- | --- |\n";
+        "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: "
+        "| ---: | ---: | ---: | --- | ---: | ---: | --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);
