@@ -250,6 +250,22 @@ struct UnitRun {
   std::shared_ptr<solver::LinearSystemSolver> big_system_solver;
 };
 
+// The dataset keeps a failure's kind; where the solver gave up (or the grasp never settled), its
+// own words go to the log with the candidate, for whoever takes up the hard case: the same
+// reason `grip trial --report` gives.
+void log_solver_failure(const trial::TrialOutcome& outcome, const WorkUnit& unit,
+                        const UnitRun& run) {
+  const io::FailureKind failure = outcome.result.record.failure;
+  if (outcome.failure_reason.empty() ||
+      (failure != io::FailureKind::kNewtonLimit && failure != io::FailureKind::kNumerical &&
+       failure != io::FailureKind::kUnsettled)) {
+    return;
+  }
+  spdlog::warn("candidate {} ({} with {}): {}: {}", outcome.result.record.id,
+               run.plan.dataset.objects[unit.object].name, run.job.grippers[unit.gripper].type.name,
+               io::to_string(failure), outcome.failure_reason);
+}
+
 // One work unit's trials, its results as the dataset keeps them; each solver step adds the
 // trials that ended to the progress, and rank 0 polls the progress and the journal. A
 // group-only unit's systems all go to the leader's group.
@@ -275,6 +291,7 @@ std::vector<io::CandidateResult> run_unit(const WorkUnit& unit, bool group_only,
   for (trial::TrialOutcome& outcome :
        trial::run_trials(run.scenes.get(unit.object, unit.gripper), candidates, options)) {
     io::CandidateResult& result = outcome.result;
+    log_solver_failure(outcome, unit, run);
     const io::CandidateSlot& slot = run.plan.dataset.candidates[result.record.id];
     if (!slot.stress) result.stress.reset();
     if (!slot.finger_stress) result.finger_stress.reset();

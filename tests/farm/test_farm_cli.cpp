@@ -2,6 +2,7 @@
 // dataset is one message naming the file and the fix with exit status 1, progress lines come
 // while the trials run, a trial failing on one rank of two is one message and resumable, the
 // scaling benchmark writes its table for every setting, and their JSON keeps any path as it is;
+// a solver failure is logged with the solver's reason;
 // a bimanual job's dataset holds both grippers' poses, joints and frames, the same on 1 and 2
 // ranks, and grip inspect reads it; a soft gripper from a description file runs through grip
 // synth, grip trial and a job.
@@ -142,6 +143,24 @@ TEST_F(FarmCli, BadProgressIntervalIsAUsageError) {
   EXPECT_NE(run.err.find("GRIP_PROGRESS_INTERVAL: must be a number of seconds >= 0, not 'soon'"),
             std::string::npos)
       << run.err;
+}
+
+// A candidate the solver gives up on (one Newton iteration allowed, no retries) is recorded as
+// newton_limit, and the log says which candidate and, in the solver's words, why.
+TEST_F(FarmCli, SolverFailuresAreLoggedWithTheSolversReason) {
+  testing::write_file(dir_ / "job.toml", testing::small_job(1, 1, false) +
+                                             "\n[physics]\nmax_newton_iters = 1\n"
+                                             "max_step_halvings = 0\n");
+  const auto run = grip::testing::run_grip("farm " + quoted(dir_ / "job.toml") + " --output " +
+                                           quoted(dir_ / "data.h5") + " --threads 1");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const io::DatasetReader reader(dir_ / "data.h5");
+  ASSERT_EQ(reader.candidates().size(), 1u);
+  EXPECT_EQ(reader.candidates()[0].failure, io::FailureKind::kNewtonLimit);
+  EXPECT_NE(run.err.find("[warning] candidate 0 (cylinder-0 with parallel-jaw): newton_limit: "),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("Newton"), std::string::npos) << run.err;
 }
 
 // A trial that throws on rank 1 alone (CHOLMOD fails there: a preload library on that rank
