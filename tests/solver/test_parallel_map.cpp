@@ -1,10 +1,11 @@
 // The data-parallel engine's map between DOFs and collision vertices (solver/parallel/
-// map_stages.hpp) on the host launchers, against the CPU engine's collision_positions and
-// Stencil: a batch of environments of two models that mix scripted, FEM, affine and driven
-// bodies, the DOFs moved off their start (affine matrices off rotations), the scripted floor part
-// way to its target; random contact pairs with random position-space gradients gathered into
-// the DOFs. Also: the incidence lists every slot of a vertex with DOFs once, the serial and TBB
-// launchers agree bit for bit, and an environment's values do not depend on its batch.
+// map_stages.hpp) and its Newton matrix in 3x3 blocks (block_assembly.hpp) on the host
+// launchers, against the CPU engine's collision_positions, Stencil and terms: a batch of
+// environments of two models that mix scripted, FEM, affine and driven bodies, the DOFs moved off
+// their start (affine matrices off rotations), the scripted floor part way to its target; random
+// contact pairs with random position-space gradients and Hessians. Also: the incidence lists
+// every slot of a vertex with DOFs once, the serial and TBB launchers agree bit for bit, and an
+// environment's values do not depend on its batch.
 #include <gtest/gtest.h>
 
 #include <Eigen/Sparse>
@@ -16,7 +17,9 @@
 #include "solver/batch/tbb_launcher.hpp"
 #include "solver/environment.hpp"
 #include "solver/newton/step_targets.hpp"
+#include "solver/parallel/affine_stages.hpp"
 #include "solver/parallel/block_assembly.hpp"
+#include "solver/parallel/elastic_stages.hpp"
 #include "solver/parallel/launch.hpp"
 #include "solver/parallel/map_stages.hpp"
 #include "solver/potential/stencil.hpp"
@@ -43,6 +46,8 @@ constexpr double kProgress = 0.3;
 struct Batch {
   std::vector<std::shared_ptr<const Model>> models;
   CollisionBatch collision;
+  parallel::FemBatch fem;
+  parallel::AffineBatch affine;
   std::vector<Eigen::VectorXd> states;
   std::vector<StepTargets> targets;
   std::vector<double> q, start, target, progress;  // the batch's DOFs; scripted vertices' rows
@@ -76,6 +81,8 @@ Batch make_batch(const std::vector<std::shared_ptr<const Model>>& models) {
     b.progress.push_back(kProgress);
   }
   b.collision = parallel::collision_batch(environments);
+  b.fem = parallel::fem_batch(environments);
+  b.affine = parallel::affine_batch(environments);
   for (int e = 0; e < b.collision.environment_count(); ++e) {
     const CollisionMesh& mesh = models[e]->collision();
     std::mt19937 pairs_random(100 + e);  // an environment's pairs whatever its batch
@@ -197,13 +204,14 @@ struct Assembled {
 template <class Launcher>
 Assembled assemble(const Batch& b, Launcher&& launch) {
   Assembled out;
-  out.pattern = parallel::contact_block_pattern(b.collision, b.pair_vertex.data(),
-                                                static_cast<int>(b.pair_vertex.size() / 4));
+  parallel::StencilSlots slots;
+  parallel::add_contact_stencils(b.collision, b.pair_vertex.data(),
+                                 static_cast<int>(b.pair_vertex.size() / 4), slots);
+  out.pattern = parallel::block_pattern(slots, b.collision.dof_begin());
   out.blocks.resize(9 * out.pattern.row.size());
   launch(static_cast<int>(out.pattern.row.size()),
-         parallel::BlockAssemblyStage{out.pattern.buffers(), b.pair_vertex.data(),
-                                      b.collision.rest().data(), b.pair_hessian.data(),
-                                      out.blocks.data()});
+         parallel::BlockAssemblyStage{out.pattern.buffers(), slots.rest.data(),
+                                      b.pair_hessian.data(), out.blocks.data()});
   return out;
 }
 
@@ -223,25 +231,92 @@ Eigen::SparseMatrix<double> environment_lower(const Batch& b, const Assembled& a
   return lower;
 }
 
+// The CPU engine's lower-triangle triplets of environment e's pairs' Hessians (Stencil::scatter).
+void add_cpu_pair_hessians(const Batch& b, int e, Triplets& triplets) {
+  const Model& model = *b.models[e];
+  const int first_vertex = b.collision.vertex_begin()[e];
+  Eigen::VectorXd unused = Eigen::VectorXd::Zero(model.dof_count());
+  for (int k = e * kPairsPerEnvironment; k < (e + 1) * kPairsPerEnvironment; ++k) {
+    std::array<int, 4> vertex;
+    for (int c = 0; c < 4; ++c) vertex[c] = b.pair_vertex[4 * k + c] - first_vertex;
+    const Stencil::Matrix12 h(&b.pair_hessian[144 * k]);
+    Stencil(model, vertex).scatter(Stencil::Vector12::Zero(), h, unused, triplets);
+  }
+}
+
 TEST(ParallelMap, HessianBlocksMatchTheCpuEnginesStencils) {
   const Batch b = make_batch({mixed_scene(), soft_scene(), mixed_scene()});
   const Assembled a = assemble(b, parallel::SerialLauncher{});
   for (int e = 0; e < 3; ++e) {
     SCOPED_TRACE("environment " + std::to_string(e));
     const Model& model = *b.models[e];
-    const int first_vertex = b.collision.vertex_begin()[e];
-    Eigen::VectorXd unused = Eigen::VectorXd::Zero(model.dof_count());
     Triplets triplets;
-    for (int k = e * kPairsPerEnvironment; k < (e + 1) * kPairsPerEnvironment; ++k) {
-      std::array<int, 4> vertex;
-      for (int c = 0; c < 4; ++c) vertex[c] = b.pair_vertex[4 * k + c] - first_vertex;
-      const Stencil::Matrix12 h(&b.pair_hessian[144 * k]);
-      Stencil(model, vertex).scatter(Stencil::Vector12::Zero(), h, unused, triplets);
-    }
+    add_cpu_pair_hessians(b, e, triplets);
     Eigen::SparseMatrix<double> cpu(model.dof_count(), model.dof_count());
     cpu.setFromTriplets(triplets.begin(), triplets.end());
     EXPECT_GT(cpu.norm(), 0.0);
     EXPECT_LE((environment_lower(b, a, e) - cpu).norm(), 1e-14 * cpu.norm());
+  }
+}
+
+// Every term's Hessian of the batch's state in blocks: tets (projected), affine bodies (inertia,
+// projected orthogonality, drive), the pairs' random ones, and the FEM vertices' masses.
+Assembled assemble_newton_matrix(const Batch& b) {
+  parallel::SerialLauncher launch;
+  const parallel::TetBuffers tets = b.fem.tets();
+  const parallel::AffineBuffers bodies = b.affine.bodies();
+  const int pairs = static_cast<int>(b.pair_vertex.size() / 4);
+  std::vector<double> hessian(144 * static_cast<std::size_t>(tets.count + bodies.count + pairs));
+  std::vector<double> scratch(12 * static_cast<std::size_t>(tets.count)), gradient(b.q.size());
+  launch(tets.count, parallel::ElasticStage{tets, b.q.data(), true, scratch.data(), scratch.data(),
+                                            hessian.data()});
+  std::vector<double> energy(bodies.count),
+      orthogonality(81 * static_cast<std::size_t>(bodies.count));
+  launch(bodies.count, parallel::OrthogonalityStage{bodies, b.q.data(), true, energy.data(),
+                                                    gradient.data(), orthogonality.data()});
+  launch(bodies.count, parallel::AffineHessianStage{bodies, orthogonality.data(),
+                                                    hessian.data() + 144 * tets.count});
+  std::copy(b.pair_hessian.begin(), b.pair_hessian.end(),
+            hessian.begin() + 144 * (tets.count + bodies.count));
+  parallel::StencilSlots slots;
+  parallel::add_tet_stencils(b.fem, slots);
+  parallel::add_affine_stencils(b.affine, slots);
+  parallel::add_contact_stencils(b.collision, b.pair_vertex.data(), pairs, slots);
+  Assembled out;
+  out.pattern = parallel::block_pattern(slots, b.collision.dof_begin());
+  out.blocks.resize(9 * out.pattern.row.size());
+  launch(static_cast<int>(out.pattern.row.size()),
+         parallel::BlockAssemblyStage{out.pattern.buffers(), slots.rest.data(), hessian.data(),
+                                      out.blocks.data()});
+  std::vector<int> units;
+  for (const int dof : b.fem.vertex_dof()) units.push_back(dof / 3);
+  const std::vector<int> diagonal = out.pattern.diagonal_blocks(units);
+  launch(b.fem.vertices().count,
+         parallel::MassDiagonalStage{b.fem.vertices(), diagonal.data(), out.blocks.data()});
+  return out;
+}
+
+TEST(ParallelMap, TheNewtonMatrixInBlocksIsTheCpuEnginesHessian) {
+  const Batch b = make_batch({mixed_scene(), soft_scene(), mixed_scene()});
+  const Assembled a = assemble_newton_matrix(b);
+  for (int e = 0; e < 3; ++e) {
+    SCOPED_TRACE("environment " + std::to_string(e));
+    const Model& model = *b.models[e];
+    const Eigen::VectorXd& q = b.states[e];
+    Eigen::VectorXd unused = Eigen::VectorXd::Zero(model.dof_count());
+    Triplets triplets;
+    for (const BodyModel& body : model.bodies()) {
+      if (!body.has_dofs()) continue;
+      body.kind->add_inertia_derivatives(body.local, q, q, 1.0, unused, &triplets);
+      body.kind->add_elastic_derivatives(body.local, q, 1.0, nullptr, unused, &triplets);
+      if (body.scripted())
+        body.kind->add_drive_derivatives(body.local, q, q, 1.0, unused, &triplets);
+    }
+    add_cpu_pair_hessians(b, e, triplets);
+    Eigen::SparseMatrix<double> cpu(model.dof_count(), model.dof_count());
+    cpu.setFromTriplets(triplets.begin(), triplets.end());
+    EXPECT_GT(cpu.norm(), 0.0);
+    EXPECT_LE((environment_lower(b, a, e) - cpu).norm(), 1e-12 * cpu.norm());
   }
 }
 

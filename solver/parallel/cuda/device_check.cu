@@ -533,6 +533,7 @@ struct MapScene {
   std::vector<double> q, start, target, progress, pair_gradient, pair_hessian;
   std::vector<int> pair_vertex;
   ContactIncidence incidence;
+  StencilSlots slots;    // the pairs as stencils
   BlockPattern pattern;  // the pairs' Hessian blocks
 };
 
@@ -592,8 +593,9 @@ MapScene map_scene(const BoxMesh& mesh, const std::vector<double>& fem_q, const 
   }
   scene.incidence = contact_incidence(scene.batch, scene.pair_vertex.data(),
                                       static_cast<int>(scene.pair_vertex.size() / 4));
-  scene.pattern = contact_block_pattern(scene.batch, scene.pair_vertex.data(),
-                                        static_cast<int>(scene.pair_vertex.size() / 4));
+  add_contact_stencils(scene.batch, scene.pair_vertex.data(),
+                       static_cast<int>(scene.pair_vertex.size() / 4), scene.slots);
+  scene.pattern = block_pattern(scene.slots, scene.batch.dof_begin());
   return scene;
 }
 
@@ -706,8 +708,8 @@ std::vector<double> host_assembly(const MapScene& m, double& ms) {
   std::vector<double> blocks(9 * m.pattern.row.size());
   const auto begin = std::chrono::steady_clock::now();
   SerialLauncher{}(static_cast<int>(m.pattern.row.size()),
-                   BlockAssemblyStage{m.pattern.buffers(), m.pair_vertex.data(),
-                                      m.batch.rest().data(), m.pair_hessian.data(), blocks.data()});
+                   BlockAssemblyStage{m.pattern.buffers(), m.slots.rest.data(),
+                                      m.pair_hessian.data(), blocks.data()});
   ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
   return blocks;
 }
@@ -715,8 +717,8 @@ std::vector<double> host_assembly(const MapScene& m, double& ms) {
 std::vector<double> device_assembly(const MapScene& m, int repeats, double& ms) {
   const BlockPattern& p = m.pattern;
   DeviceArray<int> row(p.row), column(p.column), begin(p.begin), slots(p.term_slots),
-      units(p.term_units), pair_vertex(m.pair_vertex);
-  DeviceArray<double> rest(m.batch.rest()), hessian(m.pair_hessian), blocks(9 * p.row.size());
+      units(p.term_units);
+  DeviceArray<double> rest(m.slots.rest), hessian(m.pair_hessian), blocks(9 * p.row.size());
   const BlockPatternBuffers pattern{static_cast<int>(p.row.size()),
                                     row.data(),
                                     column.data(),
@@ -724,8 +726,8 @@ std::vector<double> device_assembly(const MapScene& m, int repeats, double& ms) 
                                     slots.data(),
                                     units.data()};
   ms = device_median_ms(repeats, [&] {
-    CudaLauncher{}(pattern.count, BlockAssemblyStage{pattern, pair_vertex.data(), rest.data(),
-                                                     hessian.data(), blocks.data()});
+    CudaLauncher{}(pattern.count,
+                   BlockAssemblyStage{pattern, rest.data(), hessian.data(), blocks.data()});
   });
   return blocks.to_host();
 }
