@@ -50,8 +50,7 @@ void CollisionBatch::add_affine_vertex(int body_first_dof, double x, double y, d
 void CollisionBatch::add_scripted_vertex() { add(VertexMotion::kScripted, -1, 0, 0.0, 0.0, 0.0); }
 
 CollisionVertexBuffers CollisionBatch::vertices() const {
-  return {vertex_count(), motion_.data(),      dof_.data(),
-          rest_.data(),   environment_.data(), block_.data()};
+  return {vertex_count(), motion_.data(), dof_.data(), rest_.data(), environment_.data()};
 }
 
 ContactIncidence contact_incidence(const CollisionBatch& batch, const int* pair_vertex,

@@ -20,7 +20,6 @@ struct CollisionVertexBuffers {
   const int* dof = nullptr;          // per vertex: its first DOF (FEM) or its body's (affine); -1
   const double* rest = nullptr;      // 3 per vertex: an affine vertex's rest point
   const int* environment = nullptr;  // per vertex
-  const int* block = nullptr;        // per vertex: its DOF block, -1 for a scripted vertex
 };
 
 // The DOF blocks and, per block, the contact slots (4 k + c: corner c of pair k) that touch it,
@@ -60,6 +59,7 @@ class CollisionBatch {
   const std::vector<int>& dof() const { return dof_; }
   const std::vector<double>& rest() const { return rest_; }
   const std::vector<int>& environment() const { return environment_; }
+  // Per vertex: its DOF block, -1 for a scripted vertex (what the host's incidence reads).
   const std::vector<int>& block() const { return block_; }
 
  private:

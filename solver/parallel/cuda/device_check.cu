@@ -627,14 +627,14 @@ MapValues host_map(const MapScene& m, double& ms) {
 MapValues device_map(const MapScene& m, int repeats, double& ms, double& bytes) {
   const CollisionBatch& batch = m.batch;
   DeviceArray<unsigned char> motion(batch.motion());
-  DeviceArray<int> dof(batch.dof()), environment(batch.environment()), block(batch.block()),
-      block_dof(batch.block_dof()), block_size(batch.block_size()), begin(m.incidence.begin),
-      slots(m.incidence.slots), pair_vertex(m.pair_vertex);
+  DeviceArray<int> dof(batch.dof()), environment(batch.environment()), block_dof(batch.block_dof()),
+      block_size(batch.block_size()), begin(m.incidence.begin), slots(m.incidence.slots),
+      pair_vertex(m.pair_vertex);
   DeviceArray<double> rest(batch.rest()), q(m.q), start(m.start), target(m.target),
       progress(m.progress), pair_gradient(m.pair_gradient),
       x(3 * std::size_t(batch.vertex_count())), gradient(m.q.size());
-  const CollisionVertexBuffers vertices{batch.vertex_count(), motion.data(),      dof.data(),
-                                        rest.data(),          environment.data(), block.data()};
+  const CollisionVertexBuffers vertices{batch.vertex_count(), motion.data(), dof.data(),
+                                        rest.data(), environment.data()};
   const ContactIncidenceBuffers incidence{batch.block_count(), block_dof.data(), block_size.data(),
                                           begin.data(), slots.data()};
   ms = device_median_ms(repeats, [&] {
@@ -645,8 +645,8 @@ MapValues device_map(const MapScene& m, int repeats, double& ms, double& bytes) 
   });
   bytes = 8.0 * double(rest.size() + q.size() + start.size() + target.size() + progress.size() +
                        pair_gradient.size() + x.size() + gradient.size()) +
-          4.0 * double(dof.size() + environment.size() + block.size() + block_dof.size() +
-                       block_size.size() + begin.size() + slots.size() + pair_vertex.size()) +
+          4.0 * double(dof.size() + environment.size() + block_dof.size() + block_size.size() +
+                       begin.size() + slots.size() + pair_vertex.size()) +
           double(motion.size());
   return {x.to_host(), gradient.to_host()};
 }
