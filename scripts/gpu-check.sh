@@ -3,7 +3,7 @@
 # headers: from .gpu-carry/, which scripts/gpu-carry.sh fills, or the system's), runs it, and
 # writes gpu-check.json, gpu-check.md and the GPU's nvidia-smi report into OUTDIR. It compares
 # the data-parallel engine's stages (elastic, FEM inertia, barrier, CCD, friction, affine, map,
-# Hessian blocks) on the GPU with the host launcher on the same batches, and times them at 1 to
+# Hessian blocks, block-Jacobi CG) on the GPU with the host launcher on the same batches, and times them at 1 to
 # 512 environments (docs/architecture.md, "Engines"). Sized to finish well inside 8 minutes: the
 # build takes about 2 minutes of one core, the host's share of the largest batch (1.2 million
 # tets, 262,144 pairs and as many friction contacts, one core) well under one. Exit status:
@@ -26,7 +26,7 @@ start=$(date +%s)
   -diag-suppress=20012 -Werror=all-warnings -Xcompiler=-Wall,-Wextra,-Werror \
   "$root/solver/parallel/cuda/device_check.cu" "$root/solver/parallel/fem_batch.cpp" \
   "$root/solver/parallel/affine_batch.cpp" "$root/solver/parallel/collision_batch.cpp" \
-  "$root/solver/parallel/block_assembly.cpp" \
+  "$root/solver/parallel/block_assembly.cpp" "$root/solver/parallel/block_pcg.cpp" \
   "$root/solver/parallel/contact_stages.cpp" "$root/solver/parallel/friction_stages.cpp" \
   -o "$root/build-gpu/grip-gpu-check"
 echo "gpu-check: built in $(($(date +%s) - start)) s"

@@ -23,6 +23,11 @@ class TbbLauncher {
     });
   }
 
+  template <class T>
+  T fetch(const T* value) const {
+    return *value;
+  }
+
  private:
   static constexpr int kGrain = 64;  // items per task: a tet's stage is about a microsecond
   tbb::task_arena arena_;

@@ -6,7 +6,8 @@
 // (solver/batch/tbb_launcher.hpp) on the host, CudaLauncher (cuda/cuda_launcher.cuh) on a GPU.
 // Items are independent, so the host launchers give the same values bit for bit, and a GPU the
 // same to round-off (it contracts multiply-adds); reductions over items are stages of their
-// own, in a fixed order, never atomics.
+// own, in a fixed order, never atomics. A launcher's fetch() reads one value of its memory to
+// the host: what a host loop needs to decide whether to go on.
 namespace grip::solver::parallel {
 
 // The host launcher without dependencies: the device check's reference, and what the tests use
@@ -15,6 +16,10 @@ struct SerialLauncher {
   template <class Stage>
   void operator()(int count, const Stage& stage) const {
     for (int i = 0; i < count; ++i) stage(i);
+  }
+  template <class T>
+  T fetch(const T* value) const {
+    return *value;
   }
 };
 

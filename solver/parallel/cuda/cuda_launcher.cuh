@@ -33,6 +33,13 @@ struct CudaLauncher {
     run_stage<<<(count + block - 1) / block, block>>>(count, stage);
     cuda_check(cudaGetLastError(), "launching a stage");
   }
+
+  template <class T>
+  T fetch(const T* value) const {
+    T host;
+    cuda_check(cudaMemcpy(&host, value, sizeof(T), cudaMemcpyDeviceToHost), "cudaMemcpy a value");
+    return host;
+  }
 };
 
 template <class T>

@@ -2,19 +2,18 @@
 // same batches (scripts/gpu-check.sh runs it). Batches of 1 to 512 soft-box environments, each
 // deformed differently, go through the elastic stages (per-tet energy, gradient and projected
 // Hessian; per-vertex gradient gather; per-environment energy; the vertices' inertia target and
-// inertia), the barrier stage (512
-// contact pairs per environment, point-triangle and edge-edge, some nearly parallel, at 5 % to
-// 120 % of d_hat), the friction stage (the same pairs as lagged friction contacts, sliding
-// 0.1 to 10 times eps_v h) and the affine stages (17 affine bodies per environment, as a hand's
-// 16 driven links and its object: prediction, inertia, orthogonality, drive) and the map
-// between DOFs and collision vertices (positions of the box's vertices, the affine bodies'
-// corners and 8 scripted vertices; 512 contact pairs' gradients gathered into the DOFs, their
-// Hessians assembled in 3x3 blocks) and the
-// step bound (additive CCD over the barrier's pairs, each closing by up to 2.5 mm, and its
-// per-environment minimum) on the device (CudaLauncher) and on one host core (SerialLauncher);
-// it reports
-// the largest relative differences, the device's and the host's times, and device memory per
-// environment, as JSON and Markdown in OUTDIR.
+// inertia), the barrier stage (512 contact pairs per environment, point-triangle and edge-edge,
+// some nearly parallel, at 5 % to 120 % of d_hat), the friction stage (the same pairs as lagged
+// friction contacts, sliding 0.1 to 10 times eps_v h), the affine stages (17 affine bodies per
+// environment, as a hand's 16 driven links and its object: prediction, inertia, orthogonality,
+// drive), the map between DOFs and collision vertices (positions of the box's vertices, the
+// affine bodies' corners and 8 scripted vertices; 512 contact pairs' gradients gathered into the
+// DOFs, their Hessians assembled in 3x3 blocks), the step bound (additive CCD over the barrier's
+// pairs, each closing by up to 2.5 mm, and its per-environment minimum) and the linear solve
+// (block-Jacobi CG on the box's M + h^2 K, its bottom layer pinned) on the device (CudaLauncher)
+// and on one host core (SerialLauncher); it reports the largest relative differences, the
+// device's and the host's times, CG's iterations, and device memory per environment, as JSON and
+// Markdown in OUTDIR.
 // Exit status: 0 when every difference is within its tolerance, 1 when one is not, 2 when no
 // CUDA device is found or OUTDIR cannot be written.
 //   grip-gpu-check OUTDIR [--sizes 1,8,64,256,512] [--repeats 5]
@@ -35,6 +34,7 @@
 #include "solver/parallel/affine_batch.hpp"
 #include "solver/parallel/affine_stages.hpp"
 #include "solver/parallel/block_assembly.hpp"
+#include "solver/parallel/block_pcg.hpp"
 #include "solver/parallel/ccd_stages.hpp"
 #include "solver/parallel/collision_batch.hpp"
 #include "solver/parallel/contact_stages.hpp"
@@ -59,6 +59,12 @@ constexpr double kHessianTolerance = 1e-7;
 // ACCD iterates: round-off that differs can end its advances at other points of the same
 // conservative bound.
 constexpr double kCcdTolerance = 1e-6;
+// CG solutions (to a relative residual of 1e-10) whose iterates round differently: within the
+// condition number times that of each other. Their iteration counts within two.
+constexpr double kPcgTolerance = 1e-6;
+constexpr double kPcgResidual = 1e-10;
+constexpr int kPcgIterationSlack = 2;
+constexpr int kPcgMaxIterations = 2000;
 
 // A box of nx x ny x nz cubes of edge `cell`, six positively oriented tets per cube.
 struct BoxMesh {
@@ -732,6 +738,151 @@ std::vector<double> device_assembly(const MapScene& m, int repeats, double& ms) 
   return blocks.to_host();
 }
 
+// Per environment the soft box's Newton matrix at its deformed state, M + h^2 K (h = 10 ms, K
+// the elastic stages' projected Hessians), its bottom layer of vertices pinned, and a random
+// right-hand side: a fin-ray finger's linear solve.
+struct PcgScene {
+  StencilSlots slots;
+  BlockPattern pattern;
+  std::vector<double> blocks, rhs, tolerance;
+  std::vector<char> fixed;
+};
+
+PcgScene pcg_scene(const BoxMesh& mesh, const FemBatch& batch,
+                   const std::vector<double>& tet_hessian) {
+  PcgScene s;
+  add_tet_stencils(batch, s.slots);
+  s.pattern = block_pattern(s.slots, batch.dof_begin());
+  constexpr double kStep = 0.01;
+  std::vector<double> scaled(tet_hessian.size());
+  for (std::size_t k = 0; k < scaled.size(); ++k) scaled[k] = kStep * kStep * tet_hessian[k];
+  s.blocks.resize(9 * s.pattern.row.size());
+  SerialLauncher launch;
+  launch(
+      static_cast<int>(s.pattern.row.size()),
+      BlockAssemblyStage{s.pattern.buffers(), s.slots.rest.data(), scaled.data(), s.blocks.data()});
+  std::vector<int> units;
+  for (const int dof : batch.vertex_dof()) units.push_back(dof / 3);
+  const std::vector<int> diagonal = s.pattern.diagonal_blocks(units);
+  launch(batch.vertices().count,
+         MassDiagonalStage{batch.vertices(), diagonal.data(), s.blocks.data()});
+  std::uint64_t seed = 0x9e3779b97f4a7c15ull;
+  for (int e = 0; e < batch.environment_count(); ++e) {
+    for (std::size_t v = 0; 3 * v < mesh.rest.size(); ++v) {
+      const bool pinned = mesh.rest[3 * v + 2] == 0.0;
+      for (int k = 0; k < 3; ++k) {
+        seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+        s.fixed.push_back(pinned ? 1 : 0);
+        s.rhs.push_back(2.0 * static_cast<double>(seed >> 11) / static_cast<double>(1ull << 53) -
+                        1.0);
+      }
+    }
+  }
+  s.tolerance.assign(batch.environment_count(), kPcgResidual);
+  return s;
+}
+
+struct PcgValues {
+  std::vector<double> x;
+  std::vector<int> status, iterations;
+};
+
+PcgValues host_pcg(const PcgScene& s, const FemBatch& batch, double& ms) {
+  HostPcg pcg(batch, AffineBatch{}, s.pattern, batch.dof_begin());
+  PcgValues v{std::vector<double>(s.rhs.size(), 0.0), {}, {}};
+  SerialLauncher launch;
+  const auto begin = std::chrono::steady_clock::now();
+  pcg.solve(launch, s.blocks, s.fixed, s.rhs, s.tolerance, kPcgMaxIterations, v.x);
+  ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  v.status = pcg.status();
+  v.iterations = pcg.iterations();
+  return v;
+}
+
+// The host solve's structure and work arrays in device memory.
+struct DevicePcg {
+  DevicePcg(const PcgScene& s, const HostPcg& host)
+      : row(s.pattern.row),
+        column(s.pattern.column),
+        rows_begin(host.rows().begin),
+        rows_entry(host.rows().entry),
+        first_unit(host.jacobi().first_unit),
+        jacobi_units(host.jacobi().units),
+        matrix_block(host.jacobi().matrix_block),
+        jacobi_begin(host.jacobi().environment_begin),
+        unit_environment(host.unit_environment()),
+        unit_begin(host.unit_begin()),
+        status(s.tolerance.size()),
+        iterations(s.tolerance.size()),
+        running(1),
+        fixed(s.fixed),
+        jacobi_ok(host.jacobi().units.size()),
+        blocks(s.blocks),
+        rhs(s.rhs),
+        tolerance(s.tolerance),
+        x(s.rhs.size()),
+        vectors(4 * s.rhs.size()),
+        partial(s.rhs.size() / 3),
+        inverse(144 * host.jacobi().units.size()),
+        scalars(8 * s.tolerance.size()) {}
+
+  PcgBuffers buffers() {
+    PcgBuffers p;
+    p.pattern = {
+        static_cast<int>(row.size()), row.data(), column.data(), nullptr, nullptr, nullptr};
+    p.block = blocks.data();
+    p.rows = {rows_begin.data(), rows_entry.data()};
+    p.jacobi = {static_cast<int>(jacobi_units.size()), first_unit.data(), jacobi_units.data(),
+                matrix_block.data()};
+    p.unit_count = static_cast<int>(partial.size());
+    p.unit_environment = unit_environment.data();
+    p.fixed = fixed.data();
+    p.environment_count = static_cast<int>(tolerance.size());
+    p.unit_begin = unit_begin.data();
+    p.jacobi_begin = jacobi_begin.data();
+    p.tolerance = tolerance.data();
+    p.max_iterations = kPcgMaxIterations;
+    p.status = status.data();
+    p.iterations = iterations.data();
+    p.rhs = rhs.data();
+    p.x = x.data();
+    p.partial = partial.data();
+    p.jacobi_inverse = inverse.data();
+    p.jacobi_ok = jacobi_ok.data();
+    lay_out_pcg_work(p, vectors.data(), scalars.data());
+    p.running = running.data();
+    return p;
+  }
+
+  double bytes() const {
+    return 8.0 * double(blocks.size() + rhs.size() + tolerance.size() + x.size() + vectors.size() +
+                        partial.size() + inverse.size() + scalars.size()) +
+           4.0 * double(row.size() + column.size() + rows_begin.size() + rows_entry.size() +
+                        first_unit.size() + jacobi_units.size() + matrix_block.size() +
+                        jacobi_begin.size() + unit_environment.size() + unit_begin.size() +
+                        status.size() + iterations.size()) +
+           double(fixed.size() + jacobi_ok.size());
+  }
+
+  DeviceArray<int> row, column, rows_begin, rows_entry, first_unit, jacobi_units, matrix_block,
+      jacobi_begin, unit_environment, unit_begin, status, iterations, running;
+  DeviceArray<char> fixed, jacobi_ok;
+  DeviceArray<double> blocks, rhs, tolerance, x, vectors, partial, inverse, scalars;
+};
+
+PcgValues device_pcg(const PcgScene& s, const FemBatch& batch, int repeats, double& ms,
+                     double& bytes) {
+  DevicePcg device(s, HostPcg(batch, AffineBatch{}, s.pattern, batch.dof_begin()));
+  const PcgBuffers p = device.buffers();
+  CudaLauncher launch;
+  ms = device_median_ms(repeats, [&] {
+    cuda_check(cudaMemset(p.x, 0, s.rhs.size() * sizeof(double)), "cudaMemset");
+    solve_block_pcg(launch, p);
+  });
+  bytes = device.bytes();
+  return {device.x.to_host(), device.status.to_host(), device.iterations.to_host()};
+}
+
 struct SizeResult {
   int environments = 0;
   int tets = 0;
@@ -751,6 +902,10 @@ struct SizeResult {
   double inertia_device_ms = 0.0, inertia_host_ms = 0.0;
   double inertia_target = 0.0, inertia_energy = 0.0, inertia_gradient = 0.0;
   int ccd_impacts = 0;  // pairs that met on their path (host)
+  double pcg_device_ms = 0.0, pcg_host_ms = 0.0, pcg_bytes = 0.0, pcg_solution = 0.0;
+  int pcg_iterations = 0;            // the most any environment took (host)
+  int pcg_iteration_difference = 0;  // the largest |device - host| over environments
+  bool pcg_converged = false;        // every environment, on both
   bool pass() const {
     // The friction Hessian needs no eigen-solve: it is held to the gradient's tolerance.
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
@@ -763,7 +918,8 @@ struct SizeResult {
            map_gradient <= kGradientTolerance && assembly <= kGradientTolerance &&
            ccd_toi <= kCcdTolerance && ccd_bound <= kCcdTolerance &&
            inertia_target <= kGradientTolerance && inertia_energy <= kEnergyTolerance &&
-           inertia_gradient <= kGradientTolerance;
+           inertia_gradient <= kGradientTolerance && pcg_converged &&
+           pcg_solution <= kPcgTolerance && pcg_iteration_difference <= kPcgIterationSlack;
   }
 };
 
@@ -820,6 +976,24 @@ void check_affine_and_map(const BoxMesh& mesh, const std::vector<double>& q, int
   result.blocks = static_cast<int>(map.pattern.row.size());
 }
 
+// The soft box's linear solves by block-Jacobi CG.
+void check_pcg(const BoxMesh& mesh, const FemBatch& batch, const std::vector<double>& tet_hessian,
+               int repeats, SizeResult& result) {
+  const PcgScene scene = pcg_scene(mesh, batch, tet_hessian);
+  const PcgValues on_device =
+      device_pcg(scene, batch, repeats, result.pcg_device_ms, result.pcg_bytes);
+  const PcgValues on_host = host_pcg(scene, batch, result.pcg_host_ms);
+  result.pcg_solution = relative_difference(on_device.x, on_host.x, mesh.rest.size());
+  result.pcg_converged = true;
+  for (std::size_t e = 0; e < on_host.status.size(); ++e) {
+    result.pcg_converged = result.pcg_converged && on_host.status[e] == kPcgConverged &&
+                           on_device.status[e] == kPcgConverged;
+    result.pcg_iterations = std::max(result.pcg_iterations, on_host.iterations[e]);
+    result.pcg_iteration_difference = std::max(
+        result.pcg_iteration_difference, std::abs(on_device.iterations[e] - on_host.iterations[e]));
+  }
+}
+
 SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double cell) {
   FemBatch batch;
   const int dofs = static_cast<int>(mesh.rest.size());
@@ -846,6 +1020,7 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   result.inertia_gradient = relative_difference(inertia_device.gradient, inertia_host.gradient, 3);
   check_contacts(environments, repeats, result);
   check_affine_and_map(mesh, q, environments, repeats, result);
+  check_pcg(mesh, batch, host.hessian, repeats, result);
   return result;
 }
 
@@ -907,6 +1082,12 @@ void write_json_row(std::ostream& json, const SizeResult& r) {
        << ", \"assembly_device_ms\": " << r.assembly_device_ms
        << ", \"assembly_host_ms\": " << r.assembly_host_ms
        << ", \"assembly_relative_difference\": " << r.assembly
+       << ", \"pcg_device_ms\": " << r.pcg_device_ms << ", \"pcg_host_ms\": " << r.pcg_host_ms
+       << ", \"pcg_device_mib_per_environment\": " << mib(r.pcg_bytes)
+       << ", \"pcg_iterations\": " << r.pcg_iterations
+       << ", \"pcg_iteration_difference\": " << r.pcg_iteration_difference
+       << ", \"pcg_converged\": " << (r.pcg_converged ? "true" : "false")
+       << ", \"pcg_solution_relative_difference\": " << r.pcg_solution
        << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
 }
 
@@ -927,7 +1108,9 @@ void write_markdown_row(std::ostream& md, const SizeResult& r) {
      << r.ccd_device_ms << " | " << r.ccd_host_ms << " | " << r.ccd_impacts << " | " << r.ccd_toi
      << ", " << r.ccd_bound << " | " << r.inertia_device_ms << " | " << r.inertia_host_ms << " | "
      << r.inertia_target << ", " << r.inertia_energy << ", " << r.inertia_gradient << " | "
-     << (r.pass() ? "yes" : "NO") << " |\n";
+     << r.pcg_device_ms << " | " << r.pcg_host_ms << " | " << r.pcg_iterations << " | "
+     << r.pcg_iteration_difference << " | " << r.pcg_solution << " | " << (r.pass() ? "yes" : "NO")
+     << " |\n";
 }
 
 void write_reports(const std::string& directory, const std::string& device,
@@ -941,11 +1124,12 @@ void write_reports(const std::string& directory, const std::string& device,
           "environment energy; barrier; friction; affine (prediction, inertia, orthogonality, "
           "drive); map (positions, contact gradient gather, Hessian blocks); CCD (time of impact, "
           "step bound); "
-          "FEM inertia (target, energy, gradient)\", "
+          "FEM inertia (target, energy, gradient); block-Jacobi CG (the box's M + h^2 K, its "
+          "bottom layer pinned)\", "
           "\"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
        << ", \"sizes\": [";
-  md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly and CCD stages on "
+  md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly, CCD and CG stages on "
      << gpu_name << ": " << tets_per_environment << " tets, " << kPairsPerEnvironment
      << " contact pairs (and as many friction contacts) and " << kAffinePerEnvironment
      << " affine bodies per environment; host: one core, serial launcher.\n\n"
@@ -957,10 +1141,12 @@ void write_reports(const std::string& directory, const std::string& device,
         "(positions, gradient) | Hessian blocks | assembly device ms | assembly host ms | "
         "assembly diff | CCD device ms | CCD host ms | impacts | CCD diffs (time of "
         "impact, bound) | FEM inertia device ms | FEM inertia host ms | FEM inertia diffs "
-        "(target, energy, gradient) | within tolerance |\n"
+        "(target, energy, gradient) | CG device ms | CG host ms | CG iterations | CG "
+        "iteration diff | CG solution diff | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
         "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: "
-        "| ---: | ---: | ---: | --- | ---: | ---: | --- | --- |\n";
+        "| ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | --- "
+        "|\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);

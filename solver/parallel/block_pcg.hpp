@@ -1,0 +1,392 @@
+#pragma once
+// Every environment's Newton system of a batch solved at once by preconditioned conjugate
+// gradients on the 3x3 blocks of block_assembly.hpp, each environment with its own scalars
+// (step lengths, residuals, tolerance, iteration count, status). The preconditioner is block
+// Jacobi over DOF blocks: an FEM vertex's 3x3 diagonal block, an affine body's whole 12x12
+// (its position and matrix rows are coupled strongly, and on different scales).
+//
+// Fixed DOFs (pinned, held) keep the values x holds on entry: the solve is the CPU engine's
+// elimination (NewtonSolver::eliminate_prescribed), A_ff x_f = b_f - A_fc x_c, done as CG on
+// the free DOFs with the fixed ones' contribution in the first residual.
+//
+// Isolation: every stage of an environment reads only that environment's values, and an
+// environment that has converged, hit the iteration limit or broken down is frozen (its
+// vectors and scalars no longer change) while others go on, so an environment's solution and
+// iteration count are the same, bit for bit, alone or in any batch. Reductions are sums over
+// each environment's units in unit order: the same on every launcher, no atomics. The host
+// reads one number per iteration: how many environments still run.
+#include <cmath>
+#include <vector>
+
+#include "solver/kernels/hd.hpp"
+#include "solver/kernels/spd_inverse.hpp"
+#include "solver/parallel/affine_batch.hpp"
+#include "solver/parallel/block_assembly.hpp"
+#include "solver/parallel/fem_batch.hpp"
+
+namespace grip::solver::parallel {
+
+// What became of an environment's solve.
+enum PcgStatus : int {
+  kPcgRunning = 0,
+  kPcgConverged = 1,         // |r| <= tolerance |r0|
+  kPcgIterationLimit = 2,    // not converged within the iteration limit
+  kPcgIndefinite = 3,        // a direction of non-positive curvature: the matrix is not SPD
+  kPcgBadPreconditioner = 4  // a DOF block's diagonal block is not positive definite
+};
+
+// Per unit, the blocks of its row of the whole symmetric matrix: each lower block (u, c) as it
+// is and each lower block (r, u), r > u, transposed, in block order.
+struct BlockRowBuffers {
+  const int* begin = nullptr;  // units + 1 offsets
+  const int* entry = nullptr;  // 2 b for block b, 2 b + 1 for its transpose
+};
+
+struct BlockRows {
+  std::vector<int> begin, entry;
+  BlockRowBuffers buffers() const { return {begin.data(), entry.data()}; }
+};
+
+BlockRows block_rows(const BlockPattern& pattern, int unit_count);
+
+// The preconditioner's DOF blocks, in unit order: per block its first unit, its unit count (1
+// or 4) and the pattern's blocks within it, 10 per DOF block: (i, j), i >= j, in the order
+// (0,0) (1,0) (1,1) (2,0) (2,1) (2,2) (3,0) ... (3,3); -1 past its units.
+struct JacobiBuffers {
+  int count = 0;
+  const int* first_unit = nullptr;
+  const int* units = nullptr;
+  const int* matrix_block = nullptr;
+};
+
+struct JacobiBlocks {
+  std::vector<int> first_unit, units, matrix_block;
+  std::vector<int> environment_begin;  // environment_count + 1 offsets into the DOF blocks
+  JacobiBuffers buffers() const;
+};
+
+// The FEM vertices of `fem` and the affine bodies of `affine` as DOF blocks of `pattern`
+// (which must hold every DOF block's diagonal blocks); `dof_begin` splits them by environment.
+JacobiBlocks jacobi_blocks(const FemBatch& fem, const AffineBatch& affine,
+                           const BlockPattern& pattern, const std::vector<int>& dof_begin);
+
+// Everything the stages read and write: raw pointers into host or device memory.
+struct PcgBuffers {
+  // The matrices and their structure.
+  BlockPatternBuffers pattern;
+  const double* block = nullptr;  // 9 per block, column-major
+  BlockRowBuffers rows;
+  JacobiBuffers jacobi;
+  int unit_count = 0;
+  const int* unit_environment = nullptr;  // per unit
+  const char* fixed = nullptr;            // per DOF
+  // Per environment: its units and DOF blocks (environments + 1 offsets each), its relative
+  // tolerance, and what the solve found.
+  int environment_count = 0;
+  const int* unit_begin = nullptr;
+  const int* jacobi_begin = nullptr;
+  const double* tolerance = nullptr;
+  int max_iterations = 0;
+  int* status = nullptr;       // PcgStatus
+  int* iterations = nullptr;   // CG iterations taken
+  double* residual = nullptr;  // |r| / |r0| at the end (0 when r0 = 0)
+  // The right-hand side, the solution (fixed DOFs' values on entry, free ones' first guess).
+  const double* rhs = nullptr;
+  double* x = nullptr;
+  // Work: per DOF r, z, d, q; per unit a partial dot product; per DOF block its inverse (144);
+  // per environment rz, rz of the next iterate, rr, rr0, pAp, alpha, beta; a running count.
+  double *r = nullptr, *z = nullptr, *d = nullptr, *q = nullptr, *partial = nullptr;
+  double* jacobi_inverse = nullptr;
+  char* jacobi_ok = nullptr;
+  double *rz = nullptr, *rz_next = nullptr, *rr = nullptr, *rr0 = nullptr, *pap = nullptr;
+  double *alpha = nullptr, *beta = nullptr;
+  int* running = nullptr;  // one int
+};
+
+// Points p's work vectors r, z, d, q into `vectors` (4 x the batch's DOFs, one after the
+// other) and its per-environment scalars residual, rz, rz_next, rr, rr0, pAp, alpha, beta into
+// `scalars` (8 x the environments): one allocation each, on the host or a device.
+inline void lay_out_pcg_work(PcgBuffers& p, double* vectors, double* scalars) {
+  const int dofs = 3 * p.unit_count, environments = p.environment_count;
+  double** const vector[4] = {&p.r, &p.z, &p.d, &p.q};
+  for (int k = 0; k < 4; ++k) *vector[k] = vectors + k * dofs;
+  double** const scalar[8] = {&p.residual, &p.rz,  &p.rz_next, &p.rr,
+                              &p.rr0,      &p.pap, &p.alpha,   &p.beta};
+  for (int k = 0; k < 8; ++k) *scalar[k] = scalars + k * environments;
+}
+
+GRIP_HD inline bool pcg_running(const PcgBuffers& p, int unit) {
+  return p.status[p.unit_environment[unit]] == kPcgRunning;
+}
+
+// y = A v on the free rows (0 on fixed ones), one item per unit.
+struct BlockProductStage {
+  PcgBuffers p;
+  const double* v = nullptr;
+  double* y = nullptr;
+
+  GRIP_HD void operator()(int u) const {
+    double sum[3] = {};
+    for (int k = p.rows.begin[u]; k < p.rows.begin[u + 1]; ++k) {
+      const int b = p.rows.entry[k] / 2;
+      const bool transposed = p.rows.entry[k] % 2 == 1;
+      const double* m = p.block + 9 * b;
+      const double* w = v + 3 * (transposed ? p.pattern.row[b] : p.pattern.column[b]);
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) sum[r] += (transposed ? m[3 * r + c] : m[3 * c + r]) * w[c];
+      }
+    }
+    for (int r = 0; r < 3; ++r) y[3 * u + r] = p.fixed[3 * u + r] ? 0.0 : sum[r];
+  }
+};
+
+// r = b - A x on the free DOFs (A x in q), 0 on fixed ones.
+struct FirstResidualStage {
+  PcgBuffers p;
+  GRIP_HD void operator()(int i) const { p.r[i] = p.fixed[i] ? 0.0 : p.rhs[i] - p.q[i]; }
+};
+
+// Each DOF block's inverse diagonal block, fixed DOFs' rows and columns set to the identity's.
+struct JacobiFactorStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int j) const {
+    const int n = 3 * p.jacobi.units[j], first = 3 * p.jacobi.first_unit[j];
+    double a[kernels::kMaxSpdInverseSize * kernels::kMaxSpdInverseSize];
+    int k = 0;
+    for (int bi = 0; bi < p.jacobi.units[j]; ++bi) {
+      for (int bj = 0; bj <= bi; ++bj, ++k) {
+        const double* m = p.block + 9 * p.jacobi.matrix_block[10 * j + k];
+        for (int c = 0; c < 3; ++c) {
+          for (int r = 0; r < 3; ++r) a[n * (3 * bj + c) + 3 * bi + r] = m[3 * c + r];
+        }
+      }
+    }
+    for (int i = 0; i < n; ++i) {
+      if (!p.fixed[first + i]) continue;
+      for (int c = 0; c < n; ++c) a[n * c + i] = a[n * i + c] = 0.0;
+      a[n * i + i] = 1.0;
+    }
+    p.jacobi_ok[j] = kernels::spd_inverse(a, n, p.jacobi_inverse + 144 * j) ? 1 : 0;
+  }
+};
+
+// z = M^-1 r on a DOF block of a running environment.
+struct PreconditionStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int j) const {
+    const int n = 3 * p.jacobi.units[j], first = 3 * p.jacobi.first_unit[j];
+    if (!pcg_running(p, p.jacobi.first_unit[j])) return;
+    const double* inverse = p.jacobi_inverse + 144 * j;
+    for (int r = 0; r < n; ++r) {
+      double s = 0.0;
+      for (int c = 0; c < n; ++c) s += inverse[n * c + r] * p.r[first + c];
+      p.z[first + r] = s;
+    }
+  }
+};
+
+// partial[u] = a . b over unit u's three DOFs.
+struct UnitDotStage {
+  const double* a = nullptr;
+  const double* b = nullptr;
+  double* partial = nullptr;
+
+  GRIP_HD void operator()(int u) const {
+    partial[u] = a[3 * u] * b[3 * u] + a[3 * u + 1] * b[3 * u + 1] + a[3 * u + 2] * b[3 * u + 2];
+  }
+};
+
+// out[e] = the sum of environment e's partial dot products, in unit order; running ones only.
+struct EnvironmentDotStage {
+  PcgBuffers p;
+  double* out = nullptr;
+
+  GRIP_HD void operator()(int e) const {
+    if (p.status[e] != kPcgRunning) return;
+    double sum = 0.0;
+    for (int u = p.unit_begin[e]; u < p.unit_begin[e + 1]; ++u) sum += p.partial[u];
+    out[e] = sum;
+  }
+};
+
+struct PcgResetStage {
+  PcgBuffers p;
+  GRIP_HD void operator()(int e) const { p.status[e] = kPcgRunning; }
+};
+
+// After the first residual and its preconditioned copy: each environment's r0, and whether it
+// has anything to solve.
+struct PcgStartStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int e) const {
+    p.iterations[e] = 0;
+    p.residual[e] = 0.0;
+    p.rr0[e] = p.rr[e];
+    for (int j = p.jacobi_begin[e]; j < p.jacobi_begin[e + 1]; ++j) {
+      if (!p.jacobi_ok[j]) {
+        p.status[e] = kPcgBadPreconditioner;
+        return;
+      }
+    }
+    if (p.rr[e] == 0.0) {
+      p.status[e] = kPcgConverged;
+    } else if (!(p.rz[e] > 0.0)) {
+      p.status[e] = kPcgIndefinite;
+    }
+  }
+};
+
+// alpha = rz / pAp; a direction of non-positive curvature stops the environment.
+struct StepLengthStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int e) const {
+    if (p.status[e] != kPcgRunning) return;
+    if (!(p.pap[e] > 0.0)) {
+      p.status[e] = kPcgIndefinite;
+      return;
+    }
+    p.alpha[e] = p.rz[e] / p.pap[e];
+  }
+};
+
+// x += alpha d, r -= alpha q on a running environment's DOFs.
+struct StepStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int i) const {
+    if (!pcg_running(p, i / 3)) return;
+    const double alpha = p.alpha[p.unit_environment[i / 3]];
+    p.x[i] += alpha * p.d[i];
+    p.r[i] -= alpha * p.q[i];
+  }
+};
+
+// After a step: the iteration counted, convergence tested, beta for the next direction.
+struct NextDirectionStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int e) const {
+    if (p.status[e] != kPcgRunning) return;
+    const int taken = ++p.iterations[e];
+    const double tolerance = p.tolerance[e];
+    p.residual[e] = std::sqrt(p.rr[e] / p.rr0[e]);
+    if (p.rr[e] <= tolerance * tolerance * p.rr0[e]) {
+      p.status[e] = kPcgConverged;
+    } else if (taken >= p.max_iterations) {
+      p.status[e] = kPcgIterationLimit;
+    } else if (!(p.rz_next[e] > 0.0)) {
+      p.status[e] = kPcgIndefinite;
+    } else {
+      p.beta[e] = p.rz_next[e] / p.rz[e];
+      p.rz[e] = p.rz_next[e];
+    }
+  }
+};
+
+// d = z + beta d on a running environment's DOFs (d = z first).
+struct DirectionStage {
+  PcgBuffers p;
+  bool first = false;
+
+  GRIP_HD void operator()(int i) const {
+    if (!pcg_running(p, i / 3)) return;
+    p.d[i] = first ? p.z[i] : p.z[i] + p.beta[p.unit_environment[i / 3]] * p.d[i];
+  }
+};
+
+// How many environments still run: one item.
+struct RunningCountStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int) const {
+    int running = 0;
+    for (int e = 0; e < p.environment_count; ++e) running += p.status[e] == kPcgRunning ? 1 : 0;
+    *p.running = running;
+  }
+};
+
+// The rz and rr of every running environment's current r (z = M^-1 r computed here).
+template <class Launcher>
+void launch_preconditioned_dots(Launcher& launch, const PcgBuffers& p, double* rz) {
+  launch(p.jacobi.count, PreconditionStage{p});
+  launch(p.unit_count, UnitDotStage{p.r, p.z, p.partial});
+  launch(p.environment_count, EnvironmentDotStage{p, rz});
+  launch(p.unit_count, UnitDotStage{p.r, p.r, p.partial});
+  launch(p.environment_count, EnvironmentDotStage{p, p.rr});
+}
+
+// Solves every environment's system; afterwards status, iterations and residual say how each
+// went. The launcher's fetch() reads the running count; every other value stays where it is.
+template <class Launcher>
+void solve_block_pcg(Launcher& launch, const PcgBuffers& p) {
+  const int dofs = 3 * p.unit_count;
+  launch(p.environment_count, PcgResetStage{p});
+  launch(p.jacobi.count, JacobiFactorStage{p});
+  launch(p.unit_count, BlockProductStage{p, p.x, p.q});
+  launch(dofs, FirstResidualStage{p});
+  launch_preconditioned_dots(launch, p, p.rz);
+  launch(p.environment_count, PcgStartStage{p});
+  launch(dofs, DirectionStage{p, true});
+  for (;;) {
+    launch(1, RunningCountStage{p});
+    if (launch.fetch(p.running) == 0) return;
+    launch(p.unit_count, BlockProductStage{p, p.d, p.q});
+    launch(p.unit_count, UnitDotStage{p.d, p.q, p.partial});
+    launch(p.environment_count, EnvironmentDotStage{p, p.pap});
+    launch(p.environment_count, StepLengthStage{p});
+    launch(dofs, StepStage{p});
+    launch_preconditioned_dots(launch, p, p.rz_next);
+    launch(p.environment_count, NextDirectionStage{p});
+    launch(dofs, DirectionStage{p, false});
+  }
+}
+
+// The host side of a solve: the structure built from a batch's pattern and the work arrays, in
+// host memory, for the host launchers (the device check mirrors it in device memory). The
+// pattern must outlive it.
+class HostPcg {
+ public:
+  HostPcg(const FemBatch& fem, const AffineBatch& affine, const BlockPattern& pattern,
+          const std::vector<int>& dof_begin);
+
+  // Solves the batch's systems with these blocks, fixed DOFs, right-hand side and per
+  // environment tolerances; x holds the fixed DOFs' values and the first guess on entry.
+  template <class Launcher>
+  void solve(Launcher& launch, const std::vector<double>& block, const std::vector<char>& fixed,
+             const std::vector<double>& rhs, const std::vector<double>& tolerance,
+             int max_iterations, std::vector<double>& x) {
+    PcgBuffers p = buffers(block, fixed, rhs, tolerance, max_iterations, x);
+    solve_block_pcg(launch, p);
+  }
+
+  const std::vector<int>& status() const { return status_; }
+  const std::vector<int>& iterations() const { return iterations_; }
+  // |r| / |r0| per environment at the end (lay_out_pcg_work puts it first among the scalars).
+  std::vector<double> residual() const {
+    return {scalars_.begin(), scalars_.begin() + static_cast<long>(status_.size())};
+  }
+  const BlockRows& rows() const { return rows_; }
+  const JacobiBlocks& jacobi() const { return jacobi_; }
+  const std::vector<int>& unit_environment() const { return unit_environment_; }
+  const std::vector<int>& unit_begin() const { return unit_begin_; }
+
+ private:
+  PcgBuffers buffers(const std::vector<double>& block, const std::vector<char>& fixed,
+                     const std::vector<double>& rhs, const std::vector<double>& tolerance,
+                     int max_iterations, std::vector<double>& x);
+
+  BlockPatternBuffers pattern_;
+  BlockRows rows_;
+  JacobiBlocks jacobi_;
+  std::vector<int> unit_environment_, unit_begin_;
+  std::vector<int> status_, iterations_;
+  std::vector<double> vectors_, scalars_, partial_, jacobi_inverse_;
+  std::vector<char> jacobi_ok_;
+  int running_ = 0;
+};
+
+}  // namespace grip::solver::parallel

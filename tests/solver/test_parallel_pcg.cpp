@@ -1,0 +1,225 @@
+// The data-parallel engine's per-environment linear solves (solver/parallel/block_pcg.hpp) on
+// the host launchers, against the CPU engine's own: each environment's whole Newton matrix in
+// blocks (tets, affine and driven bodies, masses, contact pairs made positive semi-definite),
+// its pinned DOFs and a held FEM body fixed with prescribed values, solved by block-Jacobi CG
+// and compared with the CPU engine's elimination and sparse Cholesky (SparseAssembly,
+// SparseCholesky). Also: the launchers agree bit for bit, an environment's solution and
+// iteration count do not depend on its batch, and an indefinite environment or one that runs
+// out of iterations stops alone, with its status, leaving the others as they would be.
+#include <gtest/gtest.h>
+
+#include <Eigen/Sparse>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "solver/batch/tbb_launcher.hpp"
+#include "solver/linear/sparse_assembly.hpp"
+#include "solver/linear/sparse_cholesky.hpp"
+#include "solver/parallel/block_pcg.hpp"
+#include "tests/solver/parallel_batch.hpp"
+
+namespace grip::solver {
+namespace {
+
+using testing::Batch;
+
+// A batch whose pairs' Hessians are positive semi-definite (H H^T / 12), as the barrier's
+// projected ones are, so that every environment's matrix is positive definite.
+Batch spd_batch(const std::vector<std::shared_ptr<const Model>>& models) {
+  Batch b = testing::make_batch(models);
+  for (std::size_t k = 0; k < b.pair_hessian.size() / 144; ++k) {
+    Eigen::Map<Eigen::Matrix<double, 12, 12>> h(&b.pair_hessian[144 * k]);
+    const Eigen::Matrix<double, 12, 12> psd = h * h.transpose() / 12.0;
+    h = psd;
+  }
+  return b;
+}
+
+std::set<int> fem_vertex_units(const Batch& b) {
+  std::set<int> units;
+  for (const int dof : b.fem.vertex_dof()) units.insert(dof / 3);
+  return units;
+}
+
+struct System {
+  testing::Assembled matrix;
+  std::vector<char> fixed;      // the models' pinned DOFs, and environment 1's first FEM body held
+  std::vector<double> rhs, x0;  // fixed DOFs' values in x0, zeros elsewhere
+};
+
+System make_system(const Batch& b) {
+  System s{testing::assemble_newton_matrix(b), {}, {}, {}};
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (std::size_t e = 0; e < b.models.size(); ++e) {
+    const Model& model = *b.models[e];
+    std::vector<char> fixed = model.prescribed();
+    if (e == 1) {
+      const BodyModel& held = model.bodies()[1];  // a soft box (testing::soft_scene)
+      for (int d = held.dof_offset; d < held.dof_offset + held.dof_count; ++d) {
+        fixed[d] = 1;
+      }
+    }
+    s.fixed.insert(s.fixed.end(), fixed.begin(), fixed.end());
+    for (int d = 0; d < model.dof_count(); ++d) {
+      s.rhs.push_back(unit(random));
+      s.x0.push_back(fixed[d] ? 1e-3 * unit(random) : 0.0);
+    }
+  }
+  return s;
+}
+
+// The CPU engine's solution of environment e: the fixed DOFs' values moved to the right-hand
+// side, their rows and columns left out, CHOLMOD on the rest.
+Eigen::VectorXd cpu_solution(const Batch& b, const System& s, int e) {
+  const int first = b.collision.dof_begin()[e], n = b.collision.dof_begin()[e + 1] - first;
+  const Eigen::SparseMatrix<double> lower = testing::environment_lower(b, s.matrix, e);
+  const std::vector<char> fixed(s.fixed.begin() + first, s.fixed.begin() + first + n);
+  const Eigen::Map<const Eigen::VectorXd> lift(&s.x0[first], n);
+  Eigen::VectorXd rhs = Eigen::Map<const Eigen::VectorXd>(&s.rhs[first], n);
+  rhs -= lower.selfadjointView<Eigen::Lower>() * lift;
+  for (int i = 0; i < n; ++i) {
+    if (fixed[i]) rhs[i] = lift[i];
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int k = 0; k < lower.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(lower, k); it; ++it) {
+      triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+    }
+  }
+  SparseAssembly assembly;
+  SparseCholesky cholesky;
+  EXPECT_TRUE(cholesky.factorize(assembly.assemble(n, triplets, fixed)));
+  return cholesky.solve(rhs);
+}
+
+struct Solved {
+  std::vector<double> x;
+  std::vector<int> status, iterations;
+  std::vector<double> residual;
+};
+
+template <class Launcher>
+Solved solve(const Batch& b, const System& s, Launcher&& launch, double tolerance = 1e-10,
+             int max_iterations = 2000) {
+  parallel::HostPcg pcg(b.fem, b.affine, s.matrix.pattern, b.collision.dof_begin());
+  Solved out{s.x0, {}, {}, {}};
+  pcg.solve(launch, s.matrix.blocks, s.fixed, s.rhs,
+            std::vector<double>(b.models.size(), tolerance), max_iterations, out.x);
+  out.status = pcg.status();
+  out.iterations = pcg.iterations();
+  out.residual = pcg.residual();
+  return out;
+}
+
+TEST(ParallelPcg, SolvesEachEnvironmentAsTheCpuEnginesCholeskyDoes) {
+  const Batch b =
+      spd_batch({testing::mixed_scene(), testing::soft_scene(), testing::mixed_scene()});
+  const System s = make_system(b);
+  const Solved pcg = solve(b, s, parallel::SerialLauncher{});
+  for (int e = 0; e < 3; ++e) {
+    SCOPED_TRACE("environment " + std::to_string(e));
+    EXPECT_EQ(pcg.status[e], parallel::kPcgConverged);
+    EXPECT_GT(pcg.iterations[e], 0);
+    EXPECT_LE(pcg.residual[e], 1e-10);
+    const int first = b.collision.dof_begin()[e], n = b.collision.dof_begin()[e + 1] - first;
+    const Eigen::VectorXd cpu = cpu_solution(b, s, e);
+    const Eigen::Map<const Eigen::VectorXd> x(&pcg.x[first], n);
+    EXPECT_LE((x - cpu).norm(), 1e-7 * cpu.norm());
+    for (int i = 0; i < n; ++i) {
+      if (s.fixed[first + i]) {
+        EXPECT_EQ(x[i], s.x0[first + i]);
+      }
+    }
+  }
+}
+
+TEST(ParallelPcg, TbbAndSerialLaunchersAgreeBitForBit) {
+  const Batch b =
+      spd_batch({testing::mixed_scene(), testing::soft_scene(), testing::mixed_scene()});
+  const System s = make_system(b);
+  const Solved serial = solve(b, s, parallel::SerialLauncher{});
+  const Solved threaded = solve(b, s, parallel::TbbLauncher(2));
+  EXPECT_EQ(serial.x, threaded.x);
+  EXPECT_EQ(serial.iterations, threaded.iterations);
+}
+
+// Environment `e` of batch `of` against environment 0 of batch `alone`, bit for bit.
+void expect_same_environment(const Batch& of, const Solved& in_batch, int e, const Batch& alone,
+                             const Solved& solo) {
+  const int first = of.collision.dof_begin()[e];
+  ASSERT_EQ(alone.collision.dof_begin()[1], of.collision.dof_begin()[e + 1] - first);
+  EXPECT_TRUE(std::equal(solo.x.begin(), solo.x.end(), in_batch.x.begin() + first));
+  EXPECT_EQ(solo.iterations[0], in_batch.iterations[e]);
+  EXPECT_EQ(solo.status[0], in_batch.status[e]);
+}
+
+TEST(ParallelPcg, AnEnvironmentsSolveDoesNotDependOnItsBatch) {
+  const Batch three =
+      spd_batch({testing::mixed_scene(), testing::soft_scene(), testing::mixed_scene()});
+  const Batch alone = spd_batch({testing::mixed_scene()});
+  const System s3 = make_system(three), s1 = make_system(alone);
+  const Solved in_batch = solve(three, s3, parallel::SerialLauncher{});
+  const Solved solo = solve(alone, s1, parallel::SerialLauncher{});
+  // The soft scene takes more iterations than the mixed one, so environment 0 froze first.
+  ASSERT_LT(in_batch.iterations[0], in_batch.iterations[1]);
+  expect_same_environment(three, in_batch, 0, alone, solo);
+}
+
+TEST(ParallelPcg, AnIndefiniteEnvironmentStopsAloneWithItsStatus) {
+  const Batch b =
+      spd_batch({testing::mixed_scene(), testing::soft_scene(), testing::mixed_scene()});
+  System s = make_system(b);
+  const Solved clean = solve(b, s, parallel::SerialLauncher{});
+  // Environment 1's coupling between FEM vertices made 1e4 times stronger: every DOF block's
+  // diagonal block stays as it was (the preconditioner factors), but the matrix is indefinite.
+  const std::set<int> fem_units = fem_vertex_units(b);
+  for (int k = s.matrix.pattern.environment_begin[1]; k < s.matrix.pattern.environment_begin[2];
+       ++k) {
+    const int row = s.matrix.pattern.row[k], column = s.matrix.pattern.column[k];
+    if (row == column || !fem_units.contains(row) || !fem_units.contains(column)) continue;
+    for (int c = 0; c < 9; ++c) s.matrix.blocks[9 * k + c] *= 1e4;
+  }
+  const Solved broken = solve(b, s, parallel::SerialLauncher{});
+  EXPECT_EQ(broken.status[1], parallel::kPcgIndefinite);
+  for (const int e : {0, 2}) {
+    const int first = b.collision.dof_begin()[e], end = b.collision.dof_begin()[e + 1];
+    EXPECT_EQ(broken.status[e], parallel::kPcgConverged);
+    EXPECT_EQ(broken.iterations[e], clean.iterations[e]);
+    EXPECT_TRUE(
+        std::equal(broken.x.begin() + first, broken.x.begin() + end, clean.x.begin() + first));
+  }
+}
+
+TEST(ParallelPcg, ANonPositiveDiagonalBlockFailsItsEnvironmentsPreconditioner) {
+  const Batch b = spd_batch({testing::mixed_scene(), testing::soft_scene()});
+  System s = make_system(b);
+  int unit = -1;  // environment 1's first free FEM vertex
+  for (const int u : fem_vertex_units(b)) {
+    if (unit < 0 && 3 * u >= b.collision.dof_begin()[1] && !s.fixed[3 * u]) unit = u;
+  }
+  const int diagonal = s.matrix.pattern.diagonal_blocks({unit})[0];
+  ASSERT_GE(diagonal, 0);
+  s.matrix.blocks[9 * diagonal] = -1.0;
+  const Solved broken = solve(b, s, parallel::SerialLauncher{});
+  EXPECT_EQ(broken.status[0], parallel::kPcgConverged);
+  EXPECT_EQ(broken.status[1], parallel::kPcgBadPreconditioner);
+  EXPECT_EQ(broken.iterations[1], 0);
+}
+
+TEST(ParallelPcg, RunningOutOfIterationsIsSaid) {
+  const Batch b = spd_batch({testing::mixed_scene(), testing::soft_scene()});
+  const System s = make_system(b);
+  const Solved clean = solve(b, s, parallel::SerialLauncher{});
+  const int limit = clean.iterations[1] - 1;
+  ASSERT_GT(limit, clean.iterations[0]);
+  const Solved limited = solve(b, s, parallel::SerialLauncher{}, 1e-10, limit);
+  EXPECT_EQ(limited.status[0], parallel::kPcgConverged);
+  EXPECT_EQ(limited.status[1], parallel::kPcgIterationLimit);
+  EXPECT_EQ(limited.iterations[1], limit);
+  EXPECT_GT(limited.residual[1], 1e-10);
+}
+
+}  // namespace
+}  // namespace grip::solver
