@@ -5,9 +5,9 @@
 #include <limits>
 #include <numeric>
 
-#include "solver/contact/aabb.hpp"
 #include "solver/contact/bvh.hpp"
 #include "solver/environment.hpp"
+#include "solver/kernels/aabb.hpp"
 #include "solver/kernels/edge_edge_distance.hpp"
 #include "solver/kernels/point_triangle_distance.hpp"
 

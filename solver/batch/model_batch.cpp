@@ -67,4 +67,19 @@ CollisionBatch collision_batch(const std::vector<const Model*>& environments) {
   return batch;
 }
 
+SurfaceBatch surface_batch(const std::vector<const Model*>& environments) {
+  SurfaceBatch batch;
+  for (const Model* model : environments) {
+    const CollisionMesh& mesh = model->collision();
+    batch.begin_environment(mesh.friction, mesh.untouching);
+    for (int v = 0; v < mesh.size(); ++v) {
+      batch.add_vertex(mesh.vertex_body[v], mesh.rest(v, 0), mesh.rest(v, 1), mesh.rest(v, 2));
+    }
+    for (const auto& e : mesh.edges) batch.add_edge(e[0], e[1]);
+    for (const auto& f : mesh.faces) batch.add_face(f[0], f[1], f[2]);
+    batch.set_near_at_rest(mesh.point_triangle_near_at_rest, mesh.edge_edge_near_at_rest);
+  }
+  return batch;
+}
+
 }  // namespace grip::solver::parallel

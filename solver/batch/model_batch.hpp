@@ -8,6 +8,7 @@
 #include "solver/parallel/affine_batch.hpp"
 #include "solver/parallel/collision_batch.hpp"
 #include "solver/parallel/fem_batch.hpp"
+#include "solver/parallel/surface_batch.hpp"
 
 namespace grip::solver::parallel {
 
@@ -22,5 +23,9 @@ AffineBatch affine_batch(const std::vector<const Model*>& environments);
 // Every collision vertex of every environment, in the model's collision order
 // (CollisionMesh), with the DOFs it moves with.
 CollisionBatch collision_batch(const std::vector<const Model*>& environments);
+
+// Every collision surface of every environment (CollisionMesh): vertices, edges, faces, which
+// bodies may touch, and each body's own pairs near at rest.
+SurfaceBatch surface_batch(const std::vector<const Model*>& environments);
 
 }  // namespace grip::solver::parallel

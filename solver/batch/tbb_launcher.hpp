@@ -3,7 +3,10 @@
 // (solver/parallel/launch.hpp): items spread over a TBB arena's threads in chunks.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
+
+#include <numeric>
 
 namespace grip::solver::parallel {
 
@@ -26,6 +29,13 @@ class TbbLauncher {
   template <class T>
   T fetch(const T* value) const {
     return *value;
+  }
+  template <class Less>
+  void sort(int* items, int count, const Less& less) {
+    arena_.execute([&] { tbb::parallel_sort(items, items + count, less); });
+  }
+  void exclusive_scan(int* values, int count) const {
+    std::exclusive_scan(values, values + count, values, 0);
   }
 
  private:

@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "solver/contact/aabb.hpp"
+#include "solver/kernels/aabb.hpp"
 
 namespace grip::solver {
 

@@ -1,10 +1,15 @@
 #pragma once
 // The GPU launcher of the data-parallel engine's stages (solver/parallel/launch.hpp): one CUDA
-// thread per item. And DeviceArray, a device copy of a host array that frees itself. Every CUDA
-// call is checked: a failure throws std::runtime_error naming the call and CUDA's message, so
-// that a caller fails its batch's environments with a reason rather than reading garbage.
+// thread per item. DeviceArray, a device copy of a host array that frees itself, and
+// device_median_ms, the device check's timer. Every CUDA call is checked: a failure throws
+// std::runtime_error naming the call and CUDA's message, so that a caller fails its batch's
+// environments with a reason rather than reading garbage.
 #include <cuda_runtime.h>
+#include <thrust/execution_policy.h>
+#include <thrust/scan.h>
+#include <thrust/sort.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -39,6 +44,13 @@ struct CudaLauncher {
     T host;
     cuda_check(cudaMemcpy(&host, value, sizeof(T), cudaMemcpyDeviceToHost), "cudaMemcpy a value");
     return host;
+  }
+  template <class Less>
+  void sort(int* items, int count, const Less& less) const {
+    thrust::sort(thrust::device, items, items + count, less);
+  }
+  void exclusive_scan(int* values, int count) const {
+    thrust::exclusive_scan(thrust::device, values, values + count, values);
   }
 };
 
@@ -81,5 +93,27 @@ class DeviceArray {
   T* data_ = nullptr;
   std::size_t size_ = 0;
 };
+
+// The median time (ms) of `repeats` runs of `stages` on the device, after one untimed run.
+template <class Stages>
+double device_median_ms(int repeats, Stages&& stages) {
+  cudaEvent_t start, stop;
+  cuda_check(cudaEventCreate(&start), "cudaEventCreate");
+  cuda_check(cudaEventCreate(&stop), "cudaEventCreate");
+  std::vector<float> ms;
+  for (int r = 0; r <= repeats; ++r) {
+    cuda_check(cudaEventRecord(start), "cudaEventRecord");
+    stages();
+    cuda_check(cudaEventRecord(stop), "cudaEventRecord");
+    cuda_check(cudaEventSynchronize(stop), "running the stages");
+    float elapsed = 0.f;
+    cuda_check(cudaEventElapsedTime(&elapsed, start, stop), "cudaEventElapsedTime");
+    if (r > 0) ms.push_back(elapsed);
+  }
+  cudaEventDestroy(start);
+  cudaEventDestroy(stop);
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
 
 }  // namespace grip::solver::parallel

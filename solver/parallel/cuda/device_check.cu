@@ -9,11 +9,12 @@
 // drive), the map between DOFs and collision vertices (positions of the box's vertices, the
 // affine bodies' corners and 8 scripted vertices; 512 contact pairs' gradients gathered into the
 // DOFs, their Hessians assembled in 3x3 blocks), the step bound (additive CCD over the barrier's
-// pairs, each closing by up to 2.5 mm, and its per-environment minimum) and the linear solve
-// (block-Jacobi CG on the box's M + h^2 K, its bottom layer pinned) on the device (CudaLauncher)
-// and on one host core (SerialLauncher); it reports the largest relative differences, the
-// device's and the host's times, CG's iterations, and device memory per environment, as JSON and
-// Markdown in OUTDIR.
+// pairs, each closing by up to 2.5 mm, and its per-environment minimum), the linear solve
+// (block-Jacobi CG on the box's M + h^2 K, its bottom layer pinned) and the broad phase (two
+// facing sheets per environment, broad_phase_check.cu) on the device (CudaLauncher) and on one
+// host core (SerialLauncher); it reports the largest relative differences, the device's and the
+// host's times, CG's iterations, the candidates found, and device memory per environment, as
+// JSON and Markdown in OUTDIR.
 // Exit status: 0 when every difference is within its tolerance, 1 when one is not, 2 when no
 // CUDA device is found or OUTDIR cannot be written.
 //   grip-gpu-check OUTDIR [--sizes 1,8,64,256,512] [--repeats 5]
@@ -38,6 +39,7 @@
 #include "solver/parallel/ccd_stages.hpp"
 #include "solver/parallel/collision_batch.hpp"
 #include "solver/parallel/contact_stages.hpp"
+#include "solver/parallel/cuda/broad_phase_check.cuh"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
 #include "solver/parallel/elastic_stages.hpp"
 #include "solver/parallel/fem_batch.hpp"
@@ -134,28 +136,6 @@ struct Timing {
   double host_ms = 0.0;
   double device_bytes = 0.0;
 };
-
-// The median time (ms) of `repeats` runs of `stages` on the device, after one untimed run.
-template <class Stages>
-double device_median_ms(int repeats, Stages&& stages) {
-  cudaEvent_t start, stop;
-  cuda_check(cudaEventCreate(&start), "cudaEventCreate");
-  cuda_check(cudaEventCreate(&stop), "cudaEventCreate");
-  std::vector<float> ms;
-  for (int r = 0; r <= repeats; ++r) {
-    cuda_check(cudaEventRecord(start), "cudaEventRecord");
-    stages();
-    cuda_check(cudaEventRecord(stop), "cudaEventRecord");
-    cuda_check(cudaEventSynchronize(stop), "running the stages");
-    float elapsed = 0.f;
-    cuda_check(cudaEventElapsedTime(&elapsed, start, stop), "cudaEventElapsedTime");
-    if (r > 0) ms.push_back(elapsed);
-  }
-  cudaEventDestroy(start);
-  cudaEventDestroy(stop);
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
-}
 
 StageValues host_stages(const FemBatch& batch, const std::vector<double>& q, double& ms) {
   const TetBuffers tets = batch.tets();
@@ -906,6 +886,7 @@ struct SizeResult {
   int pcg_iterations = 0;            // the most any environment took (host)
   int pcg_iteration_difference = 0;  // the largest |device - host| over environments
   bool pcg_converged = false;        // every environment, on both
+  BroadPhaseCheck broad_phase;
   bool pass() const {
     // The friction Hessian needs no eigen-solve: it is held to the gradient's tolerance.
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
@@ -919,7 +900,8 @@ struct SizeResult {
            ccd_toi <= kCcdTolerance && ccd_bound <= kCcdTolerance &&
            inertia_target <= kGradientTolerance && inertia_energy <= kEnergyTolerance &&
            inertia_gradient <= kGradientTolerance && pcg_converged &&
-           pcg_solution <= kPcgTolerance && pcg_iteration_difference <= kPcgIterationSlack;
+           pcg_solution <= kPcgTolerance && pcg_iteration_difference <= kPcgIterationSlack &&
+           broad_phase.identical;
   }
 };
 
@@ -1021,6 +1003,7 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   check_contacts(environments, repeats, result);
   check_affine_and_map(mesh, q, environments, repeats, result);
   check_pcg(mesh, batch, host.hessian, repeats, result);
+  result.broad_phase = check_broad_phase(environments, repeats);
   return result;
 }
 
@@ -1088,6 +1071,11 @@ void write_json_row(std::ostream& json, const SizeResult& r) {
        << ", \"pcg_iteration_difference\": " << r.pcg_iteration_difference
        << ", \"pcg_converged\": " << (r.pcg_converged ? "true" : "false")
        << ", \"pcg_solution_relative_difference\": " << r.pcg_solution
+       << ", \"broad_phase_device_ms\": " << r.broad_phase.device_ms
+       << ", \"broad_phase_host_ms\": " << r.broad_phase.host_ms
+       << ", \"broad_phase_device_mib_per_environment\": " << mib(r.broad_phase.bytes)
+       << ", \"broad_phase_pairs\": " << r.broad_phase.pairs
+       << ", \"broad_phase_identical\": " << (r.broad_phase.identical ? "true" : "false")
        << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
 }
 
@@ -1125,11 +1113,12 @@ void write_reports(const std::string& directory, const std::string& device,
           "drive); map (positions, contact gradient gather, Hessian blocks); CCD (time of impact, "
           "step bound); "
           "FEM inertia (target, energy, gradient); block-Jacobi CG (the box's M + h^2 K, its "
-          "bottom layer pinned)\", "
+          "bottom layer pinned); broad phase (two facing sheets per environment)\", "
           "\"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
        << ", \"sizes\": [";
-  md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly, CCD and CG stages on "
+  md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly, CCD, CG and broad-phase "
+        "stages on "
      << gpu_name << ": " << tets_per_environment << " tets, " << kPairsPerEnvironment
      << " contact pairs (and as many friction contacts) and " << kAffinePerEnvironment
      << " affine bodies per environment; host: one core, serial launcher.\n\n"
@@ -1142,11 +1131,12 @@ void write_reports(const std::string& directory, const std::string& device,
         "assembly diff | CCD device ms | CCD host ms | impacts | CCD diffs (time of "
         "impact, bound) | FEM inertia device ms | FEM inertia host ms | FEM inertia diffs "
         "(target, energy, gradient) | CG device ms | CG host ms | CG iterations | CG "
-        "iteration diff | CG solution diff | within tolerance |\n"
+        "iteration diff | CG solution diff | broad phase device ms | broad phase host ms | "
+        "candidates | candidates identical | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
         "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: "
-        "| ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | --- "
-        "|\n";
+        "| ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: "
+        "| ---: | ---: | --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);

@@ -1,0 +1,205 @@
+#include "solver/parallel/cuda/broad_phase_check.cuh"
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "solver/parallel/broad_phase.hpp"
+#include "solver/parallel/cuda/cuda_launcher.cuh"
+#include "solver/parallel/launch.hpp"
+
+namespace grip::solver::parallel {
+namespace {
+
+constexpr int kCells = 16;       // per sheet side
+constexpr double kCell = 0.002;  // m
+constexpr double kDHat = 1e-3;   // m
+
+struct SheetScene {
+  SurfaceBatch surfaces;
+  std::vector<double> start, end, d_hat;
+};
+
+// One sheet of the environment begun last: body `body`, its corner (x0, y0) at height z(i, j).
+template <class Height>
+void add_sheet(SurfaceBatch& surfaces, int body, int first, Height&& z,
+               std::vector<double>& start) {
+  const int n = kCells + 1;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      surfaces.add_vertex(body, i * kCell, j * kCell, 0.0);
+      start.insert(start.end(), {i * kCell, j * kCell, z(i, j)});
+    }
+  }
+  const auto id = [&](int i, int j) { return first + j * n + i; };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      if (i < kCells) surfaces.add_edge(id(i, j), id(i + 1, j));
+      if (j < kCells) surfaces.add_edge(id(i, j), id(i, j + 1));
+      if (i < kCells && j < kCells) {
+        surfaces.add_edge(id(i, j), id(i + 1, j + 1));
+        surfaces.add_face(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+        surfaces.add_face(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+      }
+    }
+  }
+}
+
+SheetScene sheet_scene(int environments) {
+  SheetScene scene;
+  const int sheet_vertices = (kCells + 1) * (kCells + 1);
+  for (int e = 0; e < environments; ++e) {
+    // Body 0, the lower sheet, is among the untouching bodies: it never touches itself.
+    scene.surfaces.begin_environment({-1.0, 0.5, 0.5, 0.3}, {1, 0});
+    const double gap = 4e-4 + 1e-3 * ((e * 37) % 11) / 10.0;
+    add_sheet(
+        scene.surfaces, 0, 0, [](int, int) { return 0.0; }, scene.start);
+    add_sheet(
+        scene.surfaces, 1, sheet_vertices,
+        [&](int i, int j) { return gap + 5e-4 * std::sin(0.7 * i + 0.3 * e) * std::cos(0.5 * j); },
+        scene.start);
+    scene.surfaces.set_near_at_rest({}, {});
+    scene.d_hat.push_back(kDHat);
+  }
+  scene.end = scene.start;
+  for (std::size_t v = 0; 3 * v < scene.end.size(); ++v) {
+    const bool upper = (v / sheet_vertices) % 2 == 1;
+    if (upper) scene.end[3 * v + 2] -= 3e-4;
+  }
+  return scene;
+}
+
+// The surfaces in device memory.
+struct DeviceSurfaces {
+  explicit DeviceSurfaces(const SurfaceBatch& s)
+      : body_begin(s.body_begin()),
+        friction_begin(s.friction_begin()),
+        body_environment(s.body_environment()),
+        vertex_body(s.vertex_body()),
+        vertex_environment(s.vertex_environment()),
+        vertex_begin(s.vertex_begin()),
+        edge(s.edge()),
+        edge_environment(s.edge_environment()),
+        face(s.face()),
+        face_environment(s.face_environment()),
+        point_triangle_rest_begin(s.point_triangle_rest_begin()),
+        point_triangle_rest(s.point_triangle_rest()),
+        edge_edge_rest_begin(s.edge_edge_rest_begin()),
+        edge_edge_rest(s.edge_edge_rest()),
+        friction(s.friction()),
+        rest(s.rest()),
+        untouching(s.untouching()) {}
+
+  SurfaceBuffers buffers(const SurfaceBuffers& host) const {
+    SurfaceBuffers d = host;  // the counts
+    d.body_begin = body_begin.data();
+    d.friction_begin = friction_begin.data();
+    d.friction = friction.data();
+    d.body_environment = body_environment.data();
+    d.untouching = untouching.data();
+    d.vertex_body = vertex_body.data();
+    d.vertex_environment = vertex_environment.data();
+    d.vertex_begin = vertex_begin.data();
+    d.rest = rest.data();
+    d.edge = edge.data();
+    d.edge_environment = edge_environment.data();
+    d.face = face.data();
+    d.face_environment = face_environment.data();
+    d.point_triangle_rest_begin = point_triangle_rest_begin.data();
+    d.point_triangle_rest = point_triangle_rest.data();
+    d.edge_edge_rest_begin = edge_edge_rest_begin.data();
+    d.edge_edge_rest = edge_edge_rest.data();
+    return d;
+  }
+
+  DeviceArray<int> body_begin, friction_begin, body_environment, vertex_body, vertex_environment,
+      vertex_begin, edge, edge_environment, face, face_environment, point_triangle_rest_begin,
+      point_triangle_rest, edge_edge_rest_begin, edge_edge_rest;
+  DeviceArray<double> friction, rest;
+  DeviceArray<char> untouching;
+};
+
+// The candidates' arrays in device memory, for `pairs` pairs and `environments`.
+struct DeviceCandidates {
+  DeviceCandidates(int pairs, int environments)
+      : primitive(2 * std::size_t(pairs)),
+        order(pairs),
+        vertex(4 * std::size_t(pairs)),
+        environment(pairs),
+        environment_begin(environments + 1),
+        edge_edge(pairs),
+        near_at_rest(pairs),
+        friction(pairs),
+        mollifier_eps(pairs) {}
+
+  CandidateBuffers buffers() {
+    return {primitive.data(),     order.data(),        vertex.data(),
+            edge_edge.data(),     near_at_rest.data(), friction.data(),
+            mollifier_eps.data(), environment.data(),  environment_begin.data()};
+  }
+
+  DeviceArray<int> primitive, order, vertex, environment, environment_begin;
+  DeviceArray<unsigned char> edge_edge, near_at_rest;
+  DeviceArray<double> friction, mollifier_eps;
+};
+
+bool equals_host(DeviceCandidates& d, const HostBroadPhase& host) {
+  return d.vertex.to_host() == host.vertex() && d.edge_edge.to_host() == host.edge_edge() &&
+         d.near_at_rest.to_host() == host.near_at_rest() &&
+         d.friction.to_host() == host.friction() && d.environment.to_host() == host.environment() &&
+         d.environment_begin.to_host() == host.environment_begin() &&
+         d.mollifier_eps.to_host() == host.mollifier_eps();
+}
+
+}  // namespace
+
+BroadPhaseCheck check_broad_phase(int environments, int repeats) {
+  const SheetScene scene = sheet_scene(environments);
+  BroadPhaseCheck check;
+  HostBroadPhase host(scene.surfaces);
+  SerialLauncher serial;
+  const auto begin = std::chrono::steady_clock::now();
+  host.find(serial, scene.start, scene.end, scene.d_hat);
+  check.host_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  check.pairs = host.count();
+
+  const SurfaceBuffers s = scene.surfaces.buffers();
+  const DeviceSurfaces surfaces(scene.surfaces);
+  DeviceArray<double> start(scene.start), end(scene.end), d_hat(scene.d_hat),
+      vertex_box(6 * std::size_t(s.vertex_count)), edge_box(6 * std::size_t(s.edge_count)),
+      face_box(6 * std::size_t(s.face_count));
+  const std::size_t items = std::size_t(s.vertex_count + s.face_count);
+  DeviceArray<int> axis(environments), point_face_order(items), edge_order(s.edge_count),
+      point_face_found(items + 1), edge_found(std::size_t(s.edge_count) + 1);
+  const BroadPhaseBuffers b{surfaces.buffers(s),
+                            start.data(),
+                            end.data(),
+                            d_hat.data(),
+                            vertex_box.data(),
+                            edge_box.data(),
+                            face_box.data(),
+                            axis.data(),
+                            point_face_order.data(),
+                            edge_order.data(),
+                            point_face_found.data(),
+                            edge_found.data()};
+  CudaLauncher launch;
+  const CandidateCounts counts = count_candidates(launch, b);
+  DeviceCandidates found(counts.total(), environments);
+  check.device_ms = device_median_ms(repeats, [&] {
+    count_candidates(launch, b);
+    write_candidates(launch, b, counts, found.buffers());
+  });
+  check.identical = counts.total() == host.count() && equals_host(found, host);
+  check.bytes =
+      8.0 *
+          double(start.size() + end.size() + vertex_box.size() + edge_box.size() + face_box.size() +
+                 surfaces.rest.size() + found.friction.size() + found.mollifier_eps.size()) +
+      4.0 * double(items * 3 + 3 * std::size_t(s.edge_count) + found.primitive.size() +
+                   found.order.size() + found.vertex.size() + found.environment.size() +
+                   surfaces.edge.size() + surfaces.face.size() + surfaces.vertex_body.size());
+  return check;
+}
+
+}  // namespace grip::solver::parallel
