@@ -15,6 +15,7 @@ void SurfaceBatch::begin_environment(const std::vector<double>& friction,
   friction_.insert(friction_.end(), friction.begin(), friction.end());
   friction_begin_.push_back(static_cast<int>(friction_.size()));
   body_environment_.insert(body_environment_.end(), bodies, environment);
+  body_vertex_begin_.insert(body_vertex_begin_.end(), bodies, body_vertex_begin_.back());
   untouching_.insert(untouching_.end(), untouching.begin(), untouching.end());
   vertex_begin_.push_back(vertex_begin_.back());
   point_triangle_rest_begin_.push_back(point_triangle_rest_begin_.back());
@@ -39,10 +40,16 @@ int SurfaceBatch::vertex(int local) const {
 
 void SurfaceBatch::add_vertex(int body, double x, double y, double z) {
   const int e = current();
-  if (body < 0 || body_begin_[e] + body >= body_begin_[e + 1]) {
+  const int global = body_begin_[e] + body;
+  if (body < 0 || global >= body_begin_[e + 1]) {
     throw std::invalid_argument("SurfaceBatch: a vertex of a body outside its environment");
   }
-  vertex_body_.push_back(body_begin_[e] + body);
+  if (vertex_begin_[e + 1] > vertex_begin_[e] && vertex_body_.back() > global) {
+    throw std::invalid_argument("SurfaceBatch: a body's vertex after a later body's");
+  }
+  // Every later body of the environment now starts one vertex later.
+  for (int b = global + 1; b <= body_begin_[e + 1]; ++b) ++body_vertex_begin_[b];
+  vertex_body_.push_back(global);
   vertex_environment_.push_back(e);
   rest_.insert(rest_.end(), {x, y, z});
   ++vertex_begin_.back();
@@ -81,7 +88,9 @@ SurfaceBuffers SurfaceBatch::buffers() const {
   s.vertex_count = static_cast<int>(vertex_body_.size());
   s.edge_count = static_cast<int>(edge_environment_.size());
   s.face_count = static_cast<int>(face_environment_.size());
+  s.body_count = static_cast<int>(body_environment_.size());
   s.body_begin = body_begin_.data();
+  s.body_vertex_begin = body_vertex_begin_.data();
   s.friction_begin = friction_begin_.data();
   s.friction = friction_.data();
   s.body_environment = body_environment_.data();

@@ -15,10 +15,11 @@ namespace grip::solver::parallel {
 // What a stage reads of the surfaces: raw pointers into host or device memory.
 struct SurfaceBuffers {
   int environment_count = 0;
-  int vertex_count = 0, edge_count = 0, face_count = 0;
-  const int* body_begin = nullptr;      // environments + 1 offsets
-  const int* friction_begin = nullptr;  // environments + 1 offsets into friction
-  const double* friction = nullptr;     // per environment, its bodies' n x n table, row-major
+  int vertex_count = 0, edge_count = 0, face_count = 0, body_count = 0;
+  const int* body_begin = nullptr;         // environments + 1 offsets
+  const int* body_vertex_begin = nullptr;  // bodies + 1 offsets into the vertices
+  const int* friction_begin = nullptr;     // environments + 1 offsets into friction
+  const double* friction = nullptr;        // per environment, its bodies' n x n table, row-major
   const int* body_environment = nullptr;
   const char* untouching = nullptr;  // per body
   const int* vertex_body = nullptr;  // per vertex, numbered across the batch
@@ -43,7 +44,7 @@ class SurfaceBatch {
   // `untouching` its bodies' flags.
   void begin_environment(const std::vector<double>& friction, const std::vector<char>& untouching);
   // The next collision vertex of the environment begun last: its body within the environment
-  // and its rest position.
+  // and its rest position. A body's vertices come one after another, the bodies in order.
   void add_vertex(int body, double x, double y, double z);
   // An edge or face of the environment begun last, by its vertices within the environment.
   void add_edge(int a, int b);
@@ -58,6 +59,7 @@ class SurfaceBatch {
 
   // The arrays themselves, for copying to a device.
   const std::vector<int>& body_begin() const { return body_begin_; }
+  const std::vector<int>& body_vertex_begin() const { return body_vertex_begin_; }
   const std::vector<int>& friction_begin() const { return friction_begin_; }
   const std::vector<double>& friction() const { return friction_; }
   const std::vector<int>& body_environment() const { return body_environment_; }
@@ -79,7 +81,7 @@ class SurfaceBatch {
   // An environment-local vertex index as the batch's; throws when it is not the environment's.
   int vertex(int local) const;
 
-  std::vector<int> body_begin_{0}, friction_begin_{0}, vertex_begin_{0};
+  std::vector<int> body_begin_{0}, friction_begin_{0}, vertex_begin_{0}, body_vertex_begin_{0};
   std::vector<double> friction_;
   std::vector<int> body_environment_;
   std::vector<char> untouching_;

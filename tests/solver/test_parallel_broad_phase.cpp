@@ -5,7 +5,9 @@
 // soft box has pairs near at rest), each on its own path (DOFs moved by up to 1 cm, the floor
 // part way up). Every environment's candidates equal the CPU engine's, in its order, field for
 // field; the serial and TBB launchers give the same lists; an environment's list does not
-// depend on its batch.
+// depend on its batch. Then the reach filter (solver/parallel/reach_stages.hpp) against the CPU
+// engine's within_reach: the pairs within reach and those CCD watches, each environment's
+// equal to the CPU engine's, in its order.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,6 +21,7 @@
 #include "solver/newton/step_targets.hpp"
 #include "solver/parallel/broad_phase.hpp"
 #include "solver/parallel/launch.hpp"
+#include "solver/parallel/reach_stages.hpp"
 #include "tests/solver/scene_builders.hpp"
 
 namespace grip::solver {
@@ -44,10 +47,10 @@ struct Paths {
   std::vector<double> flat_start, flat_end, d_hat;  // the batch's
 };
 
-// Each environment's collision vertices at a random state and at another up to 1 cm away,
-// the floor 0.3 and 1.0 of its way up.
+// Each environment's collision vertices at a random state and at another up to `motion` away
+// (per DOF), the floor 0.3 and 1.0 of its way up.
 Paths make_paths(const std::vector<std::shared_ptr<const Model>>& models,
-                 const std::vector<double>& d_hat) {
+                 const std::vector<double>& d_hat, double motion = 0.01) {
   Paths p{models, {}, {}, {}, {}, d_hat};
   for (std::size_t e = 0; e < models.size(); ++e) {
     const Model& model = *models[e];
@@ -58,7 +61,7 @@ Paths make_paths(const std::vector<std::shared_ptr<const Model>>& models,
     Eigen::VectorXd q = env.dofs();
     for (Eigen::Index d = 0; d < q.size(); ++d) q[d] += 0.004 * unit(random);
     p.start.push_back(collision_positions(model, q, targets, 0.3));
-    for (Eigen::Index d = 0; d < q.size(); ++d) q[d] += 0.01 * unit(random);
+    for (Eigen::Index d = 0; d < q.size(); ++d) q[d] += motion * unit(random);
     p.end.push_back(collision_positions(model, q, targets, 1.0));
     p.flat_start.insert(p.flat_start.end(), p.start.back().data(),
                         p.start.back().data() + p.start.back().size());
@@ -153,6 +156,104 @@ TEST(ParallelBroadPhase, AnEnvironmentsCandidatesDoNotDependOnItsBatch) {
   EXPECT_TRUE(
       std::equal(solo.friction().begin(), solo.friction().end(), in_batch.friction().begin()));
   EXPECT_EQ(solo.axis()[0], in_batch.axis()[0]);
+}
+
+// The reach filter's lists over a broad phase's candidates.
+struct Reach {
+  std::vector<int> reachable, ccd, reachable_begin, ccd_begin;
+};
+
+Reach reach(const Paths& p, const parallel::SurfaceBatch& surfaces,
+            const parallel::HostBroadPhase& found, const std::vector<double>& ccd_rescaling) {
+  const parallel::SurfaceBuffers s = surfaces.buffers();
+  const auto n = static_cast<std::size_t>(found.count());
+  std::vector<double> moved(s.vertex_count), moved_in_body(s.vertex_count),
+      body_shift(3 * static_cast<std::size_t>(s.body_count));
+  std::vector<int> reachable_offset(n + 1), ccd_offset(n + 1);
+  Reach out{std::vector<int>(n), std::vector<int>(n),
+            std::vector<int>(static_cast<std::size_t>(s.environment_count) + 1),
+            std::vector<int>(static_cast<std::size_t>(s.environment_count) + 1)};
+  const parallel::ReachBuffers r{s,
+                                 p.flat_start.data(),
+                                 p.flat_end.data(),
+                                 p.d_hat.data(),
+                                 ccd_rescaling.data(),
+                                 found.count(),
+                                 found.vertex().data(),
+                                 found.edge_edge().data(),
+                                 found.environment().data(),
+                                 found.environment_begin().data(),
+                                 moved.data(),
+                                 moved_in_body.data(),
+                                 body_shift.data(),
+                                 reachable_offset.data(),
+                                 ccd_offset.data(),
+                                 out.reachable.data(),
+                                 out.ccd.data(),
+                                 out.reachable_begin.data(),
+                                 out.ccd_begin.data()};
+  parallel::SerialLauncher launch;
+  int reachable = 0, watched = 0;
+  parallel::find_within_reach(launch, r, reachable, watched);
+  out.reachable.resize(static_cast<std::size_t>(reachable));
+  out.ccd.resize(static_cast<std::size_t>(watched));
+  return out;
+}
+
+// Environment e's list (indices into the candidates) against the CPU engine's pairs.
+void expect_list(const std::vector<int>& list, int begin, int end,
+                 const parallel::HostBroadPhase& found, int first_vertex,
+                 const std::vector<ContactCandidate>& cpu) {
+  ASSERT_EQ(end - begin, static_cast<int>(cpu.size()));
+  for (int k = begin; k < end; ++k) {
+    const int c = list[static_cast<std::size_t>(k)];
+    for (int corner = 0; corner < 4; ++corner) {
+      ASSERT_EQ(found.vertex()[4 * c + corner] - first_vertex,
+                cpu[static_cast<std::size_t>(k - begin)].vertex[corner]);
+    }
+  }
+}
+
+// Environment e's reach lists against the CPU engine's within_reach; adds the candidates it
+// leaves out and the pairs CCD watches beyond reach.
+void expect_cpu_reach(const Paths& p, const parallel::SurfaceBatch& surfaces,
+                      const parallel::HostBroadPhase& found, const Reach& r,
+                      const std::vector<double>& ccd_rescaling, int e, int& left_out,
+                      int& ccd_only) {
+  const CollisionMesh& mesh = p.models[e]->collision();
+  const std::vector<ContactCandidate> candidates =
+      find_contact_candidates(mesh, p.start[e], p.end[e], p.d_hat[e]);
+  std::vector<ContactCandidate> ccd;
+  const std::vector<ContactCandidate> within = within_reach(
+      mesh.vertex_body, candidates, p.start[e], p.end[e], p.d_hat[e], &ccd, ccd_rescaling[e]);
+  EXPECT_GT(within.size(), 0u);
+  left_out += static_cast<int>(candidates.size() - within.size());
+  ccd_only += static_cast<int>(ccd.size() - within.size());
+  const int first_vertex = surfaces.vertex_begin()[e];
+  expect_list(r.reachable, r.reachable_begin[e], r.reachable_begin[e + 1], found, first_vertex,
+              within);
+  expect_list(r.ccd, r.ccd_begin[e], r.ccd_begin[e + 1], found, first_vertex, ccd);
+}
+
+TEST(ParallelBroadPhase, ReachFilterKeepsWhatTheCpuEnginesKeeps) {
+  const std::vector<double> ccd_rescaling{0.1, 0.5, 0.1};
+  int left_out = 0, ccd_only = 0;
+  for (const double motion : {5e-4, 1e-2}) {  // most pairs beyond reach; some only for CCD
+    SCOPED_TRACE("motion " + std::to_string(motion));
+    const Paths p = make_paths({crowded_scene(1e-3), crowded_scene(0.02), crowded_scene(1e-3)},
+                               {0.002, 0.005, 0.003}, motion);
+    const parallel::SurfaceBatch surfaces = parallel::surface_batch(raw(p));
+    parallel::HostBroadPhase found(surfaces);
+    parallel::SerialLauncher launch;
+    found.find(launch, p.flat_start, p.flat_end, p.d_hat);
+    const Reach r = reach(p, surfaces, found, ccd_rescaling);
+    for (int e = 0; e < 3; ++e) {
+      SCOPED_TRACE("environment " + std::to_string(e));
+      expect_cpu_reach(p, surfaces, found, r, ccd_rescaling, e, left_out, ccd_only);
+    }
+  }
+  EXPECT_GT(left_out, 500);  // the filter has work to do (about 810 at the smaller motion)
+  EXPECT_GT(ccd_only, 0);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "solver/parallel/cuda/broad_phase_check.cuh"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -7,6 +8,7 @@
 #include "solver/parallel/broad_phase.hpp"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
 #include "solver/parallel/launch.hpp"
+#include "solver/parallel/reach_stages.hpp"
 
 namespace grip::solver::parallel {
 namespace {
@@ -14,10 +16,11 @@ namespace {
 constexpr int kCells = 16;       // per sheet side
 constexpr double kCell = 0.002;  // m
 constexpr double kDHat = 1e-3;   // m
+constexpr double kCcdRescaling = 0.1;
 
 struct SheetScene {
   SurfaceBatch surfaces;
-  std::vector<double> start, end, d_hat;
+  std::vector<double> start, end, d_hat, ccd_rescaling;
 };
 
 // One sheet of the environment begun last: body `body`, its corner (x0, y0) at height z(i, j).
@@ -60,6 +63,7 @@ SheetScene sheet_scene(int environments) {
         scene.start);
     scene.surfaces.set_near_at_rest({}, {});
     scene.d_hat.push_back(kDHat);
+    scene.ccd_rescaling.push_back(kCcdRescaling);
   }
   scene.end = scene.start;
   for (std::size_t v = 0; 3 * v < scene.end.size(); ++v) {
@@ -73,6 +77,7 @@ SheetScene sheet_scene(int environments) {
 struct DeviceSurfaces {
   explicit DeviceSurfaces(const SurfaceBatch& s)
       : body_begin(s.body_begin()),
+        body_vertex_begin(s.body_vertex_begin()),
         friction_begin(s.friction_begin()),
         body_environment(s.body_environment()),
         vertex_body(s.vertex_body()),
@@ -93,6 +98,7 @@ struct DeviceSurfaces {
   SurfaceBuffers buffers(const SurfaceBuffers& host) const {
     SurfaceBuffers d = host;  // the counts
     d.body_begin = body_begin.data();
+    d.body_vertex_begin = body_vertex_begin.data();
     d.friction_begin = friction_begin.data();
     d.friction = friction.data();
     d.body_environment = body_environment.data();
@@ -112,9 +118,9 @@ struct DeviceSurfaces {
     return d;
   }
 
-  DeviceArray<int> body_begin, friction_begin, body_environment, vertex_body, vertex_environment,
-      vertex_begin, edge, edge_environment, face, face_environment, point_triangle_rest_begin,
-      point_triangle_rest, edge_edge_rest_begin, edge_edge_rest;
+  DeviceArray<int> body_begin, body_vertex_begin, friction_begin, body_environment, vertex_body,
+      vertex_environment, vertex_begin, edge, edge_environment, face, face_environment,
+      point_triangle_rest_begin, point_triangle_rest, edge_edge_rest_begin, edge_edge_rest;
   DeviceArray<double> friction, rest;
   DeviceArray<char> untouching;
 };
@@ -143,6 +149,59 @@ struct DeviceCandidates {
   DeviceArray<double> friction, mollifier_eps;
 };
 
+// The reach filter's work and lists, in host (std::vector) or device (DeviceArray) memory.
+template <template <class> class Array>
+struct ReachStorage {
+  ReachStorage(const SurfaceBuffers& s, int count)
+      : moved(s.vertex_count),
+        moved_in_body(s.vertex_count),
+        body_shift(3 * std::size_t(s.body_count)),
+        reachable_offset(std::size_t(count) + 1),
+        ccd_offset(std::size_t(count) + 1),
+        reachable(count),
+        ccd(count),
+        reachable_begin(std::size_t(s.environment_count) + 1),
+        ccd_begin(std::size_t(s.environment_count) + 1) {}
+
+  // The filter's buffers over a scene's path and the candidates' sorted arrays.
+  ReachBuffers buffers(const SurfaceBuffers& s, const double* start, const double* end,
+                       const double* d_hat, const double* ccd_rescaling, int count,
+                       const int* vertex, const unsigned char* edge_edge, const int* environment,
+                       const int* environment_begin) {
+    return {s,
+            start,
+            end,
+            d_hat,
+            ccd_rescaling,
+            count,
+            vertex,
+            edge_edge,
+            environment,
+            environment_begin,
+            moved.data(),
+            moved_in_body.data(),
+            body_shift.data(),
+            reachable_offset.data(),
+            ccd_offset.data(),
+            reachable.data(),
+            ccd.data(),
+            reachable_begin.data(),
+            ccd_begin.data()};
+  }
+
+  Array<double> moved, moved_in_body, body_shift;
+  Array<int> reachable_offset, ccd_offset, reachable, ccd, reachable_begin, ccd_begin;
+};
+
+template <class T>
+using HostArray = std::vector<T>;
+
+// The first n entries of a device list against the host's.
+bool same_prefix(const DeviceArray<int>& device, const std::vector<int>& host, int n) {
+  const std::vector<int> copy = device.to_host();
+  return std::equal(copy.begin(), copy.begin() + n, host.begin());
+}
+
 bool equals_host(DeviceCandidates& d, const HostBroadPhase& host) {
   return d.vertex.to_host() == host.vertex() && d.edge_edge.to_host() == host.edge_edge() &&
          d.near_at_rest.to_host() == host.near_at_rest() &&
@@ -151,28 +210,44 @@ bool equals_host(DeviceCandidates& d, const HostBroadPhase& host) {
          d.mollifier_eps.to_host() == host.mollifier_eps();
 }
 
+// The host launcher's candidates and lists, timed.
+void run_on_host(const SheetScene& scene, HostBroadPhase& host, ReachStorage<HostArray>& reach,
+                 BroadPhaseCheck& check) {
+  const SurfaceBuffers s = scene.surfaces.buffers();
+  SerialLauncher serial;
+  const auto begin = std::chrono::steady_clock::now();
+  host.find(serial, scene.start, scene.end, scene.d_hat);
+  reach = ReachStorage<HostArray>(s, host.count());
+  find_within_reach(serial,
+                    reach.buffers(s, scene.start.data(), scene.end.data(), scene.d_hat.data(),
+                                  scene.ccd_rescaling.data(), host.count(), host.vertex().data(),
+                                  host.edge_edge().data(), host.environment().data(),
+                                  host.environment_begin().data()),
+                    check.reachable, check.watched);
+  check.host_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  check.pairs = host.count();
+}
+
 }  // namespace
 
 BroadPhaseCheck check_broad_phase(int environments, int repeats) {
   const SheetScene scene = sheet_scene(environments);
+  const SurfaceBuffers s = scene.surfaces.buffers();
   BroadPhaseCheck check;
   HostBroadPhase host(scene.surfaces);
-  SerialLauncher serial;
-  const auto begin = std::chrono::steady_clock::now();
-  host.find(serial, scene.start, scene.end, scene.d_hat);
-  check.host_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
-  check.pairs = host.count();
+  ReachStorage<HostArray> host_reach(s, 0);
+  run_on_host(scene, host, host_reach, check);
 
-  const SurfaceBuffers s = scene.surfaces.buffers();
   const DeviceSurfaces surfaces(scene.surfaces);
   DeviceArray<double> start(scene.start), end(scene.end), d_hat(scene.d_hat),
-      vertex_box(6 * std::size_t(s.vertex_count)), edge_box(6 * std::size_t(s.edge_count)),
-      face_box(6 * std::size_t(s.face_count));
+      rescaling(scene.ccd_rescaling), vertex_box(6 * std::size_t(s.vertex_count)),
+      edge_box(6 * std::size_t(s.edge_count)), face_box(6 * std::size_t(s.face_count));
   const std::size_t items = std::size_t(s.vertex_count + s.face_count);
   DeviceArray<int> axis(environments), point_face_order(items), edge_order(s.edge_count),
       point_face_found(items + 1), edge_found(std::size_t(s.edge_count) + 1);
-  const BroadPhaseBuffers b{surfaces.buffers(s),
+  const SurfaceBuffers on_device = surfaces.buffers(s);
+  const BroadPhaseBuffers b{on_device,
                             start.data(),
                             end.data(),
                             d_hat.data(),
@@ -187,18 +262,30 @@ BroadPhaseCheck check_broad_phase(int environments, int repeats) {
   CudaLauncher launch;
   const CandidateCounts counts = count_candidates(launch, b);
   DeviceCandidates found(counts.total(), environments);
+  ReachStorage<DeviceArray> device_reach(s, counts.total());
+  const ReachBuffers reach =
+      device_reach.buffers(on_device, start.data(), end.data(), d_hat.data(), rescaling.data(),
+                           counts.total(), found.vertex.data(), found.edge_edge.data(),
+                           found.environment.data(), found.environment_begin.data());
+  int reachable = 0, watched = 0;
   check.device_ms = device_median_ms(repeats, [&] {
     count_candidates(launch, b);
     write_candidates(launch, b, counts, found.buffers());
+    find_within_reach(launch, reach, reachable, watched);
   });
-  check.identical = counts.total() == host.count() && equals_host(found, host);
-  check.bytes =
-      8.0 *
-          double(start.size() + end.size() + vertex_box.size() + edge_box.size() + face_box.size() +
-                 surfaces.rest.size() + found.friction.size() + found.mollifier_eps.size()) +
-      4.0 * double(items * 3 + 3 * std::size_t(s.edge_count) + found.primitive.size() +
-                   found.order.size() + found.vertex.size() + found.environment.size() +
-                   surfaces.edge.size() + surfaces.face.size() + surfaces.vertex_body.size());
+  check.identical = counts.total() == host.count() && equals_host(found, host) &&
+                    reachable == check.reachable && watched == check.watched &&
+                    same_prefix(device_reach.reachable, host_reach.reachable, reachable) &&
+                    same_prefix(device_reach.ccd, host_reach.ccd, watched) &&
+                    device_reach.reachable_begin.to_host() == host_reach.reachable_begin &&
+                    device_reach.ccd_begin.to_host() == host_reach.ccd_begin;
+  check.bytes = 8.0 * double(start.size() + end.size() + vertex_box.size() + edge_box.size() +
+                             face_box.size() + surfaces.rest.size() + found.friction.size() +
+                             found.mollifier_eps.size() + 2 * std::size_t(s.vertex_count)) +
+                4.0 * double(items * 3 + 3 * std::size_t(s.edge_count) + found.primitive.size() +
+                             found.order.size() + found.vertex.size() + found.environment.size() +
+                             surfaces.edge.size() + surfaces.face.size() +
+                             surfaces.vertex_body.size() + 4 * std::size_t(counts.total()));
   return check;
 }
 

@@ -3,13 +3,15 @@
 // sheets of 2 mm triangles facing each other 0.4 to 1.4 mm apart, the upper one rippled and
 // closing by 0.3 mm on its path, the lower one among untouching bodies (so edge pairs are
 // listed from its side), with d_hat = 1 mm: pairs between the sheets and of the upper sheet
-// with itself. The candidates found on the device must equal the host launcher's exactly.
+// with itself, then the reach filter over them (CCD rescaling 0.1). The candidates and both of
+// the filter's lists found on the device must equal the host launcher's exactly.
 namespace grip::solver::parallel {
 
 struct BroadPhaseCheck {
   double device_ms = 0.0, host_ms = 0.0, bytes = 0.0;
-  int pairs = 0;           // on the host
-  bool identical = false;  // every array of the device's candidates equals the host's
+  int pairs = 0;                   // candidates, on the host
+  int reachable = 0, watched = 0;  // within reach; watched by CCD (host)
+  bool identical = false;  // every array of the device's candidates and lists equals the host's
 };
 
 BroadPhaseCheck check_broad_phase(int environments, int repeats);

@@ -1075,6 +1075,8 @@ void write_json_row(std::ostream& json, const SizeResult& r) {
        << ", \"broad_phase_host_ms\": " << r.broad_phase.host_ms
        << ", \"broad_phase_device_mib_per_environment\": " << mib(r.broad_phase.bytes)
        << ", \"broad_phase_pairs\": " << r.broad_phase.pairs
+       << ", \"broad_phase_within_reach\": " << r.broad_phase.reachable
+       << ", \"broad_phase_watched_by_ccd\": " << r.broad_phase.watched
        << ", \"broad_phase_identical\": " << (r.broad_phase.identical ? "true" : "false")
        << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
 }
@@ -1113,7 +1115,8 @@ void write_reports(const std::string& directory, const std::string& device,
           "drive); map (positions, contact gradient gather, Hessian blocks); CCD (time of impact, "
           "step bound); "
           "FEM inertia (target, energy, gradient); block-Jacobi CG (the box's M + h^2 K, its "
-          "bottom layer pinned); broad phase (two facing sheets per environment)\", "
+          "bottom layer pinned); broad phase and reach filter (two facing sheets per "
+          "environment)\", "
           "\"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
        << ", \"sizes\": [";
@@ -1132,7 +1135,7 @@ void write_reports(const std::string& directory, const std::string& device,
         "impact, bound) | FEM inertia device ms | FEM inertia host ms | FEM inertia diffs "
         "(target, energy, gradient) | CG device ms | CG host ms | CG iterations | CG "
         "iteration diff | CG solution diff | broad phase device ms | broad phase host ms | "
-        "candidates | candidates identical | within tolerance |\n"
+        "candidates, within reach, watched by CCD | lists identical | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
         "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: "
         "| ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: "
