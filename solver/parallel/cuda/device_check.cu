@@ -10,11 +10,12 @@
 // affine bodies' corners and 8 scripted vertices; 512 contact pairs' gradients gathered into the
 // DOFs, their Hessians assembled in 3x3 blocks), the step bound (additive CCD over the barrier's
 // pairs, each closing by up to 2.5 mm, and its per-environment minimum), the linear solve
-// (block-Jacobi CG on the box's M + h^2 K, its bottom layer pinned) and the broad phase (two
-// facing sheets per environment, broad_phase_check.cu) on the device (CudaLauncher) and on one
-// host core (SerialLauncher); it reports the largest relative differences, the device's and the
-// host's times, CG's iterations, the candidates found, and device memory per environment, as
-// JSON and Markdown in OUTDIR.
+// (block-Jacobi CG on the box's M + h^2 K, its bottom layer pinned), the broad phase (two
+// facing sheets per environment, broad_phase_check.cu) and the line search's halving of a random
+// Newton step until no tet inverts on the device (CudaLauncher) and on one host core
+// (SerialLauncher); it reports the largest relative differences, the device's and the host's
+// times, CG's iterations, the candidates found, the halvings, and device memory per
+// environment, as JSON and Markdown in OUTDIR.
 // Exit status: 0 when every difference is within its tolerance, 1 when one is not, 2 when no
 // CUDA device is found or OUTDIR cannot be written.
 //   grip-gpu-check OUTDIR [--sizes 1,8,64,256,512] [--repeats 5]
@@ -46,6 +47,7 @@
 #include "solver/parallel/friction_stages.hpp"
 #include "solver/parallel/inertia_stages.hpp"
 #include "solver/parallel/launch.hpp"
+#include "solver/parallel/line_search_stages.hpp"
 #include "solver/parallel/map_stages.hpp"
 
 namespace {
@@ -887,6 +889,9 @@ struct SizeResult {
   int pcg_iteration_difference = 0;  // the largest |device - host| over environments
   bool pcg_converged = false;        // every environment, on both
   BroadPhaseCheck broad_phase;
+  double halving_device_ms = 0.0, halving_host_ms = 0.0;
+  int halving_most = 0;            // the most halvings any environment took (host)
+  bool halving_identical = false;  // every environment's alpha and halvings, device and host
   bool pass() const {
     // The friction Hessian needs no eigen-solve: it is held to the gradient's tolerance.
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
@@ -901,7 +906,7 @@ struct SizeResult {
            inertia_target <= kGradientTolerance && inertia_energy <= kEnergyTolerance &&
            inertia_gradient <= kGradientTolerance && pcg_converged &&
            pcg_solution <= kPcgTolerance && pcg_iteration_difference <= kPcgIterationSlack &&
-           broad_phase.identical;
+           broad_phase.identical && halving_identical;
   }
 };
 
@@ -958,6 +963,62 @@ void check_affine_and_map(const BoxMesh& mesh, const std::vector<double>& q, int
   result.blocks = static_cast<int>(map.pattern.row.size());
 }
 
+// Per environment a random Newton step of up to 2 cm per DOF from the deformed state, halved
+// from alpha = 1 until no tet inverts: each environment's kept alpha and halvings.
+struct HalvingValues {
+  std::vector<double> alpha;
+  std::vector<int> halvings;
+};
+
+std::vector<double> newton_step(std::size_t dofs) {
+  std::uint64_t seed = 0x2545f4914f6cdd1dull;
+  std::vector<double> p(dofs);
+  for (double& x : p) {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    x = 0.02 * (2.0 * static_cast<double>(seed >> 11) / static_cast<double>(1ull << 53) - 1.0);
+  }
+  return p;
+}
+
+void check_halving(const FemBatch& batch, const std::vector<double>& q, int repeats,
+                   SizeResult& result) {
+  const int environments = batch.environment_count();
+  const std::vector<double> p = newton_step(q.size());
+  const TetBuffers host_tets = batch.tets();
+  HalvingValues host{std::vector<double>(environments, 1.0), std::vector<int>(environments)};
+  std::vector<int> status(environments);
+  std::vector<double> ratio(host_tets.count), smallest(environments);
+  int halving = 0;
+  SerialLauncher serial;
+  const auto begin = std::chrono::steady_clock::now();
+  halve_until_no_inversion(serial, {host_tets, batch.tet_begin().data(), environments, q.data(),
+                                    p.data(), host.alpha.data(), host.halvings.data(),
+                                    status.data(), ratio.data(), smallest.data(), &halving});
+  result.halving_host_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  DeviceArray<int> dofs(batch.tet_dofs()), environment(batch.tet_environment()),
+      tet_begin(batch.tet_begin()), device_halvings(environments), device_status(environments),
+      device_halving(1);
+  DeviceArray<double> dm(batch.rest_shape_inverse()), dq(q), dp(p), alpha(environments),
+      device_ratio(host_tets.count), device_smallest(environments);
+  const TetBuffers tets{host_tets.count, dofs.data(), environment.data(), dm.data(), nullptr,
+                        nullptr,         nullptr};
+  CudaLauncher launch;
+  const std::vector<double> ones(environments, 1.0);
+  result.halving_device_ms = device_median_ms(repeats, [&] {
+    cuda_check(
+        cudaMemcpy(alpha.data(), ones.data(), ones.size() * sizeof(double), cudaMemcpyHostToDevice),
+        "cudaMemcpy to the device");
+    halve_until_no_inversion(
+        launch, {tets, tet_begin.data(), environments, dq.data(), dp.data(), alpha.data(),
+                 device_halvings.data(), device_status.data(), device_ratio.data(),
+                 device_smallest.data(), device_halving.data()});
+  });
+  result.halving_identical =
+      alpha.to_host() == host.alpha && device_halvings.to_host() == host.halvings;
+  result.halving_most = *std::max_element(host.halvings.begin(), host.halvings.end());
+}
+
 // The soft box's linear solves by block-Jacobi CG.
 void check_pcg(const BoxMesh& mesh, const FemBatch& batch, const std::vector<double>& tet_hessian,
                int repeats, SizeResult& result) {
@@ -1004,6 +1065,7 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   check_affine_and_map(mesh, q, environments, repeats, result);
   check_pcg(mesh, batch, host.hessian, repeats, result);
   result.broad_phase = check_broad_phase(environments, repeats);
+  check_halving(batch, q, repeats, result);
   return result;
 }
 
@@ -1078,6 +1140,9 @@ void write_json_row(std::ostream& json, const SizeResult& r) {
        << ", \"broad_phase_within_reach\": " << r.broad_phase.reachable
        << ", \"broad_phase_watched_by_ccd\": " << r.broad_phase.watched
        << ", \"broad_phase_identical\": " << (r.broad_phase.identical ? "true" : "false")
+       << ", \"halving_device_ms\": " << r.halving_device_ms
+       << ", \"halving_host_ms\": " << r.halving_host_ms << ", \"halving_most\": " << r.halving_most
+       << ", \"halving_identical\": " << (r.halving_identical ? "true" : "false")
        << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
 }
 
@@ -1116,12 +1181,12 @@ void write_reports(const std::string& directory, const std::string& device,
           "step bound); "
           "FEM inertia (target, energy, gradient); block-Jacobi CG (the box's M + h^2 K, its "
           "bottom layer pinned); broad phase and reach filter (two facing sheets per "
-          "environment)\", "
+          "environment); step halving until no tet inverts\", "
           "\"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
        << ", \"sizes\": [";
-  md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly, CCD, CG and broad-phase "
-        "stages on "
+  md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly, CCD, CG, broad-phase "
+        "and step-halving stages on "
      << gpu_name << ": " << tets_per_environment << " tets, " << kPairsPerEnvironment
      << " contact pairs (and as many friction contacts) and " << kAffinePerEnvironment
      << " affine bodies per environment; host: one core, serial launcher.\n\n"
@@ -1135,11 +1200,12 @@ void write_reports(const std::string& directory, const std::string& device,
         "impact, bound) | FEM inertia device ms | FEM inertia host ms | FEM inertia diffs "
         "(target, energy, gradient) | CG device ms | CG host ms | CG iterations | CG "
         "iteration diff | CG solution diff | broad phase device ms | broad phase host ms | "
-        "candidates, within reach, watched by CCD | lists identical | within tolerance |\n"
+        "candidates, within reach, watched by CCD | lists identical | halving device ms | halving "
+        "host ms | most halvings | halvings identical | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
         "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: "
         "| ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: "
-        "| ---: | ---: | --- | --- |\n";
+        "| ---: | ---: | --- | ---: | ---: | ---: | --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);
