@@ -24,11 +24,6 @@ BlockRows block_rows(const BlockPattern& pattern, int unit_count) {
   return rows;
 }
 
-JacobiBuffers JacobiBlocks::buffers() const {
-  return {static_cast<int>(first_unit.size()), first_unit.data(), units.data(),
-          matrix_block.data()};
-}
-
 namespace {
 
 // The index of block (row, column) in the pattern; throws when the pattern lacks it.
@@ -75,58 +70,31 @@ JacobiBlocks jacobi_blocks(const FemBatch& fem, const AffineBatch& affine,
   return jacobi;
 }
 
-HostPcg::HostPcg(const FemBatch& fem, const AffineBatch& affine, const BlockPattern& pattern,
-                 const std::vector<int>& dof_begin)
-    : pattern_(pattern.buffers()),
-      rows_(block_rows(pattern, dof_begin.back() / 3)),
-      jacobi_(jacobi_blocks(fem, affine, pattern, dof_begin)) {
+PcgStructure pcg_structure(const FemBatch& fem, const AffineBatch& affine,
+                           const BlockPattern& pattern, const std::vector<int>& dof_begin) {
+  PcgStructure s{pattern.row,
+                 pattern.column,
+                 block_rows(pattern, dof_begin.back() / 3),
+                 jacobi_blocks(fem, affine, pattern, dof_begin),
+                 {},
+                 {}};
   const int environments = static_cast<int>(dof_begin.size()) - 1;
-  for (int e = 0; e <= environments; ++e) unit_begin_.push_back(dof_begin[e] / 3);
+  for (int e = 0; e <= environments; ++e) s.unit_begin.push_back(dof_begin[e] / 3);
   for (int e = 0; e < environments; ++e) {
-    unit_environment_.insert(unit_environment_.end(), unit_begin_[e + 1] - unit_begin_[e], e);
+    s.unit_environment.insert(s.unit_environment.end(), s.unit_begin[e + 1] - s.unit_begin[e], e);
   }
-  const auto dofs = static_cast<std::size_t>(dof_begin.back());
-  const auto envs = static_cast<std::size_t>(environments);
-  vectors_.assign(4 * dofs, 0.0);
-  scalars_.assign(8 * envs, 0.0);
-  partial_.assign(dofs / 3, 0.0);
-  jacobi_inverse_.assign(144 * jacobi_.first_unit.size(), 0.0);
-  jacobi_ok_.assign(jacobi_.first_unit.size(), 0);
-  status_.assign(envs, kPcgRunning);
-  iterations_.assign(envs, 0);
+  return s;
 }
 
-PcgBuffers HostPcg::buffers(const std::vector<double>& block, const std::vector<char>& fixed,
-                            const std::vector<double>& rhs, const std::vector<double>& tolerance,
-                            int max_iterations, std::vector<double>& x) {
-  const std::size_t dofs = partial_.size() * 3;
+void HostPcg::check_sizes(const std::vector<double>& block, const std::vector<char>& fixed,
+                          const std::vector<double>& rhs, const std::vector<double>& tolerance,
+                          const std::vector<double>& x) const {
+  const std::size_t dofs = 3 * structure_.unit_environment.size();
   if (fixed.size() != dofs || rhs.size() != dofs || x.size() != dofs ||
-      tolerance.size() != status_.size() || block.size() != 9 * std::size_t(pattern_.count)) {
+      tolerance.size() != std::size_t(structure_.environment_count()) ||
+      block.size() != 9 * structure_.row.size()) {
     throw std::invalid_argument("HostPcg::solve: arrays do not match the batch");
   }
-  PcgBuffers p;
-  p.pattern = pattern_;
-  p.block = block.data();
-  p.rows = rows_.buffers();
-  p.jacobi = jacobi_.buffers();
-  p.unit_count = static_cast<int>(partial_.size());
-  p.unit_environment = unit_environment_.data();
-  p.fixed = fixed.data();
-  p.environment_count = static_cast<int>(status_.size());
-  p.unit_begin = unit_begin_.data();
-  p.jacobi_begin = jacobi_.environment_begin.data();
-  p.tolerance = tolerance.data();
-  p.max_iterations = max_iterations;
-  p.status = status_.data();
-  p.iterations = iterations_.data();
-  p.rhs = rhs.data();
-  p.x = x.data();
-  p.partial = partial_.data();
-  p.jacobi_inverse = jacobi_inverse_.data();
-  p.jacobi_ok = jacobi_ok_.data();
-  lay_out_pcg_work(p, vectors_.data(), scalars_.data());
-  p.running = &running_;
-  return p;
 }
 
 }  // namespace grip::solver::parallel

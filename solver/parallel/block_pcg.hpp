@@ -23,6 +23,7 @@
 #include "solver/parallel/affine_batch.hpp"
 #include "solver/parallel/block_assembly.hpp"
 #include "solver/parallel/fem_batch.hpp"
+#include "solver/parallel/launch.hpp"
 
 namespace grip::solver::parallel {
 
@@ -44,7 +45,6 @@ struct BlockRowBuffers {
 
 struct BlockRows {
   std::vector<int> begin, entry;
-  BlockRowBuffers buffers() const { return {begin.data(), entry.data()}; }
 };
 
 BlockRows block_rows(const BlockPattern& pattern, int unit_count);
@@ -62,7 +62,6 @@ struct JacobiBuffers {
 struct JacobiBlocks {
   std::vector<int> first_unit, units, matrix_block;
   std::vector<int> environment_begin;  // environment_count + 1 offsets into the DOF blocks
-  JacobiBuffers buffers() const;
 };
 
 // The FEM vertices of `fem` and the affine bodies of `affine` as DOF blocks of `pattern`
@@ -102,18 +101,6 @@ struct PcgBuffers {
   double *alpha = nullptr, *beta = nullptr;
   int* running = nullptr;  // one int
 };
-
-// Points p's work vectors r, z, d, q into `vectors` (4 x the batch's DOFs, one after the
-// other) and its per-environment scalars residual, rz, rz_next, rr, rr0, pAp, alpha, beta into
-// `scalars` (8 x the environments): one allocation each, on the host or a device.
-inline void lay_out_pcg_work(PcgBuffers& p, double* vectors, double* scalars) {
-  const int dofs = 3 * p.unit_count, environments = p.environment_count;
-  double** const vector[4] = {&p.r, &p.z, &p.d, &p.q};
-  for (int k = 0; k < 4; ++k) *vector[k] = vectors + k * dofs;
-  double** const scalar[8] = {&p.residual, &p.rz,  &p.rz_next, &p.rr,
-                              &p.rr0,      &p.pap, &p.alpha,   &p.beta};
-  for (int k = 0; k < 8; ++k) *scalar[k] = scalars + k * environments;
-}
 
 GRIP_HD inline bool pcg_running(const PcgBuffers& p, int unit) {
   return p.status[p.unit_environment[unit]] == kPcgRunning;
@@ -298,17 +285,6 @@ struct DirectionStage {
   }
 };
 
-// How many environments still run: one item.
-struct RunningCountStage {
-  PcgBuffers p;
-
-  GRIP_HD void operator()(int) const {
-    int running = 0;
-    for (int e = 0; e < p.environment_count; ++e) running += p.status[e] == kPcgRunning ? 1 : 0;
-    *p.running = running;
-  }
-};
-
 // The rz and rr of every running environment's current r (z = M^-1 r computed here).
 template <class Launcher>
 void launch_preconditioned_dots(Launcher& launch, const PcgBuffers& p, double* rz) {
@@ -332,7 +308,7 @@ void solve_block_pcg(Launcher& launch, const PcgBuffers& p) {
   launch(p.environment_count, PcgStartStage{p});
   launch(dofs, DirectionStage{p, true});
   for (;;) {
-    launch(1, RunningCountStage{p});
+    launch(1, StatusCountStage{p.status, p.environment_count, kPcgRunning, p.running});
     if (launch.fetch(p.running) == 0) return;
     launch(p.unit_count, BlockProductStage{p, p.d, p.q});
     launch(p.unit_count, UnitDotStage{p.d, p.q, p.partial});
@@ -345,13 +321,101 @@ void solve_block_pcg(Launcher& launch, const PcgBuffers& p) {
   }
 }
 
-// The host side of a solve: the structure built from a batch's pattern and the work arrays, in
-// host memory, for the host launchers (the device check mirrors it in device memory). The
-// pattern must outlive it.
+// A solve's structure, built on the host from a batch's pattern whenever it changes.
+struct PcgStructure {
+  std::vector<int> row, column;  // the pattern's blocks (all the solve reads of the pattern)
+  BlockRows rows;
+  JacobiBlocks jacobi;
+  std::vector<int> unit_environment;  // per unit
+  std::vector<int> unit_begin;        // environments + 1 offsets
+  int environment_count() const { return static_cast<int>(unit_begin.size()) - 1; }
+};
+
+PcgStructure pcg_structure(const FemBatch& fem, const AffineBatch& affine,
+                           const BlockPattern& pattern, const std::vector<int>& dof_begin);
+
+// A solve's structure and work arrays in host (HostArray) or device (DeviceArray) memory.
+template <template <class> class Array>
+struct PcgStorage {
+  explicit PcgStorage(const PcgStructure& s)
+      : row(s.row),
+        column(s.column),
+        rows_begin(s.rows.begin),
+        rows_entry(s.rows.entry),
+        first_unit(s.jacobi.first_unit),
+        jacobi_units(s.jacobi.units),
+        matrix_block(s.jacobi.matrix_block),
+        jacobi_begin(s.jacobi.environment_begin),
+        unit_environment(s.unit_environment),
+        unit_begin(s.unit_begin),
+        status(std::size_t(s.environment_count())),
+        iterations(std::size_t(s.environment_count())),
+        running(std::size_t(1)),
+        jacobi_ok(s.jacobi.units.size()),
+        vectors(12 * s.unit_environment.size()),
+        scalars(8 * std::size_t(s.environment_count())),
+        partial(s.unit_environment.size()),
+        inverse(144 * s.jacobi.units.size()) {}
+
+  // The buffers of a solve of the systems `block` (9 per pattern block) with these fixed DOFs
+  // (per DOF), right-hand side, per-environment tolerances and solution x (the fixed DOFs'
+  // values and the first guess on entry), all in this storage's memory.
+  PcgBuffers buffers(const double* block, const char* fixed, const double* rhs,
+                     const double* tolerance, int max_iterations, double* x) {
+    PcgBuffers p;
+    p.pattern = {
+        static_cast<int>(row.size()), row.data(), column.data(), nullptr, nullptr, nullptr};
+    p.block = block;
+    p.rows = {rows_begin.data(), rows_entry.data()};
+    p.jacobi = {static_cast<int>(jacobi_units.size()), first_unit.data(), jacobi_units.data(),
+                matrix_block.data()};
+    p.unit_count = static_cast<int>(unit_environment.size());
+    p.unit_environment = unit_environment.data();
+    p.fixed = fixed;
+    p.environment_count = static_cast<int>(status.size());
+    p.unit_begin = unit_begin.data();
+    p.jacobi_begin = jacobi_begin.data();
+    p.tolerance = tolerance;
+    p.max_iterations = max_iterations;
+    p.status = status.data();
+    p.iterations = iterations.data();
+    p.rhs = rhs;
+    p.x = x;
+    // Per DOF r, z, d, q one after another; per environment the eight scalars.
+    double** const vector[4] = {&p.r, &p.z, &p.d, &p.q};
+    for (int k = 0; k < 4; ++k) *vector[k] = vectors.data() + 3 * k * p.unit_count;
+    double** const scalar[8] = {&p.residual, &p.rz,  &p.rz_next, &p.rr,
+                                &p.rr0,      &p.pap, &p.alpha,   &p.beta};
+    for (int k = 0; k < 8; ++k) *scalar[k] = scalars.data() + k * p.environment_count;
+    p.partial = partial.data();
+    p.jacobi_inverse = inverse.data();
+    p.jacobi_ok = jacobi_ok.data();
+    p.running = running.data();
+    return p;
+  }
+
+  // The bytes it holds.
+  double bytes() const {
+    return 4.0 * double(row.size() + column.size() + rows_begin.size() + rows_entry.size() +
+                        first_unit.size() + jacobi_units.size() + matrix_block.size() +
+                        jacobi_begin.size() + unit_environment.size() + unit_begin.size() +
+                        status.size() + iterations.size() + running.size()) +
+           double(jacobi_ok.size()) +
+           8.0 * double(vectors.size() + scalars.size() + partial.size() + inverse.size());
+  }
+
+  Array<int> row, column, rows_begin, rows_entry, first_unit, jacobi_units, matrix_block,
+      jacobi_begin, unit_environment, unit_begin, status, iterations, running;
+  Array<char> jacobi_ok;
+  Array<double> vectors, scalars, partial, inverse;
+};
+
+// A solve in host memory, for the host launchers.
 class HostPcg {
  public:
   HostPcg(const FemBatch& fem, const AffineBatch& affine, const BlockPattern& pattern,
-          const std::vector<int>& dof_begin);
+          const std::vector<int>& dof_begin)
+      : structure_(pcg_structure(fem, affine, pattern, dof_begin)), storage_(structure_) {}
 
   // Solves the batch's systems with these blocks, fixed DOFs, right-hand side and per
   // environment tolerances; x holds the fixed DOFs' values and the first guess on entry.
@@ -359,34 +423,25 @@ class HostPcg {
   void solve(Launcher& launch, const std::vector<double>& block, const std::vector<char>& fixed,
              const std::vector<double>& rhs, const std::vector<double>& tolerance,
              int max_iterations, std::vector<double>& x) {
-    PcgBuffers p = buffers(block, fixed, rhs, tolerance, max_iterations, x);
-    solve_block_pcg(launch, p);
+    check_sizes(block, fixed, rhs, tolerance, x);
+    solve_block_pcg(launch, storage_.buffers(block.data(), fixed.data(), rhs.data(),
+                                             tolerance.data(), max_iterations, x.data()));
   }
 
-  const std::vector<int>& status() const { return status_; }
-  const std::vector<int>& iterations() const { return iterations_; }
-  // |r| / |r0| per environment at the end (lay_out_pcg_work puts it first among the scalars).
+  const std::vector<int>& status() const { return storage_.status; }
+  const std::vector<int>& iterations() const { return storage_.iterations; }
+  // |r| / |r0| per environment at the end: the first of the scalars.
   std::vector<double> residual() const {
-    return {scalars_.begin(), scalars_.begin() + static_cast<long>(status_.size())};
+    return {storage_.scalars.begin(), storage_.scalars.begin() + structure_.environment_count()};
   }
-  const BlockRows& rows() const { return rows_; }
-  const JacobiBlocks& jacobi() const { return jacobi_; }
-  const std::vector<int>& unit_environment() const { return unit_environment_; }
-  const std::vector<int>& unit_begin() const { return unit_begin_; }
 
  private:
-  PcgBuffers buffers(const std::vector<double>& block, const std::vector<char>& fixed,
-                     const std::vector<double>& rhs, const std::vector<double>& tolerance,
-                     int max_iterations, std::vector<double>& x);
+  void check_sizes(const std::vector<double>& block, const std::vector<char>& fixed,
+                   const std::vector<double>& rhs, const std::vector<double>& tolerance,
+                   const std::vector<double>& x) const;
 
-  BlockPatternBuffers pattern_;
-  BlockRows rows_;
-  JacobiBlocks jacobi_;
-  std::vector<int> unit_environment_, unit_begin_;
-  std::vector<int> status_, iterations_;
-  std::vector<double> vectors_, scalars_, partial_, jacobi_inverse_;
-  std::vector<char> jacobi_ok_;
-  int running_ = 0;
+  PcgStructure structure_;
+  PcgStorage<HostArray> storage_;
 };
 
 }  // namespace grip::solver::parallel

@@ -118,18 +118,13 @@ struct SweepAxisStage {
   BroadPhaseBuffers b;
 
   GRIP_HD void operator()(int e) const {
-    double low[3] = {0.0, 0.0, 0.0}, high[3] = {0.0, 0.0, 0.0};
+    Aabb spread;
     for (int v = b.surface.vertex_begin[e]; v < b.surface.vertex_begin[e + 1]; ++v) {
-      for (int k = 0; k < 3; ++k) {
-        const double x = b.vertex_box[6 * v + k];
-        const bool first = v == b.surface.vertex_begin[e];
-        low[k] = first || x < low[k] ? x : low[k];
-        high[k] = first || x > high[k] ? x : high[k];
-      }
+      spread.expand(load_box(b.vertex_box + 6 * v).min);
     }
     int axis = 0;
     for (int k = 1; k < 3; ++k) {
-      if (high[k] - low[k] > high[axis] - low[axis]) axis = k;
+      if (spread.max[k] - spread.min[k] > spread.max[axis] - spread.min[axis]) axis = k;
     }
     b.axis[e] = axis;
   }

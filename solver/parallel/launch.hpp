@@ -12,8 +12,30 @@
 // standard library's on the host and Thrust's on a GPU.
 #include <algorithm>
 #include <numeric>
+#include <vector>
+
+#include "solver/kernels/hd.hpp"
 
 namespace grip::solver::parallel {
+
+// Host memory, as the storage templates that take host or device arrays name it (DeviceArray,
+// cuda/cuda_launcher.cuh, is the other).
+template <class T>
+using HostArray = std::vector<T>;
+
+// How many of `count` items have status `value`, into *out: one item, for a host loop's fetch().
+struct StatusCountStage {
+  const int* status = nullptr;
+  int count = 0;
+  int value = 0;
+  int* out = nullptr;
+
+  GRIP_HD void operator()(int) const {
+    int n = 0;
+    for (int i = 0; i < count; ++i) n += status[i] == value ? 1 : 0;
+    *out = n;
+  }
+};
 
 // The host launcher without dependencies: the device check's reference, and what the tests use
 // to step through a stage.

@@ -9,6 +9,7 @@
 #include "solver/kernels/neo_hookean.hpp"
 #include "solver/parallel/ccd_stages.hpp"
 #include "solver/parallel/fem_batch.hpp"
+#include "solver/parallel/launch.hpp"
 
 namespace grip::solver::parallel {
 
@@ -71,16 +72,6 @@ struct HalvingStage {
   }
 };
 
-struct HalvingCountStage {
-  StepHalvingBuffers b;
-
-  GRIP_HD void operator()(int) const {
-    int halving = 0;
-    for (int e = 0; e < b.environment_count; ++e) halving += b.status[e] == kHalving ? 1 : 0;
-    *b.halving = halving;
-  }
-};
-
 template <class Launcher>
 void halve_until_no_inversion(Launcher& launch, const StepHalvingBuffers& b) {
   launch(b.environment_count, HalvingResetStage{b});
@@ -88,7 +79,7 @@ void halve_until_no_inversion(Launcher& launch, const StepHalvingBuffers& b) {
     launch(b.tets.count, TrialDeterminantStage{b});
     launch(b.environment_count, EnvironmentMinStage{b.tet_begin, b.ratio, b.smallest});
     launch(b.environment_count, HalvingStage{b});
-    launch(1, HalvingCountStage{b});
+    launch(1, StatusCountStage{b.status, b.environment_count, kHalving, b.halving});
     if (launch.fetch(b.halving) == 0) return;
   }
 }

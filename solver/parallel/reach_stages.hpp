@@ -7,12 +7,14 @@
 // would not clear it at its first advance. Each candidate gets two flags; the flags are scanned
 // into offsets and the candidates written, in their order, into the two lists.
 #include <cmath>
+#include <cstddef>
 
 #include "solver/kernels/aabb.hpp"
 #include "solver/kernels/accd.hpp"
 #include "solver/kernels/edge_edge_distance.hpp"
 #include "solver/kernels/hd.hpp"
 #include "solver/kernels/point_triangle_distance.hpp"
+#include "solver/parallel/launch.hpp"
 #include "solver/parallel/surface_batch.hpp"
 
 namespace grip::solver::parallel {
@@ -146,6 +148,50 @@ struct ReachBeginStage {
     r.reachable_begin[e] = r.reachable_offset[r.candidate_begin[e]];
     r.ccd_begin[e] = r.ccd_offset[r.candidate_begin[e]];
   }
+};
+
+// The reach filter's work and lists in host (HostArray) or device (DeviceArray) memory.
+template <template <class> class Array>
+struct ReachStorage {
+  ReachStorage(const SurfaceBuffers& s, int count)
+      : moved(std::size_t(s.vertex_count)),
+        moved_in_body(std::size_t(s.vertex_count)),
+        body_shift(3 * std::size_t(s.body_count)),
+        reachable_offset(std::size_t(count) + 1),
+        ccd_offset(std::size_t(count) + 1),
+        reachable(std::size_t(count)),
+        ccd(std::size_t(count)),
+        reachable_begin(std::size_t(s.environment_count) + 1),
+        ccd_begin(std::size_t(s.environment_count) + 1) {}
+
+  // The filter's buffers over a scene's path and the candidates' sorted arrays.
+  ReachBuffers buffers(const SurfaceBuffers& s, const double* start, const double* end,
+                       const double* d_hat, const double* ccd_rescaling, int count,
+                       const int* vertex, const unsigned char* edge_edge, const int* environment,
+                       const int* environment_begin) {
+    return {s,
+            start,
+            end,
+            d_hat,
+            ccd_rescaling,
+            count,
+            vertex,
+            edge_edge,
+            environment,
+            environment_begin,
+            moved.data(),
+            moved_in_body.data(),
+            body_shift.data(),
+            reachable_offset.data(),
+            ccd_offset.data(),
+            reachable.data(),
+            ccd.data(),
+            reachable_begin.data(),
+            ccd_begin.data()};
+  }
+
+  Array<double> moved, moved_in_body, body_shift;
+  Array<int> reachable_offset, ccd_offset, reachable, ccd, reachable_begin, ccd_begin;
 };
 
 // Flags every candidate, scans the flags into offsets and writes both lists with each

@@ -25,8 +25,6 @@
 
 namespace grip::solver::testing {
 
-using parallel::CollisionBatch;
-
 inline std::shared_ptr<const Model> mixed_scene() { return Model::build(every_kind_of_body()); }
 
 // Two soft boxes and a turned affine box over a scripted floor.
@@ -42,7 +40,7 @@ inline constexpr double kProgress = 0.3;
 
 struct Batch {
   std::vector<std::shared_ptr<const Model>> models;
-  CollisionBatch collision;
+  parallel::CollisionBatch collision;
   parallel::FemBatch fem;
   parallel::AffineBatch affine;
   std::vector<Eigen::VectorXd> states;

@@ -158,45 +158,24 @@ TEST(ParallelBroadPhase, AnEnvironmentsCandidatesDoNotDependOnItsBatch) {
   EXPECT_EQ(solo.axis()[0], in_batch.axis()[0]);
 }
 
-// The reach filter's lists over a broad phase's candidates.
+// The reach filter's lists over a broad phase's candidates (each list's first entries count).
 struct Reach {
-  std::vector<int> reachable, ccd, reachable_begin, ccd_begin;
+  parallel::ReachStorage<parallel::HostArray> lists;
+  int reachable = 0, watched = 0;
 };
 
 Reach reach(const Paths& p, const parallel::SurfaceBatch& surfaces,
             const parallel::HostBroadPhase& found, const std::vector<double>& ccd_rescaling) {
   const parallel::SurfaceBuffers s = surfaces.buffers();
-  const auto n = static_cast<std::size_t>(found.count());
-  std::vector<double> moved(s.vertex_count), moved_in_body(s.vertex_count),
-      body_shift(3 * static_cast<std::size_t>(s.body_count));
-  std::vector<int> reachable_offset(n + 1), ccd_offset(n + 1);
-  Reach out{std::vector<int>(n), std::vector<int>(n),
-            std::vector<int>(static_cast<std::size_t>(s.environment_count) + 1),
-            std::vector<int>(static_cast<std::size_t>(s.environment_count) + 1)};
-  const parallel::ReachBuffers r{s,
-                                 p.flat_start.data(),
-                                 p.flat_end.data(),
-                                 p.d_hat.data(),
-                                 ccd_rescaling.data(),
-                                 found.count(),
-                                 found.vertex().data(),
-                                 found.edge_edge().data(),
-                                 found.environment().data(),
-                                 found.environment_begin().data(),
-                                 moved.data(),
-                                 moved_in_body.data(),
-                                 body_shift.data(),
-                                 reachable_offset.data(),
-                                 ccd_offset.data(),
-                                 out.reachable.data(),
-                                 out.ccd.data(),
-                                 out.reachable_begin.data(),
-                                 out.ccd_begin.data()};
+  Reach out{parallel::ReachStorage<parallel::HostArray>(s, found.count())};
   parallel::SerialLauncher launch;
-  int reachable = 0, watched = 0;
-  parallel::find_within_reach(launch, r, reachable, watched);
-  out.reachable.resize(static_cast<std::size_t>(reachable));
-  out.ccd.resize(static_cast<std::size_t>(watched));
+  parallel::find_within_reach(
+      launch,
+      out.lists.buffers(s, p.flat_start.data(), p.flat_end.data(), p.d_hat.data(),
+                        ccd_rescaling.data(), found.count(), found.vertex().data(),
+                        found.edge_edge().data(), found.environment().data(),
+                        found.environment_begin().data()),
+      out.reachable, out.watched);
   return out;
 }
 
@@ -230,9 +209,10 @@ void expect_cpu_reach(const Paths& p, const parallel::SurfaceBatch& surfaces,
   left_out += static_cast<int>(candidates.size() - within.size());
   ccd_only += static_cast<int>(ccd.size() - within.size());
   const int first_vertex = surfaces.vertex_begin()[e];
-  expect_list(r.reachable, r.reachable_begin[e], r.reachable_begin[e + 1], found, first_vertex,
-              within);
-  expect_list(r.ccd, r.ccd_begin[e], r.ccd_begin[e + 1], found, first_vertex, ccd);
+  expect_list(r.lists.reachable, r.lists.reachable_begin[e], r.lists.reachable_begin[e + 1], found,
+              first_vertex, within);
+  expect_list(r.lists.ccd, r.lists.ccd_begin[e], r.lists.ccd_begin[e + 1], found, first_vertex,
+              ccd);
 }
 
 TEST(ParallelBroadPhase, ReachFilterKeepsWhatTheCpuEnginesKeeps) {

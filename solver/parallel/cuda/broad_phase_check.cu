@@ -149,53 +149,6 @@ struct DeviceCandidates {
   DeviceArray<double> friction, mollifier_eps;
 };
 
-// The reach filter's work and lists, in host (std::vector) or device (DeviceArray) memory.
-template <template <class> class Array>
-struct ReachStorage {
-  ReachStorage(const SurfaceBuffers& s, int count)
-      : moved(s.vertex_count),
-        moved_in_body(s.vertex_count),
-        body_shift(3 * std::size_t(s.body_count)),
-        reachable_offset(std::size_t(count) + 1),
-        ccd_offset(std::size_t(count) + 1),
-        reachable(count),
-        ccd(count),
-        reachable_begin(std::size_t(s.environment_count) + 1),
-        ccd_begin(std::size_t(s.environment_count) + 1) {}
-
-  // The filter's buffers over a scene's path and the candidates' sorted arrays.
-  ReachBuffers buffers(const SurfaceBuffers& s, const double* start, const double* end,
-                       const double* d_hat, const double* ccd_rescaling, int count,
-                       const int* vertex, const unsigned char* edge_edge, const int* environment,
-                       const int* environment_begin) {
-    return {s,
-            start,
-            end,
-            d_hat,
-            ccd_rescaling,
-            count,
-            vertex,
-            edge_edge,
-            environment,
-            environment_begin,
-            moved.data(),
-            moved_in_body.data(),
-            body_shift.data(),
-            reachable_offset.data(),
-            ccd_offset.data(),
-            reachable.data(),
-            ccd.data(),
-            reachable_begin.data(),
-            ccd_begin.data()};
-  }
-
-  Array<double> moved, moved_in_body, body_shift;
-  Array<int> reachable_offset, ccd_offset, reachable, ccd, reachable_begin, ccd_begin;
-};
-
-template <class T>
-using HostArray = std::vector<T>;
-
 // The first n entries of a device list against the host's.
 bool same_prefix(const DeviceArray<int>& device, const std::vector<int>& host, int n) {
   const std::vector<int> copy = device.to_host();

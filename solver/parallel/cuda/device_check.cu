@@ -781,88 +781,21 @@ PcgValues host_pcg(const PcgScene& s, const FemBatch& batch, double& ms) {
   return v;
 }
 
-// The host solve's structure and work arrays in device memory.
-struct DevicePcg {
-  DevicePcg(const PcgScene& s, const HostPcg& host)
-      : row(s.pattern.row),
-        column(s.pattern.column),
-        rows_begin(host.rows().begin),
-        rows_entry(host.rows().entry),
-        first_unit(host.jacobi().first_unit),
-        jacobi_units(host.jacobi().units),
-        matrix_block(host.jacobi().matrix_block),
-        jacobi_begin(host.jacobi().environment_begin),
-        unit_environment(host.unit_environment()),
-        unit_begin(host.unit_begin()),
-        status(s.tolerance.size()),
-        iterations(s.tolerance.size()),
-        running(1),
-        fixed(s.fixed),
-        jacobi_ok(host.jacobi().units.size()),
-        blocks(s.blocks),
-        rhs(s.rhs),
-        tolerance(s.tolerance),
-        x(s.rhs.size()),
-        vectors(4 * s.rhs.size()),
-        partial(s.rhs.size() / 3),
-        inverse(144 * host.jacobi().units.size()),
-        scalars(8 * s.tolerance.size()) {}
-
-  PcgBuffers buffers() {
-    PcgBuffers p;
-    p.pattern = {
-        static_cast<int>(row.size()), row.data(), column.data(), nullptr, nullptr, nullptr};
-    p.block = blocks.data();
-    p.rows = {rows_begin.data(), rows_entry.data()};
-    p.jacobi = {static_cast<int>(jacobi_units.size()), first_unit.data(), jacobi_units.data(),
-                matrix_block.data()};
-    p.unit_count = static_cast<int>(partial.size());
-    p.unit_environment = unit_environment.data();
-    p.fixed = fixed.data();
-    p.environment_count = static_cast<int>(tolerance.size());
-    p.unit_begin = unit_begin.data();
-    p.jacobi_begin = jacobi_begin.data();
-    p.tolerance = tolerance.data();
-    p.max_iterations = kPcgMaxIterations;
-    p.status = status.data();
-    p.iterations = iterations.data();
-    p.rhs = rhs.data();
-    p.x = x.data();
-    p.partial = partial.data();
-    p.jacobi_inverse = inverse.data();
-    p.jacobi_ok = jacobi_ok.data();
-    lay_out_pcg_work(p, vectors.data(), scalars.data());
-    p.running = running.data();
-    return p;
-  }
-
-  double bytes() const {
-    return 8.0 * double(blocks.size() + rhs.size() + tolerance.size() + x.size() + vectors.size() +
-                        partial.size() + inverse.size() + scalars.size()) +
-           4.0 * double(row.size() + column.size() + rows_begin.size() + rows_entry.size() +
-                        first_unit.size() + jacobi_units.size() + matrix_block.size() +
-                        jacobi_begin.size() + unit_environment.size() + unit_begin.size() +
-                        status.size() + iterations.size()) +
-           double(fixed.size() + jacobi_ok.size());
-  }
-
-  DeviceArray<int> row, column, rows_begin, rows_entry, first_unit, jacobi_units, matrix_block,
-      jacobi_begin, unit_environment, unit_begin, status, iterations, running;
-  DeviceArray<char> fixed, jacobi_ok;
-  DeviceArray<double> blocks, rhs, tolerance, x, vectors, partial, inverse, scalars;
-};
-
 PcgValues device_pcg(const PcgScene& s, const FemBatch& batch, int repeats, double& ms,
                      double& bytes) {
-  DevicePcg device(s, HostPcg(batch, AffineBatch{}, s.pattern, batch.dof_begin()));
-  const PcgBuffers p = device.buffers();
+  PcgStorage<DeviceArray> device(pcg_structure(batch, AffineBatch{}, s.pattern, batch.dof_begin()));
+  DeviceArray<char> fixed(s.fixed);
+  DeviceArray<double> blocks(s.blocks), rhs(s.rhs), tolerance(s.tolerance), x(s.rhs.size());
+  const PcgBuffers p = device.buffers(blocks.data(), fixed.data(), rhs.data(), tolerance.data(),
+                                      kPcgMaxIterations, x.data());
   CudaLauncher launch;
   ms = device_median_ms(repeats, [&] {
-    cuda_check(cudaMemset(p.x, 0, s.rhs.size() * sizeof(double)), "cudaMemset");
+    cuda_check(cudaMemset(x.data(), 0, x.size() * sizeof(double)), "cudaMemset");
     solve_block_pcg(launch, p);
   });
-  bytes = device.bytes();
-  return {device.x.to_host(), device.status.to_host(), device.iterations.to_host()};
+  bytes = device.bytes() + double(fixed.size()) +
+          8.0 * double(blocks.size() + rhs.size() + tolerance.size() + x.size());
+  return {x.to_host(), device.status.to_host(), device.iterations.to_host()};
 }
 
 struct SizeResult {
