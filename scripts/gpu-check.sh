@@ -3,8 +3,9 @@
 # headers: from .gpu-carry/, which scripts/gpu-carry.sh fills, or the system's), runs it, and
 # writes gpu-check.json, gpu-check.md and the GPU's nvidia-smi report into OUTDIR. It compares
 # the data-parallel engine's stages (elastic, FEM inertia, barrier, CCD, friction, affine, map,
-# Hessian blocks, block-Jacobi CG, broad phase) on the GPU with the host launcher on the same
-# batches, and times them at 1 to 512 environments (docs/architecture.md, "Engines"). Sized to
+# Hessian blocks, block-Jacobi CG, broad phase, step halving, incremental potential and
+# sufficient decrease) on the GPU with the host launcher on the same batches, and times them
+# at 1 to 512 environments (docs/architecture.md, "Engines"). Sized to
 # finish well inside 8 minutes: the build takes about 3 minutes of one core, the host's share of
 # the largest batch (1.2 million tets, 262,144 pairs and as many friction contacts, one core)
 # well under one. Exit status:
@@ -26,6 +27,7 @@ start=$(date +%s)
 "$nvcc" -std=c++20 -O3 -arch=sm_90 -I"$root" -isystem "$eigen" --expt-relaxed-constexpr \
   -diag-suppress=20012 -Werror=all-warnings -Xcompiler=-Wall,-Wextra,-Werror \
   "$root/solver/parallel/cuda/device_check.cu" "$root/solver/parallel/cuda/broad_phase_check.cu" \
+  "$root/solver/parallel/cuda/potential_check.cu" \
   "$root/solver/parallel/fem_batch.cpp" "$root/solver/parallel/surface_batch.cpp" \
   "$root/solver/parallel/broad_phase.cpp" \
   "$root/solver/parallel/affine_batch.cpp" "$root/solver/parallel/collision_batch.cpp" \

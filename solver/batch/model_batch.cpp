@@ -19,8 +19,8 @@ FemBatch fem_batch(const std::vector<const Model*>& environments) {
       for (const std::array<int, 4>& tet : body.kind->tets(body.local)) {
         tets.insert(tets.end(), tet.begin(), tet.end());
       }
-      batch.add_body(body.dof_offset, rest, tets, body.material.youngs, body.material.poisson,
-                     body.material.density);
+      const Material& m = body.material;
+      batch.add_body(body.dof_offset, rest, tets, {m.youngs, m.poisson, m.density, m.damping});
     }
   }
   batch.finish();

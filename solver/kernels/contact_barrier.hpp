@@ -2,8 +2,8 @@
 // IPC's barrier of one contact (a point and a triangle, or two edges) in its four vertices'
 // positions: kappa m b(d) with d the unsquared distance, b the log barrier (barrier.hpp) and m
 // the mollifier of nearly parallel edges (1 for a point and a triangle), with its 12-vector
-// gradient and, on request, its 12x12 Hessian (not projected). The CPU engine's BarrierTerm
-// and the data-parallel engine's barrier stage both evaluate it.
+// gradient and, on request, its 12x12 Hessian (not projected), or its value alone. The CPU
+// engine's BarrierTerm and the data-parallel engine's barrier stage both evaluate it.
 #include <Eigen/Core>
 #include <cmath>
 
@@ -97,6 +97,18 @@ GRIP_HD inline ContactBarrier contact_barrier(bool edge_edge, double mollifier_e
   result.gradient = kappa * grad_b;
   if (with_hessian) result.hessian = kappa * hess_b;
   return result;
+}
+
+// kappa m b(d) alone, the value contact_barrier gives, bit for bit, without the derivatives: what
+// a line search needs.
+GRIP_HD inline double contact_barrier_value(bool edge_edge, double mollifier_eps,
+                                            const Eigen::Vector3d x[4], double d_hat,
+                                            double kappa) {
+  const double s = contact_squared_distance(edge_edge, x);
+  if (s >= d_hat * d_hat) return 0.0;
+  const double b = barrier(std::sqrt(s), d_hat);
+  if (!edge_edge) return kappa * b;
+  return kappa * edge_edge_mollifier(x[0], x[1], x[2], x[3], mollifier_eps) * b;
 }
 
 }  // namespace grip::solver::kernels

@@ -59,7 +59,7 @@ struct AffineInertiaStage {
   const double* q = nullptr;
   const double* q_tilde = nullptr;
   double* energy = nullptr;    // per body
-  double* gradient = nullptr;  // the batch's gradient: the body's share is added
+  double* gradient = nullptr;  // the batch's gradient: the body's share is added; null: none
 
   GRIP_HD void operator()(int i) const {
     const int dof = bodies.dof[i];
@@ -69,7 +69,7 @@ struct AffineInertiaStage {
     double squared = 0.0;
     for (int k = 0; k < 12; ++k) {
       squared += dq[k] * m_dq[k];
-      gradient[dof + k] += m_dq[k];
+      if (gradient != nullptr) gradient[dof + k] += m_dq[k];
     }
     energy[i] = 0.5 * squared;
   }
@@ -80,7 +80,7 @@ struct OrthogonalityStage {
   const double* q = nullptr;
   bool project = true;         // PSD-project the Hessian (projected Newton)
   double* energy = nullptr;    // per body
-  double* gradient = nullptr;  // the batch's gradient: the body's share is added
+  double* gradient = nullptr;  // the batch's gradient: the body's share is added; null: none
   double* hessian = nullptr;   // 81 per body: the 9x9 block in (a1, a2, a3), column-major; null:
                                // not wanted
 
@@ -90,6 +90,7 @@ struct OrthogonalityStage {
     for (int k = 0; k < 12; ++k) qb[k] = q[dof + k];
     const double stiffness = bodies.orthogonality_stiffness[i], volume = bodies.volume[i];
     energy[i] = kernels::affine_body_orthogonality_energy(qb, stiffness, volume);
+    if (gradient == nullptr) return;
     const kernels::Vector12d g = kernels::affine_body_orthogonality_gradient(qb, stiffness, volume);
     for (int k = 0; k < 12; ++k) gradient[dof + k] += g[k];
     if (!hessian) return;
@@ -105,7 +106,8 @@ struct DriveStage {
   const double* q = nullptr;
   const double* target = nullptr;  // the batch's drive targets (read at driven bodies' DOFs)
   double* energy = nullptr;        // per body (0 where not driven)
-  double* gradient = nullptr;      // the batch's gradient: a driven body's share is added
+  double* gradient = nullptr;      // the batch's gradient: a driven body's share is added (null:
+                                   // none)
 
   GRIP_HD void operator()(int i) const {
     const double k = bodies.drive_stiffness[i];
@@ -120,7 +122,7 @@ struct DriveStage {
     double squared = 0.0;
     for (int c = 0; c < 12; ++c) {
       squared += dq[c] * m_dq[c];
-      gradient[dof + c] += s * m_dq[c];
+      if (gradient != nullptr) gradient[dof + c] += s * m_dq[c];
     }
     energy[i] = 0.5 * s * squared;
   }

@@ -63,7 +63,7 @@ struct BarrierStage {
   const double* positions = nullptr;  // 3 per collision vertex of the batch
   bool project = true;                // PSD-project the Hessian (projected Newton)
   double* energy = nullptr;           // per pair
-  double* gradient = nullptr;         // 12 per pair
+  double* gradient = nullptr;         // 12 per pair; null: the energy alone (a line search's)
   double* hessian = nullptr;          // 144 per pair, column-major; null: not wanted
 
   GRIP_HD void operator()(int k) const {
@@ -73,6 +73,11 @@ struct BarrierStage {
       x[c] = Eigen::Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
     }
     const int e = pairs.environment[k];
+    if (gradient == nullptr) {
+      energy[k] = kernels::contact_barrier_value(pairs.edge_edge[k] != 0, pairs.mollifier_eps[k], x,
+                                                 pairs.d_hat[e], pairs.kappa[e]);
+      return;
+    }
     const kernels::ContactBarrier b =
         kernels::contact_barrier(pairs.edge_edge[k] != 0, pairs.mollifier_eps[k], x, pairs.d_hat[e],
                                  pairs.kappa[e], hessian != nullptr);

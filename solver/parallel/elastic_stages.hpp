@@ -17,7 +17,7 @@ struct ElasticStage {
   const double* q = nullptr;   // the batch's DOFs
   bool project = true;         // PSD-project the Hessian (projected Newton)
   double* energy = nullptr;    // per tet
-  double* gradient = nullptr;  // 12 per tet
+  double* gradient = nullptr;  // 12 per tet; null: the energy alone (a line search's)
   double* hessian = nullptr;   // 144 per tet, column-major; null: not wanted
 
   GRIP_HD void operator()(int t) const {
@@ -32,11 +32,45 @@ struct ElasticStage {
     const kernels::StableNeoHookeanParameters m{tets.mu[t], tets.lambda[t]};
     const Eigen::Matrix3d f = kernels::deformation_gradient(x, rest_shape_inverse);
     energy[t] = volume * kernels::stable_neo_hookean_energy_density(f, m);
+    if (gradient == nullptr) return;
     Eigen::Map<kernels::Vector12d> g(gradient + 12 * t);
     g = kernels::tet_stable_neo_hookean_gradient(f, rest_shape_inverse, volume, m);
     if (hessian == nullptr) return;
     Eigen::Map<kernels::Matrix12d> h(hessian + 144 * t);
     h = kernels::tet_stable_neo_hookean_hessian(f, rest_shape_inverse, volume, m, project);
+  }
+};
+
+// Rayleigh damping, added to each damped tet's elastic values (after ElasticStage), as the CPU
+// engine's FemBodies adds it: beta / (2 h) dx^T K dx with dx the tet's motion since the step's
+// start and K its projected elastic Hessian there (ElasticStage's, at the step's start), so
+// a convex quadratic within the step; the gradient gains beta / h K dx, the Hessian beta / h K.
+struct DampingStage {
+  TetBuffers tets;
+  const double* q = nullptr;          // the batch's DOFs
+  const double* q_start = nullptr;    // and at the step's start
+  const double* stiffness = nullptr;  // 144 per tet: K, column-major
+  const double* h = nullptr;          // per environment
+  double* energy = nullptr;           // per tet: the damping is added
+  double* gradient = nullptr;         // 12 per tet: added; null: the energy alone
+  double* hessian = nullptr;          // 144 per tet: added; null: not wanted
+
+  GRIP_HD void operator()(int t) const {
+    const double beta = tets.damping[t];
+    if (beta == 0.0) return;
+    const double c = beta / h[tets.environment[t]];
+    kernels::Vector12d dx;
+    for (int v = 0; v < 4; ++v) {
+      const int dof = tets.dofs[4 * t + v];
+      for (int k = 0; k < 3; ++k) dx[3 * v + k] = q[dof + k] - q_start[dof + k];
+    }
+    const Eigen::Map<const kernels::Matrix12d> k(stiffness + 144 * t);
+    const kernels::Vector12d k_dx = k * dx;
+    energy[t] += 0.5 * c * dx.dot(k_dx);
+    if (gradient == nullptr) return;
+    Eigen::Map<kernels::Vector12d>(gradient + 12 * t) += c * k_dx;
+    if (hessian == nullptr) return;
+    Eigen::Map<kernels::Matrix12d>(hessian + 144 * t) += c * k;
   }
 };
 

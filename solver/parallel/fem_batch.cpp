@@ -16,15 +16,14 @@ void FemBatch::begin_environment(int dof_count) {
 }
 
 void FemBatch::add_body(int first_dof, const std::vector<double>& rest,
-                        const std::vector<int>& tets, double youngs, double poisson,
-                        double density) {
+                        const std::vector<int>& tets, const FemMaterial& material) {
   if (environment_count() == 0) {
     throw std::logic_error("FemBatch::add_body before begin_environment");
   }
   const int environment = environment_count() - 1;
   const int base = dof_begin_[static_cast<std::size_t>(environment)] + first_dof;
   const kernels::StableNeoHookeanParameters elasticity =
-      kernels::stable_neo_hookean_parameters(youngs, poisson);
+      kernels::stable_neo_hookean_parameters(material.youngs, material.poisson);
   std::vector<double> mass(rest.size() / 3, 0.0);
   const auto vertex = [&](int v) {
     return Eigen::Vector3d(rest[3 * v], rest[3 * v + 1], rest[3 * v + 2]);
@@ -43,9 +42,11 @@ void FemBatch::add_body(int first_dof, const std::vector<double>& rest,
     tet_environment_.push_back(environment);
     rest_shape_inverse_.insert(rest_shape_inverse_.end(), dm_inverse.data(), dm_inverse.data() + 9);
     rest_volume_.push_back(volume);
-    for (int c = 0; c < 4; ++c) mass[static_cast<std::size_t>(tet[c])] += density * volume / 4.0;
+    for (int c = 0; c < 4; ++c)
+      mass[static_cast<std::size_t>(tet[c])] += material.density * volume / 4.0;
     mu_.push_back(elasticity.mu);
     lambda_.push_back(elasticity.lambda);
+    damping_.push_back(material.damping);
   }
   tet_begin_.back() = static_cast<int>(rest_volume_.size());
   // Vertices in DOF order, as finish() lists them: environments and bodies come in DOF order.
@@ -89,7 +90,8 @@ TetBuffers FemBatch::tets() const {
           rest_shape_inverse_.data(),
           rest_volume_.data(),
           mu_.data(),
-          lambda_.data()};
+          lambda_.data(),
+          damping_.data()};
 }
 
 VertexBuffers FemBatch::vertices() const {

@@ -19,6 +19,15 @@ struct TetBuffers {
   const double* rest_volume = nullptr;         // per tet
   const double* mu = nullptr;                  // per tet, stable Neo-Hookean (kernels)
   const double* lambda = nullptr;              // per tet
+  const double* damping = nullptr;             // per tet, Rayleigh beta (s); 0: undamped
+};
+
+// An FEM body's material, as solver::Material gives it.
+struct FemMaterial {
+  double youngs = 0.0;  // Pa
+  double poisson = 0.0;
+  double density = 0.0;  // kg/m^3
+  double damping = 0.0;  // s, Rayleigh stiffness-proportional beta
 };
 
 // Per FEM vertex: its first DOF in the batch, its environment and its lumped mass (a quarter of
@@ -47,7 +56,7 @@ class FemBatch {
   // DOF within the environment. Throws std::invalid_argument for a flat or inverted tet, or a
   // vertex that no tet touches.
   void add_body(int first_dof, const std::vector<double>& rest, const std::vector<int>& tets,
-                double youngs, double poisson, double density);
+                const FemMaterial& material);
   // Builds the vertices' incidence; call once every environment is in.
   void finish();
 
@@ -70,6 +79,7 @@ class FemBatch {
   const std::vector<double>& rest_volume() const { return rest_volume_; }
   const std::vector<double>& mu() const { return mu_; }
   const std::vector<double>& lambda() const { return lambda_; }
+  const std::vector<double>& damping() const { return damping_; }
   const std::vector<int>& vertex_dof() const { return vertex_dof_; }
   const std::vector<int>& vertex_environment() const { return vertex_environment_; }
   const std::vector<double>& vertex_mass() const { return vertex_mass_; }
@@ -85,6 +95,7 @@ class FemBatch {
   std::vector<double> rest_volume_;
   std::vector<double> mu_;
   std::vector<double> lambda_;
+  std::vector<double> damping_;
   std::vector<int> vertex_begin_{0};
   std::vector<int> vertex_dof_;
   std::vector<int> vertex_environment_;

@@ -60,7 +60,7 @@ struct FrictionStage {
   const double* positions = nullptr;        // 3 per collision vertex of the batch, now
   const double* start_positions = nullptr;  // the same at the step's start
   double* energy = nullptr;                 // per contact
-  double* gradient = nullptr;               // 12 per contact
+  double* gradient = nullptr;               // 12 per contact; null: the energy alone
   double* hessian = nullptr;                // 144 per contact, column-major; null: not wanted
 
   GRIP_HD void operator()(int k) const {
@@ -74,6 +74,7 @@ struct FrictionStage {
     const double mu_lambda = contacts.mu_lambda[k];
     const double eps = contacts.eps[contacts.environment[k]];
     energy[k] = kernels::friction_potential<4>(dx, t, mu_lambda, eps);
+    if (gradient == nullptr) return;
     Eigen::Map<Eigen::Matrix<double, 12, 1>> g(gradient + 12 * k);
     g = kernels::friction_potential_gradient<4>(dx, t, mu_lambda, eps);
     if (hessian == nullptr) return;

@@ -32,7 +32,7 @@ struct InertiaStage {
   const double* q = nullptr;
   const double* q_tilde = nullptr;
   double* energy = nullptr;    // per vertex
-  double* gradient = nullptr;  // the batch's gradient: the vertex's share is added
+  double* gradient = nullptr;  // the batch's gradient: the vertex's share is added; null: none
 
   GRIP_HD void operator()(int i) const {
     const int dof = vertices.dof[i];
@@ -41,7 +41,7 @@ struct InertiaStage {
     for (int k = 0; k < 3; ++k) {
       const double dx = q[dof + k] - q_tilde[dof + k];
       squared += dx * dx;
-      gradient[dof + k] += m * dx;
+      if (gradient != nullptr) gradient[dof + k] += m * dx;
     }
     energy[i] = 0.5 * m * squared;
   }

@@ -26,8 +26,10 @@ kernels::ContactBarrier barrier_of(const ContactCandidate& c, const Eigen::Vecto
 void BarrierTerm::add_energy(const PotentialPoint& at, double& sum) const {
   Eigen::Vector3d x[4];
   for (const ContactCandidate& c : at.candidates) {
+    if (c.near_at_rest) continue;
     gather(at.positions, c.vertex, x);
-    sum += barrier_of(c, x, model_.sim().d_hat, kappa_, false).value;
+    sum +=
+        kernels::contact_barrier_value(c.edge_edge, c.mollifier_eps, x, model_.sim().d_hat, kappa_);
   }
 }
 

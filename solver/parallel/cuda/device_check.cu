@@ -12,7 +12,8 @@
 // pairs, each closing by up to 2.5 mm, and its per-environment minimum), the linear solve
 // (block-Jacobi CG on the box's M + h^2 K, its bottom layer pinned), the broad phase (two
 // facing sheets per environment, broad_phase_check.cu) and the line search's halving of a random
-// Newton step until no tet inverts on the device (CudaLauncher) and on one host core
+// Newton step until no tet inverts, and the incremental potential with Armijo's sufficient
+// decrease (potential_check.cu) on the device (CudaLauncher) and on one host core
 // (SerialLauncher); it reports the largest relative differences, the device's and the host's
 // times, CG's iterations, the candidates found, the halvings, and device memory per
 // environment, as JSON and Markdown in OUTDIR.
@@ -42,6 +43,7 @@
 #include "solver/parallel/contact_stages.hpp"
 #include "solver/parallel/cuda/broad_phase_check.cuh"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
+#include "solver/parallel/cuda/potential_check.cuh"
 #include "solver/parallel/elastic_stages.hpp"
 #include "solver/parallel/fem_batch.hpp"
 #include "solver/parallel/friction_stages.hpp"
@@ -167,7 +169,7 @@ StageValues device_stages(const FemBatch& batch, const std::vector<double>& q, i
       hessian(144 * std::size_t(count)), gradient(q.size()),
       environment_energy(batch.environment_count());
   const TetBuffers tets{count,         dofs.data(), environment.data(), dm.data(),
-                        volume.data(), mu.data(),   lambda.data()};
+                        volume.data(), mu.data(),   lambda.data(),      nullptr};
   const IncidenceBuffers incidence{static_cast<int>(batch.vertex_dof().size()), vertex_dof.data(),
                                    begin.data(), slots.data()};
   timing.device_ms = device_median_ms(repeats, [&] {
@@ -825,6 +827,7 @@ struct SizeResult {
   double halving_device_ms = 0.0, halving_host_ms = 0.0;
   int halving_most = 0;            // the most halvings any environment took (host)
   bool halving_identical = false;  // every environment's alpha and halvings, device and host
+  PotentialCheck potential;
   bool pass() const {
     // The friction Hessian needs no eigen-solve: it is held to the gradient's tolerance.
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
@@ -839,7 +842,8 @@ struct SizeResult {
            inertia_target <= kGradientTolerance && inertia_energy <= kEnergyTolerance &&
            inertia_gradient <= kGradientTolerance && pcg_converged &&
            pcg_solution <= kPcgTolerance && pcg_iteration_difference <= kPcgIterationSlack &&
-           broad_phase.identical && halving_identical;
+           broad_phase.identical && halving_identical && potential.energy <= kEnergyTolerance &&
+           potential.decrease_identical;
   }
 };
 
@@ -934,7 +938,8 @@ void check_halving(const FemBatch& batch, const std::vector<double>& q, int repe
       device_halving(1);
   DeviceArray<double> dm(batch.rest_shape_inverse()), dq(q), dp(p), alpha(environments),
       device_ratio(host_tets.count), device_smallest(environments);
-  const TetBuffers tets{host_tets.count, dofs.data(), environment.data(), dm.data(), nullptr,
+  const TetBuffers tets{host_tets.count, dofs.data(), environment.data(),
+                        dm.data(),       nullptr,     nullptr,
                         nullptr,         nullptr};
   CudaLauncher launch;
   const std::vector<double> ones(environments, 1.0);
@@ -970,12 +975,107 @@ void check_pcg(const BoxMesh& mesh, const FemBatch& batch, const std::vector<dou
   }
 }
 
+// Body b of the affine scene's batch as AffineBatch::add_body takes it.
+AffineBodyValues affine_values(const AffineBatch& batch, int b) {
+  const double volume = batch.volume()[b], weight = batch.weight_mass()[b];
+  return {batch.mass_matrix().data() + 144 * b,
+          batch.mass_matrix_inverse().data() + 144 * b,
+          weight > 0.0 ? weight / volume : 1000.0,
+          volume,
+          batch.orthogonality_stiffness()[b],
+          weight > 0.0,
+          batch.drive_stiffness()[b]};
+}
+
+// The map scene's pairs as barrier pairs (d_hat = 5 cm, so that most act) and as friction
+// contacts lagged with the test's tangent frames and mu lambda of 0.5 to 5 N.
+void add_potential_contacts(const MapScene& map, int environments, PotentialScene& s) {
+  Eigen::Matrix<double, 3, 2> basis;
+  basis << 1.0, 0.0, 0.0, 1.0, 0.0, 0.0;
+  const Eigen::Matrix<double, 12, 2> tangent = grip::solver::kernels::tangent_operator<4>(
+      grip::solver::kernels::point_triangle_relative_velocity_jacobian(Eigen::Vector2d(0.3, 0.3)),
+      basis);
+  for (int e = 0; e < environments; ++e) {
+    const int first = map.batch.vertex_begin()[e], n = map.batch.vertex_begin()[e + 1] - first;
+    s.pairs.begin_environment(n, 0.05, 1e3);
+    s.friction.begin_environment(n, 1e-5);
+    for (int k = e * kPairsPerEnvironment; k < (e + 1) * kPairsPerEnvironment; ++k) {
+      int vertex[4];
+      for (int c = 0; c < 4; ++c) vertex[c] = map.pair_vertex[4 * k + c] - first;
+      s.pairs.add(k % 2 == 1, vertex, 1e-9);
+      s.friction.add(vertex, tangent, 0.5 + 4.5 * double(k % 10) / 9.0);
+    }
+  }
+}
+
+// The step's constants from the map scene's state (its start) and the inertia inputs'
+// velocities, computed by the host launcher's stages: inertia targets, the damping's
+// stiffness, the collision vertices' start positions.
+void add_step_constants(const std::vector<double>& v, const std::vector<double>& gravity,
+                        PotentialScene& s) {
+  StepConstants& k = s.step;
+  SerialLauncher launch;
+  k.q_tilde.assign(k.q_start.size(), 0.0);
+  launch(s.fem.vertices().count, PredictionStage{s.fem.vertices(), k.q_start.data(), v.data(),
+                                                 k.h.data(), gravity.data(), k.q_tilde.data()});
+  launch(s.affine.bodies().count,
+         AffinePredictionStage{s.affine.bodies(), k.q_start.data(), v.data(), k.h.data(),
+                               gravity.data(), k.q_tilde.data()});
+  const int tets = s.fem.tets().count;
+  std::vector<double> energy(tets), gradient(12 * std::size_t(tets));
+  k.damping_stiffness.resize(144 * std::size_t(tets));
+  launch(tets, ElasticStage{s.fem.tets(), k.q_start.data(), true, energy.data(), gradient.data(),
+                            k.damping_stiffness.data()});
+  const std::vector<double> at_start(k.h.size(), 0.0);
+  k.start_positions.resize(3 * std::size_t(s.collision.vertex_count()));
+  launch(s.collision.vertex_count(),
+         PositionStage{s.collision.vertices(), k.q_start.data(), k.scripted_start.data(),
+                       k.scripted_target.data(), at_start.data(), k.start_positions.data()});
+  s.q = moved(k.q_start, v);
+}
+
+// The incremental potential's scene: each environment's soft box (damped, beta = 5 ms) and
+// affine bodies in one batch, with the map scene's collision vertices and pairs.
+PotentialScene potential_scene(const BoxMesh& mesh, const std::vector<double>& fem_q,
+                               int environments) {
+  const AffineScene affine = affine_scene(environments);
+  const MapScene map = map_scene(mesh, fem_q, affine, environments);
+  const InertiaInputs inertia = inertia_inputs(fem_q.size(), environments);
+  const std::size_t fem_dofs = mesh.rest.size(), affine_dofs = 12 * kAffinePerEnvironment;
+  PotentialScene s;
+  s.collision = map.batch;
+  std::vector<double> v;
+  for (int e = 0; e < environments; ++e) {
+    s.fem.begin_environment(static_cast<int>(fem_dofs + affine_dofs));
+    s.fem.add_body(0, mesh.rest, mesh.tets, {9.4e6, 0.45, 1100.0, 5e-3});
+    s.affine.begin_environment(static_cast<int>(fem_dofs + affine_dofs));
+    for (int b = 0; b < kAffinePerEnvironment; ++b) {
+      s.affine.add_body(static_cast<int>(fem_dofs) + 12 * b,
+                        affine_values(affine.batch, e * kAffinePerEnvironment + b));
+    }
+    v.insert(v.end(), inertia.v.begin() + e * fem_dofs, inertia.v.begin() + (e + 1) * fem_dofs);
+    v.insert(v.end(), affine.v.begin() + e * affine_dofs, affine.v.begin() + (e + 1) * affine_dofs);
+    s.step.drive_target.insert(s.step.drive_target.end(), fem_dofs, 0.0);
+    s.step.drive_target.insert(s.step.drive_target.end(), affine.target.begin() + e * affine_dofs,
+                               affine.target.begin() + (e + 1) * affine_dofs);
+    s.step.h.push_back(affine.h[e]);
+    s.step.progress.push_back(1.0);
+  }
+  s.fem.finish();
+  s.step.q_start = map.q;
+  s.step.scripted_start = map.start;
+  s.step.scripted_target = map.target;
+  add_potential_contacts(map, environments, s);
+  add_step_constants(v, affine.gravity, s);
+  return s;
+}
+
 SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double cell) {
   FemBatch batch;
   const int dofs = static_cast<int>(mesh.rest.size());
   for (int e = 0; e < environments; ++e) {
     batch.begin_environment(dofs);
-    batch.add_body(0, mesh.rest, mesh.tets, 9.4e6, 0.45, 1100.0);
+    batch.add_body(0, mesh.rest, mesh.tets, {9.4e6, 0.45, 1100.0, 0.0});
   }
   batch.finish();
   const std::vector<double> q = deformed_state(mesh, environments, cell);
@@ -999,6 +1099,7 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   check_pcg(mesh, batch, host.hessian, repeats, result);
   result.broad_phase = check_broad_phase(environments, repeats);
   check_halving(batch, q, repeats, result);
+  result.potential = check_potential(potential_scene(mesh, q, environments), repeats);
   return result;
 }
 
@@ -1021,6 +1122,29 @@ std::string device_description(std::string& name) {
       << "\", \"memory_gib\": " << properties.totalGlobalMem / double(1ull << 30)
       << ", \"driver\": " << driver << ", \"runtime\": " << runtime;
   return out.str();
+}
+
+// The broad phase's and the line search's fields of a row of gpu-check.json.
+void write_json_search(std::ostream& json, const SizeResult& r) {
+  json << ", \"broad_phase_device_ms\": " << r.broad_phase.device_ms
+       << ", \"broad_phase_host_ms\": " << r.broad_phase.host_ms
+       << ", \"broad_phase_device_mib_per_environment\": "
+       << r.broad_phase.bytes / r.environments / double(1 << 20)
+       << ", \"broad_phase_pairs\": " << r.broad_phase.pairs
+       << ", \"broad_phase_within_reach\": " << r.broad_phase.reachable
+       << ", \"broad_phase_watched_by_ccd\": " << r.broad_phase.watched
+       << ", \"broad_phase_identical\": " << (r.broad_phase.identical ? "true" : "false")
+       << ", \"halving_device_ms\": " << r.halving_device_ms
+       << ", \"halving_host_ms\": " << r.halving_host_ms << ", \"halving_most\": " << r.halving_most
+       << ", \"halving_identical\": " << (r.halving_identical ? "true" : "false")
+       << ", \"potential_device_ms\": " << r.potential.device_ms
+       << ", \"potential_host_ms\": " << r.potential.host_ms
+       << ", \"potential_energy_relative_difference\": " << r.potential.energy
+       << ", \"decrease_device_ms\": " << r.potential.decrease_device_ms
+       << ", \"decrease_host_ms\": " << r.potential.decrease_host_ms
+       << ", \"decrease_fewest_halvings\": " << r.potential.fewest_halvings
+       << ", \"decrease_most_halvings\": " << r.potential.most_halvings
+       << ", \"decrease_identical\": " << (r.potential.decrease_identical ? "true" : "false");
 }
 
 // One size's row of gpu-check.json.
@@ -1065,18 +1189,9 @@ void write_json_row(std::ostream& json, const SizeResult& r) {
        << ", \"pcg_iterations\": " << r.pcg_iterations
        << ", \"pcg_iteration_difference\": " << r.pcg_iteration_difference
        << ", \"pcg_converged\": " << (r.pcg_converged ? "true" : "false")
-       << ", \"pcg_solution_relative_difference\": " << r.pcg_solution
-       << ", \"broad_phase_device_ms\": " << r.broad_phase.device_ms
-       << ", \"broad_phase_host_ms\": " << r.broad_phase.host_ms
-       << ", \"broad_phase_device_mib_per_environment\": " << mib(r.broad_phase.bytes)
-       << ", \"broad_phase_pairs\": " << r.broad_phase.pairs
-       << ", \"broad_phase_within_reach\": " << r.broad_phase.reachable
-       << ", \"broad_phase_watched_by_ccd\": " << r.broad_phase.watched
-       << ", \"broad_phase_identical\": " << (r.broad_phase.identical ? "true" : "false")
-       << ", \"halving_device_ms\": " << r.halving_device_ms
-       << ", \"halving_host_ms\": " << r.halving_host_ms << ", \"halving_most\": " << r.halving_most
-       << ", \"halving_identical\": " << (r.halving_identical ? "true" : "false")
-       << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
+       << ", \"pcg_solution_relative_difference\": " << r.pcg_solution;
+  write_json_search(json, r);
+  json << ", \"pass\": " << (r.pass() ? "true" : "false") << "}";
 }
 
 // One size's row of gpu-check.md.
@@ -1097,7 +1212,16 @@ void write_markdown_row(std::ostream& md, const SizeResult& r) {
      << ", " << r.ccd_bound << " | " << r.inertia_device_ms << " | " << r.inertia_host_ms << " | "
      << r.inertia_target << ", " << r.inertia_energy << ", " << r.inertia_gradient << " | "
      << r.pcg_device_ms << " | " << r.pcg_host_ms << " | " << r.pcg_iterations << " | "
-     << r.pcg_iteration_difference << " | " << r.pcg_solution << " | " << (r.pass() ? "yes" : "NO")
+     << r.pcg_iteration_difference << " | " << r.pcg_solution << " | " << r.broad_phase.device_ms
+     << " | " << r.broad_phase.host_ms << " | " << r.broad_phase.pairs << ", "
+     << r.broad_phase.reachable << ", " << r.broad_phase.watched << " | "
+     << (r.broad_phase.identical ? "yes" : "NO") << " | " << r.halving_device_ms << " | "
+     << r.halving_host_ms << " | " << r.halving_most << " | "
+     << (r.halving_identical ? "yes" : "NO") << " | " << r.potential.device_ms << " | "
+     << r.potential.host_ms << " | " << r.potential.energy << " | "
+     << r.potential.decrease_device_ms << " | " << r.potential.decrease_host_ms << " | "
+     << r.potential.fewest_halvings << " to " << r.potential.most_halvings << " | "
+     << (r.potential.decrease_identical ? "yes" : "NO") << " | " << (r.pass() ? "yes" : "NO")
      << " |\n";
 }
 
@@ -1114,12 +1238,13 @@ void write_reports(const std::string& directory, const std::string& device,
           "step bound); "
           "FEM inertia (target, energy, gradient); block-Jacobi CG (the box's M + h^2 K, its "
           "bottom layer pinned); broad phase and reach filter (two facing sheets per "
-          "environment); step halving until no tet inverts\", "
+          "environment); step halving until no tet inverts; incremental potential (every "
+          "term, the box damped) and sufficient decrease\", "
           "\"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
        << ", \"sizes\": [";
-  md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly, CCD, CG, broad-phase "
-        "and step-halving stages on "
+  md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly, CCD, CG, broad-phase, "
+        "step-halving, incremental-potential and sufficient-decrease stages on "
      << gpu_name << ": " << tets_per_environment << " tets, " << kPairsPerEnvironment
      << " contact pairs (and as many friction contacts) and " << kAffinePerEnvironment
      << " affine bodies per environment; host: one core, serial launcher.\n\n"
@@ -1134,11 +1259,14 @@ void write_reports(const std::string& directory, const std::string& device,
         "(target, energy, gradient) | CG device ms | CG host ms | CG iterations | CG "
         "iteration diff | CG solution diff | broad phase device ms | broad phase host ms | "
         "candidates, within reach, watched by CCD | lists identical | halving device ms | halving "
-        "host ms | most halvings | halvings identical | within tolerance |\n"
+        "host ms | most halvings | halvings identical | potential device ms | potential host "
+        "ms | potential diff | decrease device ms | decrease host ms | halvings | decrease "
+        "identical | within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
         "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: "
         "| ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: "
-        "| ---: | ---: | --- | ---: | ---: | ---: | --- | --- |\n";
+        "| ---: | ---: | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | --- "
+        "| --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);

@@ -1,0 +1,420 @@
+// The data-parallel engine's incremental potential (solver/parallel/potential_stages.hpp) and
+// its line search's sufficient decrease (line_search_stages.hpp) on the host launchers, against
+// the CPU engine's IncrementalPotential::energy and armijo. Environments of two scenes where
+// every term acts: damped soft boxes, an affine box and a driven cube resting within d_hat of
+// a floor, a soft box on the affine box, each environment with its own velocities, step, d_hat
+// and kappa, its barrier over the pairs near it and its friction lagged at the step's start.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "solver/batch/model_batch.hpp"
+#include "solver/batch/tbb_launcher.hpp"
+#include "solver/environment.hpp"
+#include "solver/newton/line_search.hpp"
+#include "solver/newton/newton_solver.hpp"
+#include "solver/parallel/launch.hpp"
+#include "solver/parallel/line_search_stages.hpp"
+#include "solver/parallel/potential_arrays.hpp"
+#include "solver/parallel/potential_stages.hpp"
+#include "tests/solver/scene_builders.hpp"
+
+namespace grip::solver {
+namespace {
+
+using testing::driven_cube;
+using testing::rigid_box;
+using testing::soft_box;
+
+// Bodies `gap` (m) above a static floor, or above the affine box: every pair between them is
+// within d_hat when gap < d_hat.
+SceneDescription resting_scene(double gap, double d_hat, double dt) {
+  SceneDescription scene;
+  scene.sim.d_hat = d_hat;
+  scene.sim.dt = dt;
+  scene.sim.gravity = Eigen::Vector3d(0, 0, -9.81);
+  BodyDescription floor = rigid_box("floor", BodyType::kKinematic, {0.4, 0.3, 0.02}, {0, 0, -0.01});
+  BodyDescription soft = soft_box("soft", {0.03, 0.02, 0.02}, 0.01, {0.1, 0, 0.01 + gap}, 2e5);
+  soft.material.damping = 5e-3;
+  BodyDescription box =
+      rigid_box("box", BodyType::kAffine, {0.04, 0.03, 0.02}, {0.0, 0.0, 0.01 + gap});
+  box.material.density = 800.0;
+  BodyDescription on_box =
+      soft_box("soft on box", {0.02, 0.02, 0.01}, 0.01, {0.0, 0.0, 0.025 + 2 * gap}, 1e6);
+  on_box.material.damping = 2e-3;
+  BodyDescription link = driven_cube("link", {-0.1, 0, 0.01 + gap}, 2e4);
+  link.script.keyframes[1].pose.position.z() += 0.005;  // its drive pulls it up off the floor
+  scene.bodies = {floor, soft, box, on_box, link};
+  return scene;
+}
+
+// One environment as the CPU engine begins its step: random velocities, the step's targets,
+// the pairs near its start, the friction lagged there, the driven bodies' targets.
+struct CpuStep {
+  std::shared_ptr<const Model> model;
+  State state;
+  std::unique_ptr<NewtonSolver> solver;
+  NewtonStep step;
+  Vertices start;
+  Eigen::VectorXd q_drive;
+};
+
+CpuStep begin_cpu_step(std::shared_ptr<const Model> model, unsigned seed) {
+  const Environment env(model);
+  CpuStep c{model, env.state(), std::make_unique<NewtonSolver>(*model), {}, {}, {}};
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (Eigen::Index d = 0; d < c.state.v.size(); ++d) c.state.v[d] = 0.01 * unit(random);
+  c.step.h = model->sim().dt;
+  c.step.targets = step_targets(*model, c.state, c.step.h);
+  c.start = collision_positions(*model, c.state.q, c.step.targets, 0.0);
+  c.solver->begin_step(c.state, c.start, c.step, false);
+  c.q_drive = c.state.q;
+  for (std::size_t b = 0; b < model->bodies().size(); ++b) {
+    const BodyModel& body = model->bodies()[b];
+    body.kind->set_drive_target(body.local, c.step.targets.pose_target[b], c.q_drive);
+  }
+  return c;
+}
+
+template <class Vector>
+void append(std::vector<double>& to, const Vector& v) {
+  to.insert(to.end(), v.data(), v.data() + v.size());
+}
+
+// The same environments in the data-parallel engine's batches: pairs and friction contacts
+// copied from the CPU engine's step, the inertia targets and the damping's stiffness computed
+// by the stages.
+struct ParallelStep {
+  parallel::FemBatch fem;
+  parallel::AffineBatch affine;
+  parallel::CollisionBatch collision;
+  parallel::ContactPairs pairs;
+  parallel::FrictionContacts friction;
+  parallel::StepConstants step;
+  std::vector<double> gravity, v;
+
+  parallel::PotentialArrays<parallel::HostArray> arrays() const {
+    return {fem, affine, collision, pairs, friction, step};
+  }
+};
+
+void add_contacts(const CpuStep& c, ParallelStep& s) {
+  const Model& model = *c.model;
+  const int vertices = static_cast<int>(c.start.rows());
+  s.pairs.begin_environment(vertices, model.sim().d_hat, c.state.kappa);
+  for (const ContactCandidate& k : *c.step.near) {
+    if (!k.near_at_rest) s.pairs.add(k.edge_edge, k.vertex.data(), k.mollifier_eps);
+  }
+  s.friction.begin_environment(vertices, model.sim().eps_v * c.step.h);
+  for (const FrictionContact& f : c.solver->potential().friction().contacts()) {
+    s.friction.add(f.vertex.data(), f.tangent_operator, f.mu_lambda);
+  }
+}
+
+ParallelStep parallel_step(const std::vector<const CpuStep*>& steps) {
+  std::vector<const Model*> models;
+  for (const CpuStep* c : steps) models.push_back(c->model.get());
+  ParallelStep s;
+  s.fem = parallel::fem_batch(models);
+  s.affine = parallel::affine_batch(models);
+  s.collision = parallel::collision_batch(models);
+  for (const CpuStep* c : steps) {
+    add_contacts(*c, s);
+    parallel::StepConstants& k = s.step;
+    k.h.push_back(c->step.h);
+    k.progress.push_back(1.0);
+    append(k.q_start, c->state.q);
+    append(k.drive_target, c->q_drive);
+    append(k.scripted_start, c->step.targets.kinematic_start);
+    append(k.scripted_target, c->step.targets.kinematic_target);
+    append(k.start_positions, c->start);
+    append(s.gravity, c->state.gravity);
+    append(s.v, c->state.v);
+  }
+  parallel::SerialLauncher launch;
+  parallel::StepConstants& k = s.step;
+  k.q_tilde.assign(k.q_start.size(), 0.0);
+  launch(s.fem.vertices().count,
+         parallel::PredictionStage{s.fem.vertices(), k.q_start.data(), s.v.data(), k.h.data(),
+                                   s.gravity.data(), k.q_tilde.data()});
+  launch(s.affine.bodies().count,
+         parallel::AffinePredictionStage{s.affine.bodies(), k.q_start.data(), s.v.data(),
+                                         k.h.data(), s.gravity.data(), k.q_tilde.data()});
+  const int tets = s.fem.tets().count;
+  std::vector<double> energy(tets), gradient(12 * std::size_t(tets));
+  k.damping_stiffness.resize(144 * std::size_t(tets));
+  launch(tets, parallel::ElasticStage{s.fem.tets(), k.q_start.data(), true, energy.data(),
+                                      gradient.data(), k.damping_stiffness.data()});
+  return s;
+}
+
+// The CPU steps of the test: two scenes, each environment its own velocities.
+std::vector<CpuStep> cpu_steps() {
+  const auto near = Model::build(resting_scene(4e-4, 1e-3, 0.01));
+  const auto wide = Model::build(resting_scene(1.2e-3, 2e-3, 0.005));
+  std::vector<CpuStep> steps;
+  steps.push_back(begin_cpu_step(near, 1));
+  steps.push_back(begin_cpu_step(wide, 2));
+  steps.push_back(begin_cpu_step(near, 3));
+  return steps;
+}
+
+std::vector<const CpuStep*> pointers(const std::vector<CpuStep>& steps) {
+  std::vector<const CpuStep*> out;
+  for (const CpuStep& c : steps) out.push_back(&c);
+  return out;
+}
+
+// Each environment's DOFs moved by up to `reach` (m) per DOF from the step's start.
+std::vector<Eigen::VectorXd> moved(const std::vector<CpuStep>& steps, double reach, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<Eigen::VectorXd> q;
+  for (const CpuStep& c : steps) {
+    q.push_back(c.state.q);
+    for (Eigen::Index d = 0; d < q.back().size(); ++d) q.back()[d] += reach * unit(random);
+  }
+  return q;
+}
+
+double cpu_energy(const CpuStep& c, const Eigen::VectorXd& q) {
+  const Vertices x = collision_positions(*c.model, q, c.step.targets, 1.0);
+  return c.solver->potential().energy(q, x, *c.step.near);
+}
+
+template <class Launcher>
+std::vector<double> parallel_energy(const ParallelStep& s, const std::vector<Eigen::VectorXd>& q,
+                                    Launcher&& launch) {
+  std::vector<double> flat;
+  for (const Eigen::VectorXd& qe : q) append(flat, qe);
+  const auto arrays = s.arrays();
+  const parallel::PotentialBuffers b = arrays.buffers();
+  parallel::PotentialStorage<parallel::HostArray> storage(b);
+  std::vector<double> energy(b.environment_count);
+  parallel::incremental_potential(launch, b, flat.data(), storage.work(), energy.data());
+  return energy;
+}
+
+TEST(ParallelPotential, EveryTermActsInTheTestsScenes) {
+  const std::vector<CpuStep> steps = cpu_steps();
+  const ParallelStep s = parallel_step(pointers(steps));
+  for (int e = 0; e < 3; ++e) {
+    EXPECT_GT(s.pairs.pair_begin()[e + 1] - s.pairs.pair_begin()[e], 40) << e;
+    EXPECT_GT(s.friction.contact_begin()[e + 1] - s.friction.contact_begin()[e], 20) << e;
+  }
+  // Damped and undamped tets alike: the damping's stiffness is there and it is not zero.
+  EXPECT_GT(*std::max_element(s.fem.damping().begin(), s.fem.damping().end()), 0.0);
+  const std::vector<double>& stiffness = s.step.damping_stiffness;
+  EXPECT_GT(*std::max_element(stiffness.begin(), stiffness.end()), 0.0);
+}
+
+TEST(ParallelPotential, EnergiesMatchTheCpuEnginesAtTheStartAndMovedPoints) {
+  const std::vector<CpuStep> steps = cpu_steps();
+  const ParallelStep s = parallel_step(pointers(steps));
+  for (const double reach : {0.0, 5e-5, 1e-4}) {
+    const std::vector<Eigen::VectorXd> q = moved(steps, reach, 11);
+    const std::vector<double> serial = parallel_energy(s, q, parallel::SerialLauncher{});
+    const std::vector<double> tbb = parallel_energy(s, q, parallel::TbbLauncher{});
+    for (int e = 0; e < 3; ++e) {
+      const double cpu = cpu_energy(steps[e], q[e]);
+      EXPECT_NEAR(serial[e], cpu, 1e-12 * std::abs(cpu)) << "reach " << reach << " env " << e;
+      EXPECT_EQ(serial[e], tbb[e]);
+    }
+  }
+}
+
+// Each term's share of the energy lies far above the agreement's tolerance, so that the
+// agreement above holds every term to round-off: the barrier and friction (the CPU engine's
+// terms alone), and the damping (the parallel energy without the damping's stiffness).
+TEST(ParallelPotential, EachTermsShareIsFarAboveTheTolerance) {
+  const std::vector<CpuStep> steps = cpu_steps();
+  const std::vector<Eigen::VectorXd> q = moved(steps, 1e-4, 12);
+  const std::vector<double> whole =
+      parallel_energy(parallel_step(pointers(steps)), q, parallel::SerialLauncher{});
+  ParallelStep undamped = parallel_step(pointers(steps));
+  std::vector<double>& stiffness = undamped.step.damping_stiffness;
+  stiffness.assign(stiffness.size(), 0.0);
+  const std::vector<double> without_damping =
+      parallel_energy(undamped, q, parallel::SerialLauncher{});
+  for (int e = 0; e < 3; ++e) {
+    const CpuStep& c = steps[e];
+    const Vertices x = collision_positions(*c.model, q[e], c.step.targets, 1.0);
+    double barrier = 0.0, friction = 0.0;
+    const PotentialPoint at{q[e], x, *c.step.near};
+    c.solver->potential().barrier().add_energy(at, barrier);
+    c.solver->potential().friction().add_energy(at, friction);
+    const double h2 = c.step.h * c.step.h, scale = 1e-6 * std::abs(whole[e]);
+    EXPECT_GT(h2 * barrier, scale) << "env " << e;
+    EXPECT_GT(h2 * friction, scale) << "env " << e;
+    EXPECT_GT(whole[e] - without_damping[e], scale) << "env " << e;
+  }
+}
+
+// The damping a DampingStage adds to tet t at the batch's DOFs q: its energy, gradient (12)
+// and Hessian (144).
+struct TetDamping {
+  double energy = 0.0;
+  std::vector<double> gradient, hessian;
+};
+
+TetDamping damping_of(const ParallelStep& s, const std::vector<double>& q, int t) {
+  const auto tets = static_cast<std::size_t>(s.fem.tets().count);
+  std::vector<double> energy(tets), gradient(12 * tets), hessian(144 * tets);
+  const parallel::StepConstants& k = s.step;
+  const parallel::DampingStage stage{
+      s.fem.tets(), q.data(),      k.q_start.data(), k.damping_stiffness.data(),
+      k.h.data(),   energy.data(), gradient.data(),  hessian.data()};
+  stage(t);
+  return {energy[t],
+          {gradient.begin() + 12 * t, gradient.begin() + 12 * (t + 1)},
+          {hessian.begin() + 144 * t, hessian.begin() + 144 * (t + 1)}};
+}
+
+// Beta / h K exactly as the Hessian, and a gradient that central differences of the energy
+// confirm, on every damped tet of the first environment; an undamped tet gets nothing.
+TEST(ParallelPotential, DampingsDerivativesAreItsEnergys) {
+  const std::vector<CpuStep> steps = cpu_steps();
+  const ParallelStep s = parallel_step(pointers(steps));
+  std::vector<double> q;
+  for (const Eigen::VectorXd& qe : moved(steps, 1e-4, 14)) append(q, qe);
+  int damped = 0;
+  for (int t = 0; t < s.fem.tet_begin()[1]; ++t) {
+    const TetDamping d = damping_of(s, q, t);
+    const double beta = s.fem.damping()[t];
+    if (beta == 0.0) {
+      EXPECT_EQ(d.energy, 0.0);
+      continue;
+    }
+    ++damped;
+    const double c = beta / s.step.h[0];
+    EXPECT_GT(d.energy, 0.0);
+    for (int k = 0; k < 144; ++k)
+      EXPECT_EQ(d.hessian[k], c * s.step.damping_stiffness[144 * t + k]);
+    for (int k = 0; k < 12; ++k) {
+      const int dof = s.fem.tet_dofs()[4 * t + k / 3] + k % 3;
+      const double step = 1e-7;
+      std::vector<double> plus = q, minus = q;
+      plus[dof] += step;
+      minus[dof] -= step;
+      const double slope =
+          (damping_of(s, plus, t).energy - damping_of(s, minus, t).energy) / (2.0 * step);
+      EXPECT_NEAR(d.gradient[k], slope, 1e-6 * std::abs(d.gradient[k]) + 1e-12);
+    }
+  }
+  EXPECT_GT(damped, 10);
+}
+
+struct Decrease {
+  std::vector<double> alpha, energy, slope;
+  std::vector<int> halvings, status;
+};
+
+// The sufficient decrease of each environment's step p[e] from q[e], its first fraction alpha.
+template <class Launcher>
+Decrease search(const ParallelStep& s, const std::vector<Eigen::VectorXd>& q,
+                const std::vector<Eigen::VectorXd>& p, const std::vector<Eigen::VectorXd>& g,
+                const std::vector<unsigned char>& held, Launcher&& launch) {
+  std::vector<double> flat_q, flat_p, flat_g;
+  for (std::size_t e = 0; e < q.size(); ++e) {
+    append(flat_q, q[e]);
+    append(flat_p, p[e]);
+    append(flat_g, g[e]);
+  }
+  const std::size_t n = q.size();
+  Decrease d{std::vector<double>(n, 1.0)};
+  const auto arrays = s.arrays();
+  const parallel::PotentialBuffers potential = arrays.buffers();
+  parallel::PotentialStorage<parallel::HostArray> work(potential);
+  parallel::SufficientDecreaseStorage<parallel::HostArray> storage(s.collision.dof_begin());
+  const parallel::SufficientDecreaseBuffers b =
+      storage.buffers(potential, work.work(), flat_q.data(), flat_p.data(), flat_g.data(),
+                      held.data(), d.alpha.data());
+  parallel::sufficient_decrease(launch, b);
+  d.energy = storage.energy;
+  d.slope = storage.slope;
+  d.halvings = storage.halvings;
+  d.status = storage.status;
+  return d;
+}
+
+// Steps for the test's environments: down the gradient so far that Armijo halves a few times
+// (a different length each), and, in the last environment, up it (no step decreases).
+struct Steps {
+  std::vector<Eigen::VectorXd> q, g, p;
+};
+
+Steps descent_steps(const std::vector<CpuStep>& steps, bool last_ascends) {
+  Steps out;
+  out.q = moved(steps, 5e-5, 13);
+  const double length[3] = {3e-3, 1e-2, 3e-2};  // m, the largest DOF change of the full step
+  for (std::size_t e = 0; e < steps.size(); ++e) {
+    const CpuStep& c = steps[e];
+    const Vertices x = collision_positions(*c.model, out.q[e], c.step.targets, 1.0);
+    Eigen::VectorXd g;
+    c.solver->potential().gradient(out.q[e], x, *c.step.near, g);
+    for (Eigen::Index d = 0; d < g.size(); ++d) {
+      if (c.model->prescribed()[d]) g[d] = 0.0;
+    }
+    const double sign = last_ascends && e + 1 == steps.size() ? 1.0 : -1.0;
+    out.p.push_back(sign * length[e] / g.lpNorm<Eigen::Infinity>() * g);
+    out.g.push_back(g);
+  }
+  return out;
+}
+
+TEST(ParallelLineSearch, SufficientDecreaseMatchesTheCpuEnginesArmijo) {
+  const std::vector<CpuStep> steps = cpu_steps();
+  const ParallelStep s = parallel_step(pointers(steps));
+  const Steps st = descent_steps(steps, true);
+  const std::vector<unsigned char> held(3, 0);
+  const Decrease serial = search(s, st.q, st.p, st.g, held, parallel::SerialLauncher{});
+  const Decrease tbb = search(s, st.q, st.p, st.g, held, parallel::TbbLauncher{});
+  int halved = 0;
+  for (int e = 0; e < 3; ++e) {
+    const CpuStep& c = steps[e];
+    double alpha = 1.0;
+    int halvings = 0;
+    const double energy = cpu_energy(c, st.q[e]);
+    const double slope = st.g[e].dot(st.p[e]);
+    const bool decreased = armijo(c.solver->potential(), *c.model, c.step.targets, *c.step.near,
+                                  st.q[e], st.p[e], energy, slope, false, alpha, halvings);
+    EXPECT_EQ(serial.status[e], decreased ? parallel::kSufficientDecrease : parallel::kNoDecrease);
+    EXPECT_EQ(serial.alpha[e], alpha) << "env " << e;
+    EXPECT_EQ(serial.halvings[e], halvings) << "env " << e;
+    EXPECT_NEAR(serial.energy[e], energy, 1e-12 * std::abs(energy));
+    EXPECT_NEAR(serial.slope[e], slope, 1e-12 * std::abs(slope));
+    EXPECT_EQ(serial.alpha[e], tbb.alpha[e]);
+    EXPECT_EQ(serial.halvings[e], tbb.halvings[e]);
+    halved += halvings > 0 && decreased;
+  }
+  EXPECT_GE(halved, 2);  // the descending steps were cut, by different counts
+  EXPECT_NE(serial.halvings[0], serial.halvings[1]);
+  EXPECT_EQ(serial.status[2], parallel::kNoDecrease);  // the ascent fails, as the CPU's does
+}
+
+// A held step takes its alpha as it is; an environment's search is the same alone as beside
+// others, including one that halves to the end.
+TEST(ParallelLineSearch, SufficientDecreaseIsolatesEnvironments) {
+  const std::vector<CpuStep> steps = cpu_steps();
+  const ParallelStep s = parallel_step(pointers(steps));
+  const Steps st = descent_steps(steps, true);
+  const Decrease together = search(s, st.q, st.p, st.g, {0, 1, 0}, parallel::SerialLauncher{});
+  EXPECT_EQ(together.status[1], parallel::kSufficientDecrease);
+  EXPECT_EQ(together.alpha[1], 1.0);
+  EXPECT_EQ(together.halvings[1], 0);
+  for (int e = 0; e < 3; ++e) {
+    const ParallelStep alone = parallel_step({&steps[e]});
+    const Decrease d = search(alone, {st.q[e]}, {st.p[e]}, {st.g[e]},
+                              {static_cast<unsigned char>(e == 1)}, parallel::SerialLauncher{});
+    EXPECT_EQ(d.alpha[0], together.alpha[e]) << "env " << e;
+    EXPECT_EQ(d.halvings[0], together.halvings[e]) << "env " << e;
+    EXPECT_EQ(d.status[0], together.status[e]) << "env " << e;
+    EXPECT_EQ(d.energy[0], together.energy[e]) << "env " << e;
+  }
+}
+
+}  // namespace
+}  // namespace grip::solver
