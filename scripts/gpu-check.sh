@@ -3,12 +3,13 @@
 # headers: from .gpu-carry/, which scripts/gpu-carry.sh fills, or the system's), runs it, and
 # writes gpu-check.json, gpu-check.md and the GPU's nvidia-smi report into OUTDIR. It compares
 # the data-parallel engine's stages (elastic, FEM inertia, barrier, CCD, friction, affine, map,
-# Hessian blocks, block-Jacobi CG, broad phase, step halving, incremental potential and
-# sufficient decrease) on the GPU with the host launcher on the same batches, and times them
-# at 1 to 512 environments (docs/architecture.md, "Engines"). Sized to
-# finish well inside 8 minutes: the build takes about 3 minutes of one core, the host's share of
-# the largest batch (1.2 million tets, 262,144 pairs and as many friction contacts, one core)
-# well under one. Exit status:
+# Hessian blocks, block-Jacobi CG, broad phase, step halving, incremental potential, Newton
+# system and sufficient decrease) on the GPU with the host launcher on the same batches, and
+# times them at 1 to 512 environments (docs/architecture.md, "Engines"). Sized to finish well
+# inside 8 minutes: the build takes about 4 minutes of one core, its sources compiled side by
+# side (2 minutes on two cores), and the host's share of the largest batch (1.2 million tets,
+# 262,144 pairs and as many friction contacts) under two minutes of one core, 34 s of it the
+# potential check's (its scene, Newton structure, Newton system and search). Exit status:
 # grip-gpu-check's (0 all within tolerance, 1 a difference outside it, 2 no device), or the
 # build's.
 #   scripts/gpu-check.sh OUTDIR [grip-gpu-check options]
@@ -22,18 +23,28 @@ eigen=$root/.gpu-carry/eigen3
 [[ -f $eigen/Eigen/Core ]] || { echo "gpu-check: no Eigen headers: run scripts/gpu-carry.sh first" >&2; exit 2; }
 nvcc=$(command -v nvcc || echo /usr/local/cuda/bin/nvcc)
 mkdir -p "$root/build-gpu"
-# The flags solver/CMakeLists.txt gives grip-gpu-check.
+# The flags solver/CMakeLists.txt gives grip-gpu-check. Each source compiles in a job of its
+# own (nvcc takes several files one after the other), then one link.
+flags=(-std=c++20 -O3 -arch=sm_90 -I"$root" -isystem "$eigen" --expt-relaxed-constexpr
+  -diag-suppress=20012 -Werror=all-warnings -Xcompiler=-Wall,-Wextra,-Werror)
+sources=(solver/parallel/cuda/device_check.cu solver/parallel/cuda/broad_phase_check.cu
+  solver/parallel/cuda/potential_check.cu solver/parallel/fem_batch.cpp
+  solver/parallel/surface_batch.cpp solver/parallel/broad_phase.cpp
+  solver/parallel/affine_batch.cpp solver/parallel/collision_batch.cpp
+  solver/parallel/block_assembly.cpp solver/parallel/block_pcg.cpp
+  solver/parallel/contact_stages.cpp solver/parallel/friction_stages.cpp
+  solver/parallel/derivative_stages.cpp)
 start=$(date +%s)
-"$nvcc" -std=c++20 -O3 -arch=sm_90 -I"$root" -isystem "$eigen" --expt-relaxed-constexpr \
-  -diag-suppress=20012 -Werror=all-warnings -Xcompiler=-Wall,-Wextra,-Werror \
-  "$root/solver/parallel/cuda/device_check.cu" "$root/solver/parallel/cuda/broad_phase_check.cu" \
-  "$root/solver/parallel/cuda/potential_check.cu" \
-  "$root/solver/parallel/fem_batch.cpp" "$root/solver/parallel/surface_batch.cpp" \
-  "$root/solver/parallel/broad_phase.cpp" \
-  "$root/solver/parallel/affine_batch.cpp" "$root/solver/parallel/collision_batch.cpp" \
-  "$root/solver/parallel/block_assembly.cpp" "$root/solver/parallel/block_pcg.cpp" \
-  "$root/solver/parallel/contact_stages.cpp" "$root/solver/parallel/friction_stages.cpp" \
-  -o "$root/build-gpu/grip-gpu-check"
+objects=() jobs=()
+for source in "${sources[@]}"; do
+  object=$root/build-gpu/$(basename "${source%.*}").o
+  "$nvcc" "${flags[@]}" -c "$root/$source" -o "$object" &
+  jobs+=($!) objects+=("$object")
+done
+failed=0
+for job in "${jobs[@]}"; do wait "$job" || failed=$?; done
+((failed == 0)) || { echo "gpu-check: the build failed" >&2; exit "$failed"; }
+"$nvcc" -arch=sm_90 "${objects[@]}" -o "$root/build-gpu/grip-gpu-check"
 echo "gpu-check: built in $(($(date +%s) - start)) s"
 nvidia-smi >"$out/nvidia-smi.txt" 2>&1 || true
 "$root/build-gpu/grip-gpu-check" "$out" "$@"

@@ -113,19 +113,24 @@ struct BlockAssemblyStage {
 };
 
 // An affine body's own 12x12 Hessian in its DOFs: M (inertia) + (k / m) M (a drive) + the
-// orthogonality block on the rows of A (OrthogonalityStage's, projected).
+// orthogonality block on the rows of A (OrthogonalityStage's, projected); with `h`, the
+// incremental potential's M + h^2 ((k / m) M + orthogonality).
 struct AffineHessianStage {
   AffineBuffers bodies;
   const double* orthogonality = nullptr;  // 81 per body
   double* hessian = nullptr;              // 144 per body, column-major
+  const double* h = nullptr;              // per environment; null: the terms unscaled
 
   GRIP_HD void operator()(int i) const {
     const double* m = bodies.mass_matrix + 144 * i;
-    const double scale = 1.0 + bodies.drive_stiffness[i] / m[0];
-    double* h = hessian + 144 * i;
-    for (int k = 0; k < 144; ++k) h[k] = scale * m[k];
+    const double step = h == nullptr ? 1.0 : h[bodies.environment[i]], h2 = step * step;
+    const double scale = 1.0 + h2 * (bodies.drive_stiffness[i] / m[0]);
+    double* out = hessian + 144 * i;
+    for (int k = 0; k < 144; ++k) out[k] = scale * m[k];
     for (int c = 0; c < 9; ++c) {
-      for (int r = 0; r < 9; ++r) h[12 * (3 + c) + 3 + r] += orthogonality[81 * i + 9 * c + r];
+      for (int r = 0; r < 9; ++r) {
+        out[12 * (3 + c) + 3 + r] += h2 * orthogonality[81 * i + 9 * c + r];
+      }
     }
   }
 };

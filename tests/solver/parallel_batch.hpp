@@ -112,20 +112,28 @@ struct Assembled {
   std::vector<double> blocks;  // 9 per block
 };
 
-inline Eigen::SparseMatrix<double> environment_lower(const Batch& b, const Assembled& a, int e) {
-  const int first = b.collision.dof_begin()[e], n = b.collision.dof_begin()[e + 1] - first;
+// Environment e's blocks (9 per block of `pattern`) as the lower triangle of a sparse matrix over
+// its own DOFs, [dof_begin[e], dof_begin[e + 1]) of the batch's.
+inline Eigen::SparseMatrix<double> lower_triangle(const parallel::BlockPattern& pattern,
+                                                  const std::vector<double>& blocks,
+                                                  const std::vector<int>& dof_begin, int e) {
+  const int first = dof_begin[e], n = dof_begin[e + 1] - first;
   Triplets triplets;
-  for (int k = a.pattern.environment_begin[e]; k < a.pattern.environment_begin[e + 1]; ++k) {
+  for (int k = pattern.environment_begin[e]; k < pattern.environment_begin[e + 1]; ++k) {
     for (int c = 0; c < 3; ++c) {
       for (int r = 0; r < 3; ++r) {
-        const int row = 3 * a.pattern.row[k] + r - first, col = 3 * a.pattern.column[k] + c - first;
-        if (row >= col) triplets.emplace_back(row, col, a.blocks[9 * k + 3 * c + r]);
+        const int row = 3 * pattern.row[k] + r - first, col = 3 * pattern.column[k] + c - first;
+        if (row >= col) triplets.emplace_back(row, col, blocks[9 * k + 3 * c + r]);
       }
     }
   }
   Eigen::SparseMatrix<double> lower(n, n);
   lower.setFromTriplets(triplets.begin(), triplets.end());
   return lower;
+}
+
+inline Eigen::SparseMatrix<double> environment_lower(const Batch& b, const Assembled& a, int e) {
+  return lower_triangle(a.pattern, a.blocks, b.collision.dof_begin(), e);
 }
 
 // The CPU engine's lower-triangle triplets of environment e's pairs' Hessians (Stencil::scatter).

@@ -44,6 +44,7 @@
 #include "solver/parallel/cuda/broad_phase_check.cuh"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
 #include "solver/parallel/cuda/potential_check.cuh"
+#include "solver/parallel/cuda/relative_difference.cuh"
 #include "solver/parallel/elastic_stages.hpp"
 #include "solver/parallel/fem_batch.hpp"
 #include "solver/parallel/friction_stages.hpp"
@@ -254,21 +255,6 @@ InertiaValues device_inertia(const FemBatch& batch, const std::vector<double>& q
                    gravity.data(), q_tilde.data(), energy.data(), gradient.data());
   });
   return {energy.to_host(), gradient.to_host(), q_tilde.to_host()};
-}
-
-// The largest |a - b| over blocks of `block` values, each relative to its block's largest |b|.
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b,
-                           std::size_t block) {
-  double worst = 0.0;
-  for (std::size_t first = 0; first < b.size(); first += block) {
-    double scale = 0.0, difference = 0.0;
-    for (std::size_t i = first; i < std::min(first + block, b.size()); ++i) {
-      scale = std::max(scale, std::abs(b[i]));
-      difference = std::max(difference, std::abs(a[i] - b[i]));
-    }
-    if (difference > 0.0) worst = std::max(worst, difference / std::max(scale, 1e-300));
-  }
-  return worst;
 }
 
 constexpr int kPairsPerEnvironment = 512;
@@ -843,6 +829,7 @@ struct SizeResult {
            inertia_gradient <= kGradientTolerance && pcg_converged &&
            pcg_solution <= kPcgTolerance && pcg_iteration_difference <= kPcgIterationSlack &&
            broad_phase.identical && halving_identical && potential.energy <= kEnergyTolerance &&
+           potential.gradient <= kGradientTolerance && potential.hessian <= kHessianTolerance &&
            potential.decrease_identical;
   }
 };
@@ -1140,6 +1127,11 @@ void write_json_search(std::ostream& json, const SizeResult& r) {
        << ", \"potential_device_ms\": " << r.potential.device_ms
        << ", \"potential_host_ms\": " << r.potential.host_ms
        << ", \"potential_energy_relative_difference\": " << r.potential.energy
+       << ", \"newton_system_device_ms\": " << r.potential.derivatives_device_ms
+       << ", \"newton_system_host_ms\": " << r.potential.derivatives_host_ms
+       << ", \"newton_system_blocks\": " << r.potential.blocks
+       << ", \"newton_gradient_relative_difference\": " << r.potential.gradient
+       << ", \"newton_matrix_relative_difference\": " << r.potential.hessian
        << ", \"decrease_device_ms\": " << r.potential.decrease_device_ms
        << ", \"decrease_host_ms\": " << r.potential.decrease_host_ms
        << ", \"decrease_fewest_halvings\": " << r.potential.fewest_halvings
@@ -1219,6 +1211,8 @@ void write_markdown_row(std::ostream& md, const SizeResult& r) {
      << r.halving_host_ms << " | " << r.halving_most << " | "
      << (r.halving_identical ? "yes" : "NO") << " | " << r.potential.device_ms << " | "
      << r.potential.host_ms << " | " << r.potential.energy << " | "
+     << r.potential.derivatives_device_ms << " | " << r.potential.derivatives_host_ms << " | "
+     << r.potential.blocks << " | " << r.potential.gradient << ", " << r.potential.hessian << " | "
      << r.potential.decrease_device_ms << " | " << r.potential.decrease_host_ms << " | "
      << r.potential.fewest_halvings << " to " << r.potential.most_halvings << " | "
      << (r.potential.decrease_identical ? "yes" : "NO") << " | " << (r.pass() ? "yes" : "NO")
@@ -1239,12 +1233,13 @@ void write_reports(const std::string& directory, const std::string& device,
           "FEM inertia (target, energy, gradient); block-Jacobi CG (the box's M + h^2 K, its "
           "bottom layer pinned); broad phase and reach filter (two facing sheets per "
           "environment); step halving until no tet inverts; incremental potential (every "
-          "term, the box damped) and sufficient decrease\", "
+          "term, the box damped), Newton system (gradient, matrix blocks) and sufficient "
+          "decrease\", "
           "\"pairs_per_environment\": "
        << kPairsPerEnvironment << ", \"affine_bodies_per_environment\": " << kAffinePerEnvironment
        << ", \"sizes\": [";
   md << "Elastic, FEM inertia, barrier, friction, affine, map, assembly, CCD, CG, broad-phase, "
-        "step-halving, incremental-potential and sufficient-decrease stages on "
+        "step-halving, incremental-potential, Newton-system and sufficient-decrease stages on "
      << gpu_name << ": " << tets_per_environment << " tets, " << kPairsPerEnvironment
      << " contact pairs (and as many friction contacts) and " << kAffinePerEnvironment
      << " affine bodies per environment; host: one core, serial launcher.\n\n"
@@ -1260,13 +1255,15 @@ void write_reports(const std::string& directory, const std::string& device,
         "iteration diff | CG solution diff | broad phase device ms | broad phase host ms | "
         "candidates, within reach, watched by CCD | lists identical | halving device ms | halving "
         "host ms | most halvings | halvings identical | potential device ms | potential host "
-        "ms | potential diff | decrease device ms | decrease host ms | halvings | decrease "
+        "ms | potential diff | Newton system device ms | Newton system host ms | blocks | Newton "
+        "system diffs (gradient, matrix) | decrease device ms | decrease host ms | halvings | "
+        "decrease "
         "identical | within tolerance |\n"
-     << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- "
-        "| ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: "
-        "| ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: "
-        "| ---: | ---: | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | --- "
-        "| --- | --- |\n";
+     << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+        "--- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | "
+        "---: | ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: "
+        "| ---: | ---: | --- | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | "
+        "---: | ---: | --- | ---: | ---: | --- | --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);

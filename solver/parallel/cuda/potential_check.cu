@@ -4,9 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "solver/parallel/cuda/cuda_launcher.cuh"
+#include "solver/parallel/cuda/relative_difference.cuh"
+#include "solver/parallel/derivative_stages.hpp"
 #include "solver/parallel/launch.hpp"
 #include "solver/parallel/line_search_stages.hpp"
 
@@ -116,6 +119,50 @@ std::vector<double> device_energies(const PotentialScene& s, int repeats, double
   return energy.to_host();
 }
 
+// Every environment's gradient (the batch's DOFs) and Newton matrix (9 per block).
+struct NewtonSystem {
+  std::vector<double> gradient, blocks;
+};
+
+template <template <class> class Array, class Launcher>
+NewtonSystem newton_system(const PotentialScene& s, const DerivativeStructure& structure,
+                           Launcher& launch, int repeats, double& ms) {
+  const PotentialArrays<Array> arrays(s.fem, s.affine, s.collision, s.pairs, s.friction, s.step);
+  const PotentialBuffers b = arrays.buffers();
+  PotentialStorage<Array> work(b);
+  DerivativeStorage<Array> storage(structure, s.fem, s.affine, s.collision);
+  const Array<double> q(s.q);
+  Array<double> gradient(s.q.size()), blocks(9 * structure.pattern.row.size());
+  const auto run = [&] {
+    incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
+                                      storage.work(), true, gradient.data(), blocks.data());
+  };
+  if constexpr (std::is_same_v<Launcher, CudaLauncher>) {
+    ms = device_median_ms(repeats, run);
+    return {gradient.to_host(), blocks.to_host()};
+  } else {
+    const auto start = std::chrono::steady_clock::now();
+    run();
+    ms = milliseconds_since(start);
+    return {gradient, blocks};
+  }
+}
+
+void check_derivatives(const PotentialScene& s, int repeats, PotentialCheck& check) {
+  const DerivativeStructure structure =
+      derivative_structure(s.fem, s.affine, s.collision, s.pairs, s.friction);
+  SerialLauncher serial;
+  CudaLauncher cuda;
+  const NewtonSystem host =
+      newton_system<HostArray>(s, structure, serial, repeats, check.derivatives_host_ms);
+  const NewtonSystem device =
+      newton_system<DeviceArray>(s, structure, cuda, repeats, check.derivatives_device_ms);
+  check.gradient =
+      relative_difference(device.gradient, host.gradient, std::size_t(s.collision.dof_begin()[1]));
+  check.hessian = relative_difference(device.blocks, host.blocks, 9);
+  check.blocks = static_cast<int>(structure.pattern.row.size());
+}
+
 }  // namespace
 
 PotentialCheck check_potential(const PotentialScene& scene, int repeats) {
@@ -126,10 +173,8 @@ PotentialCheck check_potential(const PotentialScene& scene, int repeats) {
   const std::vector<double> host = host_energies(arrays, scene.q);
   check.host_ms = milliseconds_since(start);
   const std::vector<double> device = device_energies(scene, repeats, check.device_ms);
-  for (std::size_t e = 0; e < host.size(); ++e) {
-    const double difference = std::abs(device[e] - host[e]) / std::max(std::abs(host[e]), 1e-300);
-    check.energy = std::max(check.energy, std::isnan(difference) ? 1.0 : difference);
-  }
+  check.energy = relative_difference(device, host, 1);
+  check_derivatives(scene, repeats, check);
   const DownhillStep step = downhill_step(scene, arrays);
   const Search on_host = host_search(scene, arrays, step, check.decrease_host_ms);
   const Search on_device = device_search(scene, step, repeats, check.decrease_device_ms);
