@@ -2,8 +2,9 @@
 // IPC's barrier of one contact (a point and a triangle, or two edges) in its four vertices'
 // positions: kappa m b(d) with d the unsquared distance, b the log barrier (barrier.hpp) and m
 // the mollifier of nearly parallel edges (1 for a point and a triangle), with its 12-vector
-// gradient and, on request, its 12x12 Hessian (not projected), or its value alone. The CPU
-// engine's BarrierTerm and the data-parallel engine's barrier stage both evaluate it.
+// gradient and, on request, its 12x12 Hessian (not projected), or its value alone; and its
+// normal force. The CPU engine's BarrierTerm and the data-parallel engine's stages both
+// evaluate them.
 #include <Eigen/Core>
 #include <cmath>
 
@@ -109,6 +110,15 @@ GRIP_HD inline double contact_barrier_value(bool edge_edge, double mollifier_eps
   const double b = barrier(std::sqrt(s), d_hat);
   if (!edge_edge) return kappa * b;
   return kappa * edge_edge_mollifier(x[0], x[1], x[2], x[3], mollifier_eps) * b;
+}
+
+// kappa m |b'(d)| (N), the contact's normal force (a friction lag's lambda); 0 from d_hat on.
+GRIP_HD inline double contact_normal_force(bool edge_edge, double mollifier_eps,
+                                           const Eigen::Vector3d x[4], double d_hat, double kappa) {
+  const double d = std::sqrt(contact_squared_distance(edge_edge, x));
+  if (!(d < d_hat)) return 0.0;
+  const double m = edge_edge ? edge_edge_mollifier(x[0], x[1], x[2], x[3], mollifier_eps) : 1.0;
+  return -kappa * m * barrier_first_derivative(d, d_hat);
 }
 
 }  // namespace grip::solver::kernels

@@ -2,9 +2,7 @@
 
 #include <cmath>
 
-#include "solver/kernels/barrier.hpp"
 #include "solver/kernels/contact_barrier.hpp"
-#include "solver/kernels/edge_edge_mollifier.hpp"
 #include "solver/kernels/psd_projection.hpp"
 #include "solver/potential/stencil.hpp"
 #include "solver/potential/stencil_positions.hpp"
@@ -65,11 +63,9 @@ ContactForce BarrierTerm::contact_force(const ContactCandidate& c,
   force.distance = std::sqrt(kernels::contact_squared_distance(c.edge_edge, x));
   const kernels::ContactBarrier b = barrier_of(c, x, d_hat, kappa_, false);
   force.force = -b.gradient;
-  double m = 1.0;
-  if (c.edge_edge) m = kernels::edge_edge_mollifier(x[0], x[1], x[2], x[3], c.mollifier_eps);
-  force.magnitude = force.distance < d_hat && !c.near_at_rest
-                        ? -kappa_ * m * kernels::barrier_first_derivative(force.distance, d_hat)
-                        : 0.0;
+  force.magnitude = c.near_at_rest ? 0.0
+                                   : kernels::contact_normal_force(c.edge_edge, c.mollifier_eps, x,
+                                                                   d_hat, kappa_);
   return force;
 }
 

@@ -1,6 +1,6 @@
 #include "solver/potential/friction_lag.hpp"
 
-#include "solver/contact/contact_frame.hpp"
+#include "solver/kernels/contact_frame.hpp"
 
 namespace grip::solver {
 
@@ -14,7 +14,8 @@ std::vector<FrictionContact> lag_friction(const BarrierTerm& barrier, const Vert
     if (force.magnitude <= 0.0) continue;
     Eigen::Vector3d x[4];
     for (int i = 0; i < 4; ++i) x[i] = positions.row(c.vertex[i]);
-    const ContactFrame frame = c.edge_edge ? edge_edge_frame(x) : point_triangle_frame(x);
+    const kernels::ContactFrame frame =
+        c.edge_edge ? kernels::edge_edge_frame(x) : kernels::point_triangle_frame(x);
     contacts.push_back(
         {c.vertex, c.edge_edge, c.friction * force.magnitude, frame.tangent_operator()});
   }

@@ -7,6 +7,8 @@
 
 #include "solver/parallel/broad_phase.hpp"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
+#include "solver/parallel/cuda/relative_difference.cuh"
+#include "solver/parallel/friction_lag_stages.hpp"
 #include "solver/parallel/launch.hpp"
 #include "solver/parallel/reach_stages.hpp"
 
@@ -182,6 +184,86 @@ void run_on_host(const SheetScene& scene, HostBroadPhase& host, ReachStorage<Hos
   check.pairs = host.count();
 }
 
+template <class T>
+std::vector<T> host_copy(const std::vector<T>& v) {
+  return v;
+}
+template <class T>
+std::vector<T> host_copy(const DeviceArray<T>& v) {
+  return v.to_host();
+}
+
+// The candidates as the friction lag reads them (arrays in the launcher's memory).
+struct LagInputs {
+  int count = 0, environments = 0;
+  const int* vertex = nullptr;
+  const unsigned char* edge_edge = nullptr;
+  const unsigned char* near_at_rest = nullptr;
+  const double* friction = nullptr;
+  const double* mollifier_eps = nullptr;
+  const int* environment = nullptr;
+  const int* environment_begin = nullptr;
+  const double* positions = nullptr;
+  const double* d_hat = nullptr;
+  const double* kappa = nullptr;
+};
+
+struct LagResult {
+  std::vector<int> vertex, environment, contact_begin;
+  std::vector<double> mu_lambda, tangent;
+};
+
+template <template <class> class Array, class Launcher>
+LagResult friction_lag(Launcher& launch, const LagInputs& in) {
+  Array<int> keep(std::size_t(in.count) + 1);
+  Array<double> mu_lambda(in.count), tangent(24 * std::size_t(in.count));
+  const FrictionLagBuffers b{
+      in.count,        in.vertex,        in.edge_edge,     in.near_at_rest,
+      in.friction,     in.mollifier_eps, in.environment,   in.environment_begin,
+      in.environments, in.positions,     in.d_hat,         in.kappa,
+      false,           keep.data(),      mu_lambda.data(), tangent.data()};
+  const int total = count_lagged_contacts(launch, b);
+  Array<int> vertex(4 * std::size_t(total)), environment(total), begin(in.environments + 1);
+  Array<double> out_mu_lambda(total), out_tangent(24 * std::size_t(total));
+  write_lagged_contacts(
+      launch, b,
+      {vertex.data(), out_tangent.data(), out_mu_lambda.data(), environment.data(), begin.data()});
+  return {host_copy(vertex), host_copy(environment), host_copy(begin), host_copy(out_mu_lambda),
+          host_copy(out_tangent)};
+}
+
+// The friction lag over the candidates, the upper sheets raised 0.5 mm off their start (whose
+// ripples reach below the lower sheet where the gap is smallest): 0.4 to 2.4 mm apart.
+void check_friction_lag(const SheetScene& scene, const HostBroadPhase& host,
+                        DeviceCandidates& found, BroadPhaseCheck& check) {
+  const int environments = static_cast<int>(scene.d_hat.size());
+  const std::vector<double> kappa(environments, 1e3);
+  std::vector<double> positions = scene.start;
+  const std::size_t sheet_vertices = (kCells + 1) * (kCells + 1);
+  for (std::size_t v = 0; 3 * v < positions.size(); ++v) {
+    if ((v / sheet_vertices) % 2 == 1) positions[3 * v + 2] += 5e-4;
+  }
+  SerialLauncher serial;
+  const LagResult on_host = friction_lag<HostArray>(
+      serial, {host.count(), environments, host.vertex().data(), host.edge_edge().data(),
+               host.near_at_rest().data(), host.friction().data(), host.mollifier_eps().data(),
+               host.environment().data(), host.environment_begin().data(), positions.data(),
+               scene.d_hat.data(), kappa.data()});
+  const DeviceArray<double> device_positions(positions), d_hat(scene.d_hat), device_kappa(kappa);
+  CudaLauncher launch;
+  const LagResult on_device = friction_lag<DeviceArray>(
+      launch, {host.count(), environments, found.vertex.data(), found.edge_edge.data(),
+               found.near_at_rest.data(), found.friction.data(), found.mollifier_eps.data(),
+               found.environment.data(), found.environment_begin.data(), device_positions.data(),
+               d_hat.data(), device_kappa.data()});
+  check.lagged = static_cast<int>(on_host.environment.size());
+  check.lag_identical = on_device.vertex == on_host.vertex &&
+                        on_device.environment == on_host.environment &&
+                        on_device.contact_begin == on_host.contact_begin;
+  check.lag_difference = std::max(relative_difference(on_device.mu_lambda, on_host.mu_lambda, 1),
+                                  relative_difference(on_device.tangent, on_host.tangent, 24));
+}
+
 }  // namespace
 
 BroadPhaseCheck check_broad_phase(int environments, int repeats) {
@@ -232,6 +314,7 @@ BroadPhaseCheck check_broad_phase(int environments, int repeats) {
                     same_prefix(device_reach.ccd, host_reach.ccd, watched) &&
                     device_reach.reachable_begin.to_host() == host_reach.reachable_begin &&
                     device_reach.ccd_begin.to_host() == host_reach.ccd_begin;
+  check_friction_lag(scene, host, found, check);
   check.bytes = 8.0 * double(start.size() + end.size() + vertex_box.size() + edge_box.size() +
                              face_box.size() + surfaces.rest.size() + found.friction.size() +
                              found.mollifier_eps.size() + 2 * std::size_t(s.vertex_count)) +

@@ -3,15 +3,20 @@
 // sheets of 2 mm triangles facing each other 0.4 to 1.4 mm apart, the upper one rippled and
 // closing by 0.3 mm on its path, the lower one among untouching bodies (so edge pairs are
 // listed from its side), with d_hat = 1 mm: pairs between the sheets and of the upper sheet
-// with itself, then the reach filter over them (CCD rescaling 0.1). The candidates and both of
-// the filter's lists found on the device must equal the host launcher's exactly.
+// with itself, then the reach filter over them (CCD rescaling 0.1), then the friction lag with
+// the upper sheets raised 0.5 mm off their start (kappa = 1 kN/m). The candidates, both of the
+// filter's lists and the lagged contacts' vertices found on the device must equal the host
+// launcher's exactly, the contacts' mu lambda and tangent operators to round-off.
 namespace grip::solver::parallel {
 
 struct BroadPhaseCheck {
   double device_ms = 0.0, host_ms = 0.0, bytes = 0.0;
   int pairs = 0;                   // candidates, on the host
   int reachable = 0, watched = 0;  // within reach; watched by CCD (host)
-  bool identical = false;  // every array of the device's candidates and lists equals the host's
+  bool identical = false;      // every array of the device's candidates and lists equals the host's
+  int lagged = 0;              // friction contacts (host)
+  bool lag_identical = false;  // their vertices and environments, device and host
+  double lag_difference = 0.0;  // their mu lambda and tangents' largest relative difference
 };
 
 BroadPhaseCheck check_broad_phase(int environments, int repeats);

@@ -828,9 +828,10 @@ struct SizeResult {
            inertia_target <= kGradientTolerance && inertia_energy <= kEnergyTolerance &&
            inertia_gradient <= kGradientTolerance && pcg_converged &&
            pcg_solution <= kPcgTolerance && pcg_iteration_difference <= kPcgIterationSlack &&
-           broad_phase.identical && halving_identical && potential.energy <= kEnergyTolerance &&
-           potential.gradient <= kGradientTolerance && potential.hessian <= kHessianTolerance &&
-           potential.decrease_identical;
+           broad_phase.identical && broad_phase.lag_identical &&
+           broad_phase.lag_difference <= kGradientTolerance && halving_identical &&
+           potential.energy <= kEnergyTolerance && potential.gradient <= kGradientTolerance &&
+           potential.hessian <= kHessianTolerance && potential.decrease_identical;
   }
 };
 
@@ -1121,6 +1122,9 @@ void write_json_search(std::ostream& json, const SizeResult& r) {
        << ", \"broad_phase_within_reach\": " << r.broad_phase.reachable
        << ", \"broad_phase_watched_by_ccd\": " << r.broad_phase.watched
        << ", \"broad_phase_identical\": " << (r.broad_phase.identical ? "true" : "false")
+       << ", \"friction_lag_contacts\": " << r.broad_phase.lagged
+       << ", \"friction_lag_identical\": " << (r.broad_phase.lag_identical ? "true" : "false")
+       << ", \"friction_lag_relative_difference\": " << r.broad_phase.lag_difference
        << ", \"halving_device_ms\": " << r.halving_device_ms
        << ", \"halving_host_ms\": " << r.halving_host_ms << ", \"halving_most\": " << r.halving_most
        << ", \"halving_identical\": " << (r.halving_identical ? "true" : "false")
@@ -1207,9 +1211,10 @@ void write_markdown_row(std::ostream& md, const SizeResult& r) {
      << r.pcg_iteration_difference << " | " << r.pcg_solution << " | " << r.broad_phase.device_ms
      << " | " << r.broad_phase.host_ms << " | " << r.broad_phase.pairs << ", "
      << r.broad_phase.reachable << ", " << r.broad_phase.watched << " | "
-     << (r.broad_phase.identical ? "yes" : "NO") << " | " << r.halving_device_ms << " | "
-     << r.halving_host_ms << " | " << r.halving_most << " | "
-     << (r.halving_identical ? "yes" : "NO") << " | " << r.potential.device_ms << " | "
+     << (r.broad_phase.identical ? "yes" : "NO") << " | " << r.broad_phase.lagged << " | "
+     << (r.broad_phase.lag_identical ? "yes" : "NO") << ", " << r.broad_phase.lag_difference
+     << " | " << r.halving_device_ms << " | " << r.halving_host_ms << " | " << r.halving_most
+     << " | " << (r.halving_identical ? "yes" : "NO") << " | " << r.potential.device_ms << " | "
      << r.potential.host_ms << " | " << r.potential.energy << " | "
      << r.potential.derivatives_device_ms << " | " << r.potential.derivatives_host_ms << " | "
      << r.potential.blocks << " | " << r.potential.gradient << ", " << r.potential.hessian << " | "
@@ -1253,7 +1258,8 @@ void write_reports(const std::string& directory, const std::string& device,
         "impact, bound) | FEM inertia device ms | FEM inertia host ms | FEM inertia diffs "
         "(target, energy, gradient) | CG device ms | CG host ms | CG iterations | CG "
         "iteration diff | CG solution diff | broad phase device ms | broad phase host ms | "
-        "candidates, within reach, watched by CCD | lists identical | halving device ms | halving "
+        "candidates, within reach, watched by CCD | lists identical | lagged contacts | lag "
+        "identical, diff | halving device ms | halving "
         "host ms | most halvings | halvings identical | potential device ms | potential host "
         "ms | potential diff | Newton system device ms | Newton system host ms | blocks | Newton "
         "system diffs (gradient, matrix) | decrease device ms | decrease host ms | halvings | "
@@ -1262,8 +1268,8 @@ void write_reports(const std::string& directory, const std::string& device,
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
         "--- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | "
         "---: | ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: "
-        "| ---: | ---: | --- | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | "
-        "---: | ---: | --- | ---: | ---: | --- | --- | --- |\n";
+        "| ---: | ---: | --- | --- | ---: | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: "
+        "| ---: | ---: | ---: | --- | ---: | ---: | --- | --- | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);

@@ -11,7 +11,7 @@
 #include "solver/kernels/hd.hpp"
 #include "solver/kernels/tangent_basis.hpp"
 
-namespace grip::solver {
+namespace grip::solver::kernels {
 
 struct ContactFrame {
   double weight[4];
@@ -32,13 +32,13 @@ GRIP_HD inline double clamp01(double s) { return s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 
 // Parameter of the closest point of segment e0e1 to p.
 GRIP_HD inline double segment_parameter(const Eigen::Vector3d& p, const Eigen::Vector3d& e0,
                                         const Eigen::Vector3d& e1) {
-  return clamp01(kernels::point_edge_closest_point(p, e0, e1));
+  return clamp01(point_edge_closest_point(p, e0, e1));
 }
 
 GRIP_HD inline ContactFrame with_basis(ContactFrame frame, const Eigen::Vector3d x[4]) {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   for (int i = 0; i < 4; ++i) normal += frame.weight[i] * x[i];
-  const Eigen::Vector3d t1 = kernels::perpendicular_unit(normal);
+  const Eigen::Vector3d t1 = perpendicular_unit(normal);
   frame.basis.col(0) = t1;
   frame.basis.col(1) = normal.cross(t1).normalized();
   return frame;
@@ -47,11 +47,11 @@ GRIP_HD inline ContactFrame with_basis(ContactFrame frame, const Eigen::Vector3d
 }  // namespace contact_frame_detail
 
 GRIP_HD inline ContactFrame point_triangle_frame(const Eigen::Vector3d x[4]) {
-  using T = kernels::PointTriangleDistanceType;
+  using T = PointTriangleDistanceType;
   using contact_frame_detail::segment_parameter;
-  ContactFrame f{{1.0, 0.0, 0.0, 0.0}, {}};
+  ContactFrame f{{1.0, 0.0, 0.0, 0.0}, Eigen::Matrix<double, 3, 2>::Zero()};
   // The triangle's weights are negative: u is the point's motion relative to the triangle's.
-  switch (kernels::point_triangle_distance_type(x[0], x[1], x[2], x[3])) {
+  switch (point_triangle_distance_type(x[0], x[1], x[2], x[3])) {
     case T::P_T0:
       f.weight[1] = -1.0;
       break;
@@ -77,7 +77,7 @@ GRIP_HD inline ContactFrame point_triangle_frame(const Eigen::Vector3d x[4]) {
       break;
     }
     case T::P_T: {
-      const Eigen::Vector2d b = kernels::point_triangle_closest_point(x[0], x[1], x[2], x[3]);
+      const Eigen::Vector2d b = point_triangle_closest_point(x[0], x[1], x[2], x[3]);
       f.weight[1] = -(1.0 - b[0] - b[1]), f.weight[2] = -b[0], f.weight[3] = -b[1];
       break;
     }
@@ -86,10 +86,10 @@ GRIP_HD inline ContactFrame point_triangle_frame(const Eigen::Vector3d x[4]) {
 }
 
 GRIP_HD inline ContactFrame edge_edge_frame(const Eigen::Vector3d x[4]) {
-  using T = kernels::EdgeEdgeDistanceType;
+  using T = EdgeEdgeDistanceType;
   using contact_frame_detail::segment_parameter;
   double a = 0.0, b = 0.0;  // closest points ea0 + a (ea1 - ea0) and eb0 + b (eb1 - eb0)
-  switch (kernels::edge_edge_distance_type(x[0], x[1], x[2], x[3])) {
+  switch (edge_edge_distance_type(x[0], x[1], x[2], x[3])) {
     case T::EA0_EB0:
       break;
     case T::EA0_EB1:
@@ -114,13 +114,13 @@ GRIP_HD inline ContactFrame edge_edge_frame(const Eigen::Vector3d x[4]) {
       a = 1.0, b = segment_parameter(x[1], x[2], x[3]);
       break;
     case T::EA_EB: {
-      const Eigen::Vector2d ab = kernels::edge_edge_closest_point(x[0], x[1], x[2], x[3]);
+      const Eigen::Vector2d ab = edge_edge_closest_point(x[0], x[1], x[2], x[3]);
       a = ab[0], b = ab[1];
       break;
     }
   }
-  ContactFrame f{{1.0 - a, a, -(1.0 - b), -b}, {}};
+  ContactFrame f{{1.0 - a, a, -(1.0 - b), -b}, Eigen::Matrix<double, 3, 2>::Zero()};
   return contact_frame_detail::with_basis(f, x);
 }
 
-}  // namespace grip::solver
+}  // namespace grip::solver::kernels
