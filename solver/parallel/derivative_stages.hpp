@@ -15,7 +15,7 @@
 #include "solver/kernels/hd.hpp"
 #include "solver/parallel/block_assembly.hpp"
 #include "solver/parallel/collision_batch.hpp"
-#include "solver/parallel/line_search_stages.hpp"
+#include "solver/parallel/launch.hpp"
 #include "solver/parallel/potential_stages.hpp"
 
 namespace grip::solver::parallel {

@@ -37,6 +37,21 @@ struct StatusCountStage {
   }
 };
 
+// The environment e whose range [begin[e], begin[e + 1]) of items holds item i (binary search
+// over the environments + 1 offsets).
+GRIP_HD inline int environment_of(const int* begin, int environment_count, int i) {
+  int low = 0, high = environment_count - 1;
+  while (low < high) {
+    const int mid = (low + high + 1) / 2;
+    if (begin[mid] <= i) {
+      low = mid;
+    } else {
+      high = mid - 1;
+    }
+  }
+  return low;
+}
+
 // The host launcher without dependencies: the device check's reference, and what the tests use
 // to step through a stage.
 struct SerialLauncher {

@@ -114,20 +114,6 @@ struct SufficientDecreaseBuffers {
   int* decreasing = nullptr;       // one: how many environments still halve
 };
 
-// The environment whose offsets range [begin[e], begin[e + 1]) holds item i.
-GRIP_HD inline int environment_of(const int* begin, int environment_count, int i) {
-  int low = 0, high = environment_count - 1;
-  while (low < high) {
-    const int mid = (low + high + 1) / 2;
-    if (begin[mid] <= i) {
-      low = mid;
-    } else {
-      high = mid - 1;
-    }
-  }
-  return low;
-}
-
 // Per environment: g.p over its DOFs, and its search begun (a held step's at once accepted).
 struct DecreaseResetStage {
   SufficientDecreaseBuffers b;
