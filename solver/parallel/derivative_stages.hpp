@@ -25,7 +25,10 @@ namespace grip::solver::parallel {
 struct DerivativeBuffers {
   const int* dof_begin = nullptr;  // environments + 1 offsets into the batch's DOFs
   int dof_count = 0;
-  IncidenceBuffers fem_incidence;             // FEM vertices' tet slots
+  // The FEM vertices' tet slots (FemBatch::incidence: FEM vertices + 1 offsets, the slots); the
+  // vertices' DOFs are PotentialBuffers::fem_vertices'.
+  const int* fem_incidence_begin = nullptr;
+  const int* fem_incidence_slots = nullptr;
   ContactIncidenceBuffers contact_incidence;  // DOF blocks' contact slots
   const int* contact_vertex = nullptr;        // 4 per contact: the pairs', then the friction's
   BlockPatternBuffers pattern;
@@ -111,8 +114,10 @@ void incremental_potential_derivatives(Launcher& launch, const PotentialBuffers&
   launch(d.dof_count, ZeroStage{gradient});
   launch(d.dof_count, ZeroStage{dw.potential_gradient});
   term_derivatives(launch, b, q, w, dw, project_contacts);
-  launch(d.fem_incidence.count,
-         GradientGatherStage{d.fem_incidence, dw.tet_gradient, dw.potential_gradient});
+  const IncidenceBuffers fem_incidence{b.fem_vertices.count, b.fem_vertices.dof,
+                                       d.fem_incidence_begin, d.fem_incidence_slots};
+  launch(fem_incidence.count,
+         GradientGatherStage{fem_incidence, dw.tet_gradient, dw.potential_gradient});
   launch(d.contact_incidence.count,
          ContactGatherStage{d.contact_incidence, d.contact_vertex, b.collision.rest,
                             dw.contact_gradient, dw.potential_gradient});
@@ -145,7 +150,6 @@ struct DerivativeStorage {
   DerivativeStorage(const DerivativeStructure& s, const FemBatch& fem, const AffineBatch& affine,
                     const CollisionBatch& collision)
       : dof_begin(collision.dof_begin()),
-        vertex_dof(fem.vertex_dof()),
         incidence_begin(fem.incidence_begin()),
         incidence_slots(fem.incidence_slots()),
         block_dof(collision.block_dof()),
@@ -170,8 +174,8 @@ struct DerivativeStorage {
   DerivativeBuffers buffers() const {
     return {dof_begin.data(),
             static_cast<int>(potential_gradient.size()),
-            {static_cast<int>(vertex_dof.size()), vertex_dof.data(), incidence_begin.data(),
-             incidence_slots.data()},
+            incidence_begin.data(),
+            incidence_slots.data(),
             {static_cast<int>(block_dof.size()), block_dof.data(), block_size.data(),
              contact_begin.data(), contact_slots.data()},
             contact_vertex.data(),
@@ -185,8 +189,8 @@ struct DerivativeStorage {
             orthogonality.data(), potential_gradient.data()};
   }
 
-  Array<int> dof_begin, vertex_dof, incidence_begin, incidence_slots, block_dof, block_size,
-      contact_begin, contact_slots, contact_vertex, row, column, term_begin, term_slots, term_units;
+  Array<int> dof_begin, incidence_begin, incidence_slots, block_dof, block_size, contact_begin,
+      contact_slots, contact_vertex, row, column, term_begin, term_slots, term_units;
   Array<double> slot_rest;
   Array<int> diagonal;
   Array<double> tet_gradient, contact_gradient, stencil_hessian, orthogonality, potential_gradient;
