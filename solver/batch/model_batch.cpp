@@ -67,6 +67,14 @@ CollisionBatch collision_batch(const std::vector<const Model*>& environments) {
   return batch;
 }
 
+std::vector<char> prescribed_dofs(const std::vector<const Model*>& environments) {
+  std::vector<char> prescribed;
+  for (const Model* model : environments) {
+    prescribed.insert(prescribed.end(), model->prescribed().begin(), model->prescribed().end());
+  }
+  return prescribed;
+}
+
 SurfaceBatch surface_batch(const std::vector<const Model*>& environments) {
   SurfaceBatch batch;
   for (const Model* model : environments) {

@@ -24,6 +24,10 @@ AffineBatch affine_batch(const std::vector<const Model*>& environments);
 // (CollisionMesh), with the DOFs it moves with.
 CollisionBatch collision_batch(const std::vector<const Model*>& environments);
 
+// Per DOF of the batch, 1 where a pin prescribes it (Model::prescribed): the DOFs whose motion
+// FixedMotionStage gives the solve.
+std::vector<char> prescribed_dofs(const std::vector<const Model*>& environments);
+
 // Every collision surface of every environment (CollisionMesh): vertices, edges, faces, which
 // bodies may touch, and each body's own pairs near at rest.
 SurfaceBatch surface_batch(const std::vector<const Model*>& environments);

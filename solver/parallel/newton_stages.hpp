@@ -1,15 +1,18 @@
 #pragma once
 // The data-parallel Newton iteration's per-environment bookkeeping, as the CPU engine's
-// NewtonSolver keeps it for one environment (solver/newton/newton_solver.cpp) once no
-// prescribed motion is under way:
-// - NewtonRightHandSideStage: per DOF, -g; at a fixed DOF (pinned, or held by a fixture) 0,
-//   the fixed DOFs' motion (none without prescribed motion), as the elimination gives it.
+// NewtonSolver keeps it for one environment (solver/newton/newton_solver.cpp), with
+// prescribed_motion_stages.hpp while prescribed motion is under way:
+// - NewtonRightHandSideStage: per DOF, -g, less the force of prescribed motion while it is
+//   still to come (prescribed_motion_stages.hpp); 0 at a fixed DOF (pinned, or held by a
+//   fixture), whose value the solve takes from FixedMotionStage.
 // - FreeResidualStage: per environment, the largest |g| over its free DOFs, the residual its
 //   convergence test weighs against newton_tol times its first.
-// - StepLengthStage: per environment, the largest displacement a step p gives any of its
+// - StepDisplacementStage: per environment, the largest displacement a step p gives any of its
 //   vertices (an FEM vertex's own; an affine body's surface vertex's J(xbar) p), which its
 //   other convergence test weighs against newton_velocity_tol h.
-// - CommitStage: per DOF, q + alpha p where its environment takes its step.
+// - CommitStage: per DOF, q + alpha p where its environment takes its step; ProgressStage: per
+//   environment, how far its prescribed motion has come after it (all the way once a step is
+//   taken whole).
 #include <Eigen/Core>
 #include <cmath>
 
@@ -24,9 +27,13 @@ namespace grip::solver::parallel {
 struct NewtonRightHandSideStage {
   const char* fixed = nullptr;  // per DOF
   const double* gradient = nullptr;
+  const double* kinematic_force = nullptr;  // per DOF; null once prescribed motion is done
   double* rhs = nullptr;
 
-  GRIP_HD void operator()(int d) const { rhs[d] = fixed[d] != 0 ? 0.0 : -gradient[d]; }
+  GRIP_HD void operator()(int d) const {
+    const double force = kinematic_force != nullptr ? kinematic_force[d] : 0.0;
+    rhs[d] = fixed[d] != 0 ? 0.0 : -gradient[d] - force;
+  }
 };
 
 struct FreeResidualStage {
@@ -45,7 +52,7 @@ struct FreeResidualStage {
   }
 };
 
-struct StepLengthStage {
+struct StepDisplacementStage {
   VertexBuffers fem_vertices;
   const int* fem_vertex_begin = nullptr;  // environments + 1 offsets
   CollisionVertexBuffers collision;
@@ -82,6 +89,17 @@ struct CommitStage {
   GRIP_HD void operator()(int d) const {
     const int e = environment_of(dof_begin, environment_count, d);
     if (take[e] != 0) q[d] += alpha[e] * p[d];
+  }
+};
+
+struct ProgressStage {
+  const unsigned char* take = nullptr;  // per environment
+  const double* alpha = nullptr;
+  double* progress = nullptr;
+
+  GRIP_HD void operator()(int e) const {
+    if (take[e] == 0) return;
+    progress[e] = alpha[e] >= 1.0 ? 1.0 : progress[e] + alpha[e] * (1.0 - progress[e]);
   }
 };
 

@@ -63,7 +63,7 @@ TEST(ParallelNewton, ResidualAndRightHandSideAreTheCpuEnginesOverFreeDofs) {
   std::vector<double> rhs(q.size()), residual(steps.size());
   const std::vector<int>& dof_begin = s.collision.dof_begin();
   launch(static_cast<int>(q.size()),
-         parallel::NewtonRightHandSideStage{fixed.data(), gradient.data(), rhs.data()});
+         parallel::NewtonRightHandSideStage{fixed.data(), gradient.data(), nullptr, rhs.data()});
   launch(static_cast<int>(steps.size()),
          parallel::FreeResidualStage{dof_begin.data(), fixed.data(), gradient.data(),
                                      residual.data()});
@@ -100,12 +100,12 @@ TEST(ParallelNewton, StepLengthIsTheBodyKindsLargestDisplacement) {
     }
     std::vector<double> serial(steps.size()), tbb(steps.size());
     const auto stage = [&](double* out) {
-      return parallel::StepLengthStage{s.fem.vertices(),
-                                       s.fem.vertex_begin().data(),
-                                       s.collision.vertices(),
-                                       s.collision.vertex_begin().data(),
-                                       p.data(),
-                                       out};
+      return parallel::StepDisplacementStage{s.fem.vertices(),
+                                             s.fem.vertex_begin().data(),
+                                             s.collision.vertices(),
+                                             s.collision.vertex_begin().data(),
+                                             p.data(),
+                                             out};
     };
     parallel::SerialLauncher{}(static_cast<int>(steps.size()), stage(serial.data()));
     parallel::TbbLauncher{}(static_cast<int>(steps.size()), stage(tbb.data()));

@@ -12,6 +12,7 @@
 #include "solver/parallel/derivative_stages.hpp"
 #include "solver/parallel/launch.hpp"
 #include "solver/parallel/line_search_stages.hpp"
+#include "solver/parallel/prescribed_motion_stages.hpp"
 
 namespace grip::solver::parallel {
 namespace {
@@ -119,9 +120,10 @@ std::vector<double> device_energies(const PotentialScene& s, int repeats, double
   return energy.to_host();
 }
 
-// Every environment's gradient (the batch's DOFs) and Newton matrix (9 per block).
+// Every environment's gradient (the batch's DOFs), Newton matrix (9 per block) and force of
+// the prescribed motion still to come (the batch's DOFs).
 struct NewtonSystem {
-  std::vector<double> gradient, blocks;
+  std::vector<double> gradient, blocks, kinematic_force;
 };
 
 template <template <class> class Array, class Launcher>
@@ -133,18 +135,22 @@ NewtonSystem newton_system(const PotentialScene& s, const DerivativeStructure& s
   DerivativeStorage<Array> storage(structure, s.fem, s.affine, s.collision);
   const Array<double> q(s.q);
   Array<double> gradient(s.q.size()), blocks(9 * structure.pattern.row.size());
+  Array<double> motion(3 * std::size_t(s.collision.vertex_count()));
+  Array<double> contact_force(3 * structure.contact_vertex.size()), force(s.q.size());
   const auto run = [&] {
     incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
                                       storage.work(), true, gradient.data(), blocks.data());
+    kinematic_force(launch, b, storage.buffers(), work.work(), storage.work(), motion.data(),
+                    contact_force.data(), force.data());
   };
   if constexpr (std::is_same_v<Launcher, CudaLauncher>) {
     ms = device_median_ms(repeats, run);
-    return {gradient.to_host(), blocks.to_host()};
+    return {gradient.to_host(), blocks.to_host(), force.to_host()};
   } else {
     const auto start = std::chrono::steady_clock::now();
     run();
     ms = milliseconds_since(start);
-    return {gradient, blocks};
+    return {gradient, blocks, force};
   }
 }
 
@@ -160,6 +166,8 @@ void check_derivatives(const PotentialScene& s, int repeats, PotentialCheck& che
   check.gradient =
       relative_difference(device.gradient, host.gradient, std::size_t(s.collision.dof_begin()[1]));
   check.hessian = relative_difference(device.blocks, host.blocks, 9);
+  check.kinematic_force = relative_difference(device.kinematic_force, host.kinematic_force,
+                                              std::size_t(s.collision.dof_begin()[1]));
   check.blocks = static_cast<int>(structure.pattern.row.size());
 }
 

@@ -1,0 +1,253 @@
+// The data-parallel Newton system while prescribed motion is still to come
+// (solver/parallel/prescribed_motion_stages.hpp) on the host launchers, against the CPU engine:
+// the environments of tests/solver/parallel_step.hpp with their floor rising a fifth of its gap
+// in the step and the soft box on the affine box pinned at its top to a mount that moves
+// sideways, taken at progress 0, 0.4 and 1 of the way. The force that the contacts' Hessians
+// give the motion still to come equals the CPU engine's H_fk dk, and the Newton step solved
+// from it (the pinned DOFs' motion kept, one soft box held) is the CPU engine's elimination's.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <vector>
+
+#include "solver/batch/model_batch.hpp"
+#include "solver/batch/tbb_launcher.hpp"
+#include "solver/parallel/block_pcg.hpp"
+#include "solver/parallel/derivative_stages.hpp"
+#include "solver/parallel/newton_stages.hpp"
+#include "solver/parallel/prescribed_motion_stages.hpp"
+#include "tests/solver/parallel_step.hpp"
+
+namespace grip::solver {
+namespace {
+
+using testing::append;
+using testing::CpuStep;
+using testing::parallel_step;
+using testing::ParallelStep;
+using testing::pointers;
+
+// The resting scene with the floor rising a fifth of `gap` per step and the soft box on the
+// affine box (body 3) pinned at its top to a mount (body 5) moving 0.1 mm per 10 ms sideways.
+SceneDescription moving_scene(double gap, double d_hat, double dt) {
+  SceneDescription scene = testing::resting_scene(gap, d_hat, dt);
+  scene.bodies[0].script.velocity = Eigen::Vector3d(0.02, 0, 0.2 * gap / dt);
+  BodyDescription mount = testing::rigid_box("mount", BodyType::kKinematic, {0.02, 0.02, 0.004},
+                                             {0.0, 0.0, 0.032 + 2 * gap});
+  mount.script.velocity = Eigen::Vector3d(0.01, 0, 0);
+  Pin pin{5, {}};
+  const BodyDescription& on_box = scene.bodies[3];
+  for (Eigen::Index v = 0; v < on_box.vertices.rows(); ++v) {
+    if (on_box.vertices(v, 2) > 0.005 - 1e-9) pin.vertices.push_back(static_cast<int>(v));
+  }
+  scene.bodies[3].pins.push_back(pin);
+  scene.bodies.push_back(mount);
+  return scene;
+}
+
+struct Moving {
+  std::vector<CpuStep> steps;
+  std::vector<double> progress{0.0, 0.4, 1.0};
+};
+
+Moving moving_steps() {
+  const auto near = Model::build(moving_scene(4e-4, 1e-3, 0.01));
+  const auto wide = Model::build(moving_scene(1.2e-3, 2e-3, 0.005));
+  Moving m;
+  m.steps.push_back(testing::begin_cpu_step(near, 11));
+  m.steps.push_back(testing::begin_cpu_step(wide, 12));
+  m.steps.push_back(testing::begin_cpu_step(near, 13));
+  return m;
+}
+
+// The CPU engine's Newton system at each environment's q and progress, with the force of the
+// motion still to come (NewtonSolver::assemble).
+struct CpuSystem {
+  Eigen::VectorXd gradient, kinematic_force;
+  Eigen::MatrixXd matrix;  // whole, symmetric
+};
+
+CpuSystem cpu_system(const CpuStep& c, const Eigen::VectorXd& q, double progress) {
+  const Model& model = *c.model;
+  const Vertices x = collision_positions(model, q, c.step.targets, progress);
+  const Vertices motion = collision_positions(model, q, c.step.targets, 1.0) - x;
+  CpuSystem s;
+  std::vector<Eigen::Triplet<double>> triplets;
+  c.solver->potential().derivatives(q, x, *c.step.near, s.gradient, triplets, &motion,
+                                    &s.kinematic_force, true);
+  s.matrix = Eigen::MatrixXd::Zero(q.size(), q.size());
+  for (const auto& t : triplets) {
+    s.matrix(t.row(), t.col()) += t.value();
+    if (t.row() != t.col()) s.matrix(t.col(), t.row()) += t.value();
+  }
+  return s;
+}
+
+// The CPU engine's elimination: the fixed DOFs take `lift`, the free ones solve
+// A_ff p_f = -g_f - f_f - A_fc lift_c.
+Eigen::VectorXd cpu_newton_step(const CpuSystem& s, const std::vector<char>& fixed,
+                                const Eigen::VectorXd& lift) {
+  const Eigen::VectorXd rhs = -s.gradient - s.kinematic_force - s.matrix * lift;
+  std::vector<int> free;
+  for (int d = 0; d < static_cast<int>(fixed.size()); ++d) {
+    if (fixed[d] == 0) free.push_back(d);
+  }
+  const int n = static_cast<int>(free.size());
+  Eigen::MatrixXd a(n, n);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) {
+    b[i] = rhs[free[i]];
+    for (int j = 0; j < n; ++j) a(i, j) = s.matrix(free[i], free[j]);
+  }
+  const Eigen::VectorXd p_free = a.ldlt().solve(b);
+  Eigen::VectorXd p = lift;
+  for (int i = 0; i < n; ++i) p[free[i]] = p_free[i];
+  return p;
+}
+
+// The data-parallel system at the batch's q: gradient, blocks, the force of prescribed motion.
+struct ParallelSystem {
+  std::vector<double> gradient, blocks, force;
+  parallel::DerivativeStructure structure;
+};
+
+template <class Launcher>
+ParallelSystem parallel_system(const ParallelStep& s, const std::vector<double>& q,
+                               Launcher&& launch) {
+  const auto arrays = s.arrays();
+  const parallel::PotentialBuffers b = arrays.buffers();
+  parallel::PotentialStorage<parallel::HostArray> work(b);
+  ParallelSystem out;
+  out.structure = parallel::derivative_structure(s.fem, s.affine, s.collision, s.pairs, s.friction);
+  parallel::DerivativeStorage<parallel::HostArray> storage(out.structure, s.fem, s.affine,
+                                                           s.collision);
+  out.gradient.resize(q.size());
+  out.blocks.resize(9 * out.structure.pattern.row.size());
+  out.force.resize(q.size());
+  parallel::incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
+                                              storage.work(), true, out.gradient.data(),
+                                              out.blocks.data());
+  std::vector<double> motion(3 * std::size_t(s.collision.vertex_count()));
+  std::vector<double> contact_force(3 * out.structure.contact_vertex.size());
+  parallel::kinematic_force(launch, b, storage.buffers(), work.work(), storage.work(),
+                            motion.data(), contact_force.data(), out.force.data());
+  return out;
+}
+
+double largest(const Eigen::VectorXd& v) { return v.cwiseAbs().maxCoeff(); }
+
+// Per DOF whether it is fixed: the pinned DOFs, and in the second environment the soft box
+// (body 1) held.
+std::vector<char> fixed_dofs(const Moving& m) {
+  std::vector<char> fixed;
+  for (std::size_t e = 0; e < m.steps.size(); ++e) {
+    const Model& model = *m.steps[e].model;
+    const BodyModel& held = model.bodies()[1];
+    for (int d = 0; d < model.dof_count(); ++d) {
+      const bool in =
+          e == 1 && d >= held.dof_offset && d < held.dof_offset + held.kind->dof_count(held.local);
+      fixed.push_back(in || model.prescribed()[d] ? 1 : 0);
+    }
+  }
+  return fixed;
+}
+
+struct Batch {
+  Moving m = moving_steps();
+  ParallelStep s;
+  std::vector<Eigen::VectorXd> q;
+  std::vector<double> batch_q, prescribed_target;
+  std::vector<const Model*> models;
+
+  Batch() {
+    s = parallel_step(pointers(m.steps));
+    s.step.progress = m.progress;
+    q = testing::moved(m.steps, 1e-5, 41);
+    for (std::size_t e = 0; e < q.size(); ++e) {
+      append(batch_q, q[e]);
+      append(prescribed_target, m.steps[e].step.targets.prescribed_target);
+      models.push_back(m.steps[e].model.get());
+    }
+  }
+};
+
+TEST(ParallelPrescribedMotion, KinematicForceIsTheCpuEnginesWhileMotionIsToCome) {
+  const Batch batch;
+  const ParallelSystem serial = parallel_system(batch.s, batch.batch_q, parallel::SerialLauncher{});
+  const ParallelSystem threaded = parallel_system(batch.s, batch.batch_q, parallel::TbbLauncher(2));
+  EXPECT_EQ(serial.force, threaded.force);
+  const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
+  for (std::size_t e = 0; e < batch.q.size(); ++e) {
+    const CpuSystem cpu = cpu_system(batch.m.steps[e], batch.q[e], batch.m.progress[e]);
+    const double scale = largest(cpu.kinematic_force);
+    if (batch.m.progress[e] < 1.0) {
+      // The rising floor presses on the bodies within d_hat of it.
+      EXPECT_GT(scale, 1e-3 * largest(cpu.gradient)) << "environment " << e;
+    } else {
+      EXPECT_EQ(scale, 0.0) << "environment " << e;
+    }
+    double difference = 0.0;
+    for (Eigen::Index d = 0; d < cpu.kinematic_force.size(); ++d) {
+      difference =
+          std::max(difference, std::abs(serial.force[dof_begin[e] + d] - cpu.kinematic_force[d]));
+    }
+    EXPECT_LE(difference, 1e-12 * std::max(scale, 1e-300)) << "environment " << e;
+  }
+}
+
+TEST(ParallelPrescribedMotion, NewtonStepIsTheCpuEnginesElimination) {
+  const Batch batch;
+  parallel::SerialLauncher launch;
+  const ParallelSystem system = parallel_system(batch.s, batch.batch_q, launch);
+  const std::vector<char> fixed = fixed_dofs(batch.m);
+  const std::vector<char> prescribed = parallel::prescribed_dofs(batch.models);
+  const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
+  const int dofs = static_cast<int>(batch.batch_q.size());
+  const int environments = static_cast<int>(batch.q.size());
+  std::vector<double> rhs(dofs), x(dofs);
+  launch(dofs, parallel::NewtonRightHandSideStage{fixed.data(), system.gradient.data(),
+                                                  system.force.data(), rhs.data()});
+  launch(dofs, parallel::FixedMotionStage{
+                   dof_begin.data(), environments, batch.s.step.progress.data(), prescribed.data(),
+                   batch.prescribed_target.data(), batch.batch_q.data(), x.data()});
+  parallel::HostPcg pcg(batch.s.fem, batch.s.affine, system.structure.pattern, dof_begin);
+  pcg.solve(launch, system.blocks, fixed, rhs, std::vector<double>(environments, 1e-12), 2000, x);
+  for (int e = 0; e < environments; ++e) {
+    ASSERT_EQ(pcg.status()[e], parallel::kPcgConverged) << "environment " << e;
+    const CpuStep& c = batch.m.steps[e];
+    const double progress = batch.m.progress[e];
+    const int n = c.model->dof_count();
+    const std::vector<char> env_fixed(fixed.begin() + dof_begin[e],
+                                      fixed.begin() + dof_begin[e + 1]);
+    Eigen::VectorXd lift = Eigen::VectorXd::Zero(n);
+    for (int d = 0; d < n; ++d) {
+      if (c.model->prescribed()[d] && progress < 1.0) {
+        lift[d] = c.step.targets.prescribed_target[d] - batch.q[e][d];
+      }
+    }
+    // The mount moves 0.1 mm (0.05 mm) in the step: the pinned DOFs' motion is the lift.
+    EXPECT_EQ(largest(lift) > 1e-5, progress < 1.0) << "environment " << e;
+    const Eigen::VectorXd p = cpu_newton_step(cpu_system(c, batch.q[e], progress), env_fixed, lift);
+    double difference = 0.0;
+    for (int d = 0; d < n; ++d) {
+      if (env_fixed[d]) {
+        EXPECT_EQ(x[dof_begin[e] + d], lift[d]) << "environment " << e;
+      }
+      difference = std::max(difference, std::abs(x[dof_begin[e] + d] - p[d]));
+    }
+    EXPECT_LE(difference, 1e-7 * largest(p)) << "environment " << e;
+  }
+}
+
+TEST(ParallelPrescribedMotion, ProgressAdvancesByTheTakenFractionOfTheWayLeft) {
+  const std::vector<unsigned char> take{1, 1, 0, 1};
+  const std::vector<double> alpha{0.5, 1.0, 0.5, 0.25};
+  std::vector<double> progress{0.4, 0.4, 0.4, 0.0};
+  parallel::SerialLauncher launch;
+  launch(4, parallel::ProgressStage{take.data(), alpha.data(), progress.data()});
+  EXPECT_EQ(progress, (std::vector<double>{0.4 + 0.5 * 0.6, 1.0, 0.4, 0.25}));
+}
+
+}  // namespace
+}  // namespace grip::solver
