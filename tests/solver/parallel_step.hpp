@@ -15,6 +15,7 @@
 #include "solver/newton/newton_solver.hpp"
 #include "solver/parallel/launch.hpp"
 #include "solver/parallel/potential_arrays.hpp"
+#include "solver/parallel/step_start_stages.hpp"
 #include "tests/solver/scene_builders.hpp"
 
 namespace grip::solver::testing {
@@ -76,8 +77,8 @@ inline void append(std::vector<double>& to, const Vector& v) {
 }
 
 // The same environments in the data-parallel engine's batches: pairs and friction contacts
-// copied from the CPU engine's step, the inertia targets and the damping's stiffness computed
-// by the stages.
+// copied from the CPU engine's step, the inertia targets, the damping's stiffness and the start
+// positions computed by the stages (step_start_constants).
 struct ParallelStep {
   parallel::FemBatch fem;
   parallel::AffineBatch affine;
@@ -116,29 +117,15 @@ inline ParallelStep parallel_step(const std::vector<const CpuStep*>& steps) {
     add_contacts(*c, s);
     parallel::StepConstants& k = s.step;
     k.h.push_back(c->step.h);
-    k.progress.push_back(1.0);
     append(k.q_start, c->state.q);
     append(k.drive_target, c->q_drive);
     append(k.scripted_start, c->step.targets.kinematic_start);
     append(k.scripted_target, c->step.targets.kinematic_target);
-    append(k.start_positions, c->start);
     append(s.gravity, c->state.gravity);
     append(s.v, c->state.v);
   }
-  parallel::SerialLauncher launch;
-  parallel::StepConstants& k = s.step;
-  k.q_tilde.assign(k.q_start.size(), 0.0);
-  launch(s.fem.vertices().count,
-         parallel::PredictionStage{s.fem.vertices(), k.q_start.data(), s.v.data(), k.h.data(),
-                                   s.gravity.data(), k.q_tilde.data()});
-  launch(s.affine.bodies().count,
-         parallel::AffinePredictionStage{s.affine.bodies(), k.q_start.data(), s.v.data(),
-                                         k.h.data(), s.gravity.data(), k.q_tilde.data()});
-  const int tets = s.fem.tets().count;
-  std::vector<double> energy(tets), gradient(12 * std::size_t(tets));
-  k.damping_stiffness.resize(144 * std::size_t(tets));
-  launch(tets, parallel::ElasticStage{s.fem.tets(), k.q_start.data(), true, energy.data(),
-                                      gradient.data(), k.damping_stiffness.data()});
+  s.step.progress.assign(steps.size(), 1.0);  // the tests' scripted bodies stand still
+  parallel::fill_step_start_constants(s.step, s.fem, s.affine, s.collision, s.v, s.gravity);
   return s;
 }
 

@@ -61,6 +61,32 @@ TEST(ParallelPotential, EveryTermActsInTheTestsScenes) {
   EXPECT_GT(*std::max_element(stiffness.begin(), stiffness.end()), 0.0);
 }
 
+// step_start_constants against the CPU engine's begin_step: the start positions bit for bit,
+// the inertia target q + h v + h^2 M^-1 f_gravity within round-off of the body kinds'.
+TEST(ParallelPotential, StepStartConstantsAreTheCpuEnginesBeginStep) {
+  const std::vector<CpuStep> steps = cpu_steps();
+  const ParallelStep s = parallel_step(pointers(steps));
+  const std::vector<int>& dof_begin = s.collision.dof_begin();
+  const std::vector<int>& vertex_begin = s.collision.vertex_begin();
+  for (std::size_t e = 0; e < steps.size(); ++e) {
+    const CpuStep& c = steps[e];
+    for (Eigen::Index v = 0; v < c.start.rows(); ++v) {
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(s.step.start_positions[3 * (vertex_begin[e] + v) + k], c.start(v, k)) << e;
+      }
+    }
+    Eigen::VectorXd q_tilde = c.state.q + c.step.h * c.state.v;
+    for (const BodyModel& body : c.model->bodies()) {
+      body.kind->add_gravity(body.local, c.state.gravity, c.step.h, q_tilde);
+    }
+    for (Eigen::Index d = 0; d < q_tilde.size(); ++d) {
+      EXPECT_NEAR(s.step.q_tilde[dof_begin[e] + d], q_tilde[d],
+                  1e-15 * q_tilde.cwiseAbs().maxCoeff())
+          << "environment " << e << ", DOF " << d;
+    }
+  }
+}
+
 TEST(ParallelPotential, EnergiesMatchTheCpuEnginesAtTheStartAndMovedPoints) {
   const std::vector<CpuStep> steps = cpu_steps();
   const ParallelStep s = parallel_step(pointers(steps));

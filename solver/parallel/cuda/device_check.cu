@@ -52,6 +52,7 @@
 #include "solver/parallel/launch.hpp"
 #include "solver/parallel/line_search_stages.hpp"
 #include "solver/parallel/map_stages.hpp"
+#include "solver/parallel/step_start_stages.hpp"
 
 namespace {
 
@@ -998,29 +999,12 @@ void add_potential_contacts(const MapScene& map, int environments, PotentialScen
 }
 
 // The step's constants from the map scene's state (its start) and the inertia inputs'
-// velocities, computed by the host launcher's stages: inertia targets, the damping's
-// stiffness, the collision vertices' start positions.
+// velocities, computed by the host launcher's stages (fill_step_start_constants): inertia
+// targets, the damping's stiffness, the collision vertices' start positions.
 void add_step_constants(const std::vector<double>& v, const std::vector<double>& gravity,
                         PotentialScene& s) {
-  StepConstants& k = s.step;
-  SerialLauncher launch;
-  k.q_tilde.assign(k.q_start.size(), 0.0);
-  launch(s.fem.vertices().count, PredictionStage{s.fem.vertices(), k.q_start.data(), v.data(),
-                                                 k.h.data(), gravity.data(), k.q_tilde.data()});
-  launch(s.affine.bodies().count,
-         AffinePredictionStage{s.affine.bodies(), k.q_start.data(), v.data(), k.h.data(),
-                               gravity.data(), k.q_tilde.data()});
-  const int tets = s.fem.tets().count;
-  std::vector<double> energy(tets), gradient(12 * std::size_t(tets));
-  k.damping_stiffness.resize(144 * std::size_t(tets));
-  launch(tets, ElasticStage{s.fem.tets(), k.q_start.data(), true, energy.data(), gradient.data(),
-                            k.damping_stiffness.data()});
-  const std::vector<double> at_start(k.h.size(), 0.0);
-  k.start_positions.resize(3 * std::size_t(s.collision.vertex_count()));
-  launch(s.collision.vertex_count(),
-         PositionStage{s.collision.vertices(), k.q_start.data(), k.scripted_start.data(),
-                       k.scripted_target.data(), at_start.data(), k.start_positions.data()});
-  s.q = moved(k.q_start, v);
+  fill_step_start_constants(s.step, s.fem, s.affine, s.collision, v, gravity);
+  s.q = moved(s.step.q_start, v);
 }
 
 // The incremental potential's scene: each environment's soft box (damped, beta = 5 ms) and
