@@ -61,10 +61,12 @@ class ContactPairs {
 struct BarrierStage {
   PairBuffers pairs;
   const double* positions = nullptr;  // 3 per collision vertex of the batch
-  bool project = true;                // PSD-project the Hessian (projected Newton)
-  double* energy = nullptr;           // per pair
-  double* gradient = nullptr;         // 12 per pair; null: the energy alone (a line search's)
-  double* hessian = nullptr;          // 144 per pair, column-major; null: not wanted
+  // Per environment: 1 where the Hessian stays as it is, else it is PSD-projected (projected
+  // Newton); null: projected in every environment.
+  const unsigned char* exact = nullptr;
+  double* energy = nullptr;    // per pair
+  double* gradient = nullptr;  // 12 per pair; null: the energy alone (a line search's)
+  double* hessian = nullptr;   // 144 per pair, column-major; null: not wanted
 
   GRIP_HD void operator()(int k) const {
     Eigen::Vector3d x[4];
@@ -86,6 +88,7 @@ struct BarrierStage {
     g = b.gradient;
     if (hessian == nullptr) return;
     Eigen::Map<Eigen::Matrix<double, 12, 12>> h(hessian + 144 * k);
+    const bool project = exact == nullptr || exact[e] == 0;
     h = project ? kernels::project_to_psd_jacobi<12>(b.hessian) : b.hessian;
   }
 };

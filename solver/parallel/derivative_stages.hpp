@@ -80,7 +80,8 @@ struct CombineGradientStage {
 // The h^2 terms' per-item derivatives at q, scaled by h^2 where they go into the Hessian.
 template <class Launcher>
 void term_derivatives(Launcher& launch, const PotentialBuffers& b, const double* q,
-                      const PotentialWork& w, const DerivativeWork& dw, bool project_contacts) {
+                      const PotentialWork& w, const DerivativeWork& dw,
+                      const unsigned char* exact_contacts) {
   const int tets = b.tets.count, bodies = b.bodies.count, pairs = b.pairs.count;
   double* body_hessian = dw.stencil_hessian + 144 * std::size_t(tets);
   double* pair_hessian = body_hessian + 144 * std::size_t(bodies);
@@ -96,7 +97,7 @@ void term_derivatives(Launcher& launch, const PotentialBuffers& b, const double*
   launch(bodies, DriveStage{b.bodies, q, b.drive_target, w.drive, dw.potential_gradient});
   launch(bodies, AffineHessianStage{b.bodies, dw.orthogonality, body_hessian, b.h});
   launch(pairs,
-         BarrierStage{b.pairs, w.x, project_contacts, w.pair, dw.contact_gradient, pair_hessian});
+         BarrierStage{b.pairs, w.x, exact_contacts, w.pair, dw.contact_gradient, pair_hessian});
   launch(pairs, StepSquaredScaleStage{b.pairs.environment, b.h, pair_hessian, 144});
   launch(b.friction.count,
          FrictionStage{b.friction, w.x, b.start_positions, w.contact,
@@ -105,15 +106,18 @@ void term_derivatives(Launcher& launch, const PotentialBuffers& b, const double*
          StepSquaredScaleStage{b.friction.environment, b.h, friction_hessian, 144});
 }
 
-// Every environment's gradient (the batch's DOFs) and Newton matrix (9 per pattern block) at q.
+// Every environment's gradient (the batch's DOFs) and Newton matrix (9 per pattern block) at q;
+// the contacts' Hessians PSD-projected but where exact_contacts (per environment) says 1, as the
+// CPU engine leaves them after projected_iterations (null: projected everywhere).
 template <class Launcher>
 void incremental_potential_derivatives(Launcher& launch, const PotentialBuffers& b,
                                        const DerivativeBuffers& d, const double* q,
                                        const PotentialWork& w, const DerivativeWork& dw,
-                                       bool project_contacts, double* gradient, double* blocks) {
+                                       const unsigned char* exact_contacts, double* gradient,
+                                       double* blocks) {
   launch(d.dof_count, ZeroStage{gradient});
   launch(d.dof_count, ZeroStage{dw.potential_gradient});
-  term_derivatives(launch, b, q, w, dw, project_contacts);
+  term_derivatives(launch, b, q, w, dw, exact_contacts);
   const IncidenceBuffers fem_incidence{b.fem_vertices.count, b.fem_vertices.dof,
                                        d.fem_incidence_begin, d.fem_incidence_slots};
   launch(fem_incidence.count,

@@ -94,7 +94,7 @@ void incremental_potential(Launcher& launch, const PotentialBuffers& b, const do
   launch(b.bodies.count, AffineInertiaStage{b.bodies, q, b.q_tilde, w.body_inertia, nullptr});
   launch(b.bodies.count, OrthogonalityStage{b.bodies, q, true, w.orthogonality, nullptr, nullptr});
   launch(b.bodies.count, DriveStage{b.bodies, q, b.drive_target, w.drive, nullptr});
-  launch(b.pairs.count, BarrierStage{b.pairs, w.x, true, w.pair, nullptr, nullptr});
+  launch(b.pairs.count, BarrierStage{b.pairs, w.x, nullptr, w.pair, nullptr, nullptr});
   launch(b.friction.count,
          FrictionStage{b.friction, w.x, b.start_positions, w.contact, nullptr, nullptr});
   launch(b.environment_count, PotentialSumStage{b, w, energy});

@@ -42,6 +42,25 @@ inline SceneDescription resting_scene(double gap, double d_hat, double dt) {
   return scene;
 }
 
+// The resting scene with the floor rising `rise` times `gap` per step (and sliding at 2 cm/s) and
+// the soft box on the affine box (body 3) pinned at its top to a mount (body 5) moving 1 cm/s
+// sideways: prescribed motion of scripted vertices and pinned DOFs.
+inline SceneDescription moving_scene(double gap, double d_hat, double dt, double rise = 0.2) {
+  SceneDescription scene = resting_scene(gap, d_hat, dt);
+  scene.bodies[0].script.velocity = Eigen::Vector3d(0.02, 0, rise * gap / dt);
+  BodyDescription mount =
+      rigid_box("mount", BodyType::kKinematic, {0.02, 0.02, 0.004}, {0.0, 0.0, 0.032 + 2 * gap});
+  mount.script.velocity = Eigen::Vector3d(0.01, 0, 0);
+  Pin pin{5, {}};
+  const BodyDescription& on_box = scene.bodies[3];
+  for (Eigen::Index v = 0; v < on_box.vertices.rows(); ++v) {
+    if (on_box.vertices(v, 2) > 0.005 - 1e-9) pin.vertices.push_back(static_cast<int>(v));
+  }
+  scene.bodies[3].pins.push_back(pin);
+  scene.bodies.push_back(mount);
+  return scene;
+}
+
 // One environment as the CPU engine begins its step: random velocities, the step's targets,
 // the pairs near its start, the friction lagged there, the driven bodies' targets.
 struct CpuStep {

@@ -81,7 +81,7 @@ Values run_stage(const Batch& b, Launcher&& launch) {
   const int n = b.pairs.pairs().count;
   Values v{std::vector<double>(n), std::vector<double>(12 * std::size_t(n)),
            std::vector<double>(144 * std::size_t(n))};
-  launch(n, BarrierStage{b.pairs.pairs(), b.positions.data(), true, v.energy.data(),
+  launch(n, BarrierStage{b.pairs.pairs(), b.positions.data(), nullptr, v.energy.data(),
                          v.gradient.data(), v.hessian.data()});
   return v;
 }

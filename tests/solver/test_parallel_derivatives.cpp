@@ -45,7 +45,7 @@ Derivatives derivatives(const ParallelStep& s, const std::vector<double>& q, Lau
   Derivatives d{std::vector<double>(q.size()),
                 std::vector<double>(9 * structure.pattern.row.size()), structure.pattern};
   parallel::incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
-                                              storage.work(), true, d.gradient.data(),
+                                              storage.work(), nullptr, d.gradient.data(),
                                               d.blocks.data());
   return d;
 }

@@ -59,7 +59,8 @@ TEST(ParallelNewton, ResidualAndRightHandSideAreTheCpuEnginesOverFreeDofs) {
   std::vector<double> gradient(q.size()), blocks(9 * structure.pattern.row.size());
   parallel::SerialLauncher launch;
   parallel::incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
-                                              storage.work(), true, gradient.data(), blocks.data());
+                                              storage.work(), nullptr, gradient.data(),
+                                              blocks.data());
   std::vector<double> rhs(q.size()), residual(steps.size());
   const std::vector<int>& dof_begin = s.collision.dof_begin();
   launch(static_cast<int>(q.size()),

@@ -28,32 +28,14 @@ using testing::parallel_step;
 using testing::ParallelStep;
 using testing::pointers;
 
-// The resting scene with the floor rising a fifth of `gap` per step and the soft box on the
-// affine box (body 3) pinned at its top to a mount (body 5) moving 0.1 mm per 10 ms sideways.
-SceneDescription moving_scene(double gap, double d_hat, double dt) {
-  SceneDescription scene = testing::resting_scene(gap, d_hat, dt);
-  scene.bodies[0].script.velocity = Eigen::Vector3d(0.02, 0, 0.2 * gap / dt);
-  BodyDescription mount = testing::rigid_box("mount", BodyType::kKinematic, {0.02, 0.02, 0.004},
-                                             {0.0, 0.0, 0.032 + 2 * gap});
-  mount.script.velocity = Eigen::Vector3d(0.01, 0, 0);
-  Pin pin{5, {}};
-  const BodyDescription& on_box = scene.bodies[3];
-  for (Eigen::Index v = 0; v < on_box.vertices.rows(); ++v) {
-    if (on_box.vertices(v, 2) > 0.005 - 1e-9) pin.vertices.push_back(static_cast<int>(v));
-  }
-  scene.bodies[3].pins.push_back(pin);
-  scene.bodies.push_back(mount);
-  return scene;
-}
-
 struct Moving {
   std::vector<CpuStep> steps;
   std::vector<double> progress{0.0, 0.4, 1.0};
 };
 
 Moving moving_steps() {
-  const auto near = Model::build(moving_scene(4e-4, 1e-3, 0.01));
-  const auto wide = Model::build(moving_scene(1.2e-3, 2e-3, 0.005));
+  const auto near = Model::build(testing::moving_scene(4e-4, 1e-3, 0.01));
+  const auto wide = Model::build(testing::moving_scene(1.2e-3, 2e-3, 0.005));
   Moving m;
   m.steps.push_back(testing::begin_cpu_step(near, 11));
   m.steps.push_back(testing::begin_cpu_step(wide, 12));
@@ -126,7 +108,7 @@ ParallelSystem parallel_system(const ParallelStep& s, const std::vector<double>&
   out.blocks.resize(9 * out.structure.pattern.row.size());
   out.force.resize(q.size());
   parallel::incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
-                                              storage.work(), true, out.gradient.data(),
+                                              storage.work(), nullptr, out.gradient.data(),
                                               out.blocks.data());
   std::vector<double> motion(3 * std::size_t(s.collision.vertex_count()));
   std::vector<double> contact_force(3 * out.structure.contact_vertex.size());

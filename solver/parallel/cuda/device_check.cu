@@ -298,7 +298,7 @@ BarrierValues host_barrier(const ContactPairs& pairs, const std::vector<double>&
   BarrierValues v{std::vector<double>(n), std::vector<double>(12 * std::size_t(n)),
                   std::vector<double>(144 * std::size_t(n))};
   const auto start = std::chrono::steady_clock::now();
-  SerialLauncher{}(n, BarrierStage{pairs.pairs(), x.data(), true, v.energy.data(),
+  SerialLauncher{}(n, BarrierStage{pairs.pairs(), x.data(), nullptr, v.energy.data(),
                                    v.gradient.data(), v.hessian.data()});
   ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return v;
@@ -316,8 +316,8 @@ BarrierValues device_barrier(const ContactPairs& pairs, const std::vector<double
                             eps.data(),  environment.data(), d_hat.data(),
                             kappa.data()};
   ms = device_median_ms(repeats, [&] {
-    CudaLauncher{}(n, BarrierStage{buffers, positions.data(), true, energy.data(), gradient.data(),
-                                   hessian.data()});
+    CudaLauncher{}(n, BarrierStage{buffers, positions.data(), nullptr, energy.data(),
+                                   gradient.data(), hessian.data()});
   });
   bytes = 8.0 * double(positions.size() + eps.size() + energy.size() + gradient.size() +
                        hessian.size()) +

@@ -139,7 +139,7 @@ NewtonSystem newton_system(const PotentialScene& s, const DerivativeStructure& s
   Array<double> contact_force(3 * structure.contact_vertex.size()), force(s.q.size());
   const auto run = [&] {
     incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
-                                      storage.work(), true, gradient.data(), blocks.data());
+                                      storage.work(), nullptr, gradient.data(), blocks.data());
     kinematic_force(launch, b, storage.buffers(), work.work(), storage.work(), motion.data(),
                     contact_force.data(), force.data());
   };
