@@ -4,8 +4,8 @@
 # writes gpu-check.json, gpu-check.md and the GPU's nvidia-smi report into OUTDIR. It compares
 # the data-parallel engine's stages (elastic, FEM inertia, barrier, CCD, friction, affine, map,
 # Hessian blocks, block-Jacobi CG, broad phase, step halving, incremental potential, Newton
-# system and sufficient decrease) on the GPU with the host launcher on the same batches, and
-# times them at 1 to 512 environments (docs/architecture.md, "Engines"). Sized to finish well
+# system, sufficient decrease, dense Cholesky) on the GPU with the host launcher on the same
+# batches, and times them at 1 to 512 environments (docs/architecture.md, "Engines"). Sized to finish well
 # inside 8 minutes: the build takes about 4 minutes of one core, its sources compiled side by
 # side (2 minutes on two cores), and the host's share of the largest batch (1.2 million tets,
 # 262,144 pairs and as many friction contacts) under two minutes of one core, 34 s of it the
@@ -28,7 +28,8 @@ mkdir -p "$root/build-gpu"
 flags=(-std=c++20 -O3 -arch=sm_90 -I"$root" -isystem "$eigen" --expt-relaxed-constexpr
   -diag-suppress=20012 -Werror=all-warnings -Xcompiler=-Wall,-Wextra,-Werror)
 sources=(solver/parallel/cuda/device_check.cu solver/parallel/cuda/broad_phase_check.cu
-  solver/parallel/cuda/potential_check.cu solver/parallel/fem_batch.cpp
+  solver/parallel/cuda/potential_check.cu solver/parallel/cuda/dense_check.cu
+  solver/parallel/fem_batch.cpp
   solver/parallel/surface_batch.cpp solver/parallel/broad_phase.cpp
   solver/parallel/affine_batch.cpp solver/parallel/collision_batch.cpp
   solver/parallel/block_assembly.cpp solver/parallel/block_pcg.cpp

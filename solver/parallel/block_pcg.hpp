@@ -100,6 +100,9 @@ struct PcgBuffers {
   double *rz = nullptr, *rz_next = nullptr, *rr = nullptr, *rr0 = nullptr, *pap = nullptr;
   double *alpha = nullptr, *beta = nullptr;
   int* running = nullptr;  // one int
+  // Per environment: 1 where another solver takes the system (dense_cholesky.hpp): it is left
+  // converged at once, its x untouched; null: none.
+  const unsigned char* skip = nullptr;
 };
 
 GRIP_HD inline bool pcg_running(const PcgBuffers& p, int unit) {
@@ -200,7 +203,9 @@ struct EnvironmentDotStage {
 
 struct PcgResetStage {
   PcgBuffers p;
-  GRIP_HD void operator()(int e) const { p.status[e] = kPcgRunning; }
+  GRIP_HD void operator()(int e) const {
+    p.status[e] = p.skip != nullptr && p.skip[e] != 0 ? kPcgConverged : kPcgRunning;
+  }
 };
 
 // After the first residual and its preconditioned copy: each environment's r0, and whether it
@@ -212,6 +217,7 @@ struct PcgStartStage {
     p.iterations[e] = 0;
     p.residual[e] = 0.0;
     p.rr0[e] = p.rr[e];
+    if (p.status[e] != kPcgRunning) return;  // skipped
     for (int j = p.jacobi_begin[e]; j < p.jacobi_begin[e + 1]; ++j) {
       if (!p.jacobi_ok[j]) {
         p.status[e] = kPcgBadPreconditioner;
@@ -418,14 +424,17 @@ class HostPcg {
       : structure_(pcg_structure(fem, affine, pattern, dof_begin)), storage_(structure_) {}
 
   // Solves the batch's systems with these blocks, fixed DOFs, right-hand side and per
-  // environment tolerances; x holds the fixed DOFs' values and the first guess on entry.
+  // environment tolerances; x holds the fixed DOFs' values and the first guess on entry. The
+  // environments `skip` marks (per environment; null: none) are left as they are.
   template <class Launcher>
   void solve(Launcher& launch, const std::vector<double>& block, const std::vector<char>& fixed,
              const std::vector<double>& rhs, const std::vector<double>& tolerance,
-             int max_iterations, std::vector<double>& x) {
+             int max_iterations, std::vector<double>& x, const unsigned char* skip = nullptr) {
     check_sizes(block, fixed, rhs, tolerance, x);
-    solve_block_pcg(launch, storage_.buffers(block.data(), fixed.data(), rhs.data(),
-                                             tolerance.data(), max_iterations, x.data()));
+    PcgBuffers p = storage_.buffers(block.data(), fixed.data(), rhs.data(), tolerance.data(),
+                                    max_iterations, x.data());
+    p.skip = skip;
+    solve_block_pcg(launch, p);
   }
 
   const std::vector<int>& status() const { return storage_.status; }

@@ -7,7 +7,8 @@
 //   2. the residual over free DOFs against the solve's first (never less than the dynamic
 //      bodies' standard weight times h^2): converged at newton_tol once prescribed motion is
 //      done and the step is not held open;
-//   3. the Newton step by block-Jacobi CG (block_pcg.hpp), the fixed DOFs keeping their motion;
+//   3. the Newton step by block-Jacobi CG (block_pcg.hpp), or by dense Cholesky where the batch
+//      says so (dense_cholesky.hpp), the fixed DOFs keeping their motion;
 //      converged when it would move no vertex more than newton_velocity_tol h;
 //   4. the line search: the broad phase over the path from x to the step's end and the reach
 //      filter (broad_phase.hpp, reach_stages.hpp), CCD's bound over the pairs it watches
@@ -33,6 +34,7 @@
 #include "solver/parallel/ccd_stages.hpp"
 #include "solver/parallel/collision_batch.hpp"
 #include "solver/parallel/contact_stages.hpp"
+#include "solver/parallel/dense_cholesky.hpp"
 #include "solver/parallel/derivative_stages.hpp"
 #include "solver/parallel/fem_batch.hpp"
 #include "solver/parallel/friction_stages.hpp"
@@ -84,6 +86,9 @@ struct NewtonBatch {
   std::vector<double> d_hat, kappa, newton_tol, velocity_tol, standard_weight;
   std::vector<unsigned char> held;
   std::vector<int> projected_iterations;
+  // Per environment: 1 where its Newton system is solved by dense Cholesky (a rigid object and
+  // a hand's driven links), else by CG; empty: CG for all.
+  std::vector<unsigned char> dense;
   double ccd_rescaling = 0.1;   // SimParameters::ccd_rescaling, one for the batch
   double cg_tolerance = 1e-10;  // CG's relative residual
   int cg_iterations = 10000;
@@ -204,10 +209,27 @@ std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, const NewtonI
   launch(dofs, FixedMotionStage{dof_begin.data(), environments, it.step.progress.data(),
                                 nb.prescribed.data(), nb.prescribed_target.data(), it.q.data(),
                                 p.data()});
+  const unsigned char* dense = nb.dense.empty() ? nullptr : nb.dense.data();
   HostPcg pcg(nb.fem, nb.affine, s.structure.pattern, dof_begin);
   pcg.solve(launch, s.blocks, nb.fixed, rhs, std::vector<double>(environments, nb.cg_tolerance),
-            nb.cg_iterations, p);
+            nb.cg_iterations, p, dense);
   status = pcg.status();
+  if (dense == nullptr) return p;
+  const BlockPattern& pattern = s.structure.pattern;
+  const std::vector<long long> matrix_begin = dense_matrix_begin(dof_begin, dense);
+  std::vector<double> matrix(static_cast<std::size_t>(matrix_begin.back()));
+  std::vector<int> dense_status(environments);
+  launch(environments,
+         DenseCholeskyStage{
+             {environments, dof_begin.data(), pattern.environment_begin.data(), pattern.row.data(),
+              pattern.column.data(), s.blocks.data(), nb.fixed.data(), rhs.data(),
+              matrix_begin.data(), matrix.data(), p.data(), dense_status.data()},
+             dense});
+  // A factorization that finds the matrix not positive definite is CG's indefinite: the
+  // contacts are projected and the system solved again.
+  for (int e = 0; e < environments; ++e) {
+    if (dense[e] != 0) status[e] = dense_status[e] == kDenseSolved ? kPcgConverged : kPcgIndefinite;
+  }
   return p;
 }
 

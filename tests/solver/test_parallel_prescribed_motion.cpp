@@ -4,7 +4,8 @@
 // in the step and the soft box on the affine box pinned at its top to a mount that moves
 // sideways, taken at progress 0, 0.4 and 1 of the way. The force that the contacts' Hessians
 // give the motion still to come equals the CPU engine's H_fk dk, and the Newton step solved
-// from it (the pinned DOFs' motion kept, one soft box held) is the CPU engine's elimination's.
+// from it (the pinned DOFs' motion kept, one soft box held), by CG and by dense Cholesky, is the
+// CPU engine's elimination's.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -14,6 +15,7 @@
 #include "solver/batch/model_batch.hpp"
 #include "solver/batch/tbb_launcher.hpp"
 #include "solver/parallel/block_pcg.hpp"
+#include "solver/parallel/dense_cholesky.hpp"
 #include "solver/parallel/derivative_stages.hpp"
 #include "solver/parallel/newton_stages.hpp"
 #include "solver/parallel/prescribed_motion_stages.hpp"
@@ -178,47 +180,134 @@ TEST(ParallelPrescribedMotion, KinematicForceIsTheCpuEnginesWhileMotionIsToCome)
   }
 }
 
+// The batch's right-hand side and fixed DOFs' values (the solve's x on entry).
+struct RightHandSide {
+  std::vector<char> fixed;
+  std::vector<double> rhs, x;
+};
+
+template <class Launcher>
+RightHandSide right_hand_side(const Batch& batch, const ParallelSystem& system, Launcher& launch) {
+  RightHandSide r{fixed_dofs(batch.m), {}, {}};
+  const std::vector<char> prescribed = parallel::prescribed_dofs(batch.models);
+  const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
+  const int dofs = static_cast<int>(batch.batch_q.size());
+  r.rhs.resize(dofs);
+  r.x.resize(dofs);
+  launch(dofs, parallel::NewtonRightHandSideStage{r.fixed.data(), system.gradient.data(),
+                                                  system.force.data(), r.rhs.data()});
+  launch(dofs, parallel::FixedMotionStage{dof_begin.data(), static_cast<int>(batch.q.size()),
+                                          batch.s.step.progress.data(), prescribed.data(),
+                                          batch.prescribed_target.data(), batch.batch_q.data(),
+                                          r.x.data()});
+  return r;
+}
+
+// Every environment's Newton step by dense Cholesky (dense_cholesky.hpp), with its status.
+struct DenseSolve {
+  std::vector<double> x;
+  std::vector<int> status;
+};
+
+template <class Launcher>
+DenseSolve dense_solve(const Batch& batch, const ParallelSystem& system, const RightHandSide& r,
+                       Launcher&& launch) {
+  const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
+  const parallel::BlockPattern& pattern = system.structure.pattern;
+  const std::vector<long long> matrix_begin = parallel::dense_matrix_begin(dof_begin);
+  std::vector<double> matrix(static_cast<std::size_t>(matrix_begin.back()));
+  DenseSolve out{r.x, std::vector<int>(batch.q.size())};
+  launch(static_cast<int>(batch.q.size()),
+         parallel::DenseCholeskyStage{
+             {static_cast<int>(batch.q.size()), dof_begin.data(), pattern.environment_begin.data(),
+              pattern.row.data(), pattern.column.data(), system.blocks.data(), r.fixed.data(),
+              r.rhs.data(), matrix_begin.data(), matrix.data(), out.x.data(), out.status.data()}});
+  return out;
+}
+
+// The CPU engine's step of environment e: its elimination solved directly.
+Eigen::VectorXd cpu_step(const Batch& batch, const std::vector<char>& fixed, int e) {
+  const CpuStep& c = batch.m.steps[e];
+  const double progress = batch.m.progress[e];
+  const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
+  const int n = c.model->dof_count();
+  const std::vector<char> env_fixed(fixed.begin() + dof_begin[e], fixed.begin() + dof_begin[e + 1]);
+  Eigen::VectorXd lift = Eigen::VectorXd::Zero(n);
+  for (int d = 0; d < n; ++d) {
+    if (c.model->prescribed()[d] && progress < 1.0) {
+      lift[d] = c.step.targets.prescribed_target[d] - batch.q[e][d];
+    }
+  }
+  // The mount moves 0.1 mm (0.05 mm) in the step: the pinned DOFs' motion is the lift.
+  EXPECT_EQ(largest(lift) > 1e-5, progress < 1.0) << "environment " << e;
+  return cpu_newton_step(cpu_system(c, batch.q[e], progress), env_fixed, lift);
+}
+
+// Environment e's solution in x against the CPU engine's p: the fixed DOFs' values exactly,
+// the whole within `tolerance` relative.
+void expect_step(const std::vector<double>& x, const Eigen::VectorXd& p, const Batch& batch,
+                 const std::vector<char>& fixed, int e, double tolerance) {
+  const int first = batch.s.collision.dof_begin()[e];
+  double difference = 0.0;
+  for (Eigen::Index d = 0; d < p.size(); ++d) {
+    if (fixed[first + d]) {
+      EXPECT_EQ(x[first + d], p[d]) << "environment " << e;
+    }
+    difference = std::max(difference, std::abs(x[first + d] - p[d]));
+  }
+  EXPECT_LE(difference, tolerance * largest(p)) << "environment " << e;
+}
+
+// By CG to 1e-12 (within 1e-7) and by dense Cholesky (within 1e-10: a direct solve, as the CPU
+// engine's).
 TEST(ParallelPrescribedMotion, NewtonStepIsTheCpuEnginesElimination) {
   const Batch batch;
   parallel::SerialLauncher launch;
   const ParallelSystem system = parallel_system(batch.s, batch.batch_q, launch);
-  const std::vector<char> fixed = fixed_dofs(batch.m);
-  const std::vector<char> prescribed = parallel::prescribed_dofs(batch.models);
+  const RightHandSide r = right_hand_side(batch, system, launch);
   const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
-  const int dofs = static_cast<int>(batch.batch_q.size());
   const int environments = static_cast<int>(batch.q.size());
-  std::vector<double> rhs(dofs), x(dofs);
-  launch(dofs, parallel::NewtonRightHandSideStage{fixed.data(), system.gradient.data(),
-                                                  system.force.data(), rhs.data()});
-  launch(dofs, parallel::FixedMotionStage{
-                   dof_begin.data(), environments, batch.s.step.progress.data(), prescribed.data(),
-                   batch.prescribed_target.data(), batch.batch_q.data(), x.data()});
+  std::vector<double> x = r.x;
   parallel::HostPcg pcg(batch.s.fem, batch.s.affine, system.structure.pattern, dof_begin);
-  pcg.solve(launch, system.blocks, fixed, rhs, std::vector<double>(environments, 1e-12), 2000, x);
+  pcg.solve(launch, system.blocks, r.fixed, r.rhs, std::vector<double>(environments, 1e-12), 2000,
+            x);
+  const DenseSolve dense = dense_solve(batch, system, r, launch);
   for (int e = 0; e < environments; ++e) {
     ASSERT_EQ(pcg.status()[e], parallel::kPcgConverged) << "environment " << e;
-    const CpuStep& c = batch.m.steps[e];
-    const double progress = batch.m.progress[e];
-    const int n = c.model->dof_count();
-    const std::vector<char> env_fixed(fixed.begin() + dof_begin[e],
-                                      fixed.begin() + dof_begin[e + 1]);
-    Eigen::VectorXd lift = Eigen::VectorXd::Zero(n);
-    for (int d = 0; d < n; ++d) {
-      if (c.model->prescribed()[d] && progress < 1.0) {
-        lift[d] = c.step.targets.prescribed_target[d] - batch.q[e][d];
-      }
+    ASSERT_EQ(dense.status[e], parallel::kDenseSolved) << "environment " << e;
+    const Eigen::VectorXd p = cpu_step(batch, r.fixed, e);
+    expect_step(x, p, batch, r.fixed, e, 1e-7);
+    expect_step(dense.x, p, batch, r.fixed, e, 1e-10);
+  }
+}
+
+// Serial and TBB alike, an environment alone as in the batch (its values and its neighbours'
+// untouched), and an environment whose matrix is not positive definite (a diagonal entry
+// negated) reported so, the others solved as before.
+TEST(ParallelPrescribedMotion, DenseCholeskyIsolatesEnvironments) {
+  const Batch batch;
+  parallel::SerialLauncher launch;
+  ParallelSystem system = parallel_system(batch.s, batch.batch_q, launch);
+  const RightHandSide r = right_hand_side(batch, system, launch);
+  const DenseSolve serial = dense_solve(batch, system, r, launch);
+  EXPECT_EQ(serial.x, dense_solve(batch, system, r, parallel::TbbLauncher(2)).x);
+  // A free DOF's diagonal entry in the second environment (its first body is held).
+  const parallel::BlockPattern& pattern = system.structure.pattern;
+  int block = pattern.environment_begin[2] - 1;
+  while (pattern.row[block] != pattern.column[block] || r.fixed[3 * pattern.row[block]] != 0) {
+    --block;
+  }
+  ASSERT_GE(block, pattern.environment_begin[1]);
+  system.blocks[9 * block] = -1.0;
+  const DenseSolve with_broken = dense_solve(batch, system, r, launch);
+  EXPECT_EQ(with_broken.status,
+            (std::vector<int>{parallel::kDenseSolved, parallel::kDenseNotPositiveDefinite,
+                              parallel::kDenseSolved}));
+  const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
+  for (int e : {0, 2}) {
+    for (int d = dof_begin[e]; d < dof_begin[e + 1]; ++d) {
+      ASSERT_EQ(with_broken.x[d], serial.x[d]) << "environment " << e;
     }
-    // The mount moves 0.1 mm (0.05 mm) in the step: the pinned DOFs' motion is the lift.
-    EXPECT_EQ(largest(lift) > 1e-5, progress < 1.0) << "environment " << e;
-    const Eigen::VectorXd p = cpu_newton_step(cpu_system(c, batch.q[e], progress), env_fixed, lift);
-    double difference = 0.0;
-    for (int d = 0; d < n; ++d) {
-      if (env_fixed[d]) {
-        EXPECT_EQ(x[dof_begin[e] + d], lift[d]) << "environment " << e;
-      }
-      difference = std::max(difference, std::abs(x[dof_begin[e] + d] - p[d]));
-    }
-    EXPECT_LE(difference, 1e-7 * largest(p)) << "environment " << e;
   }
 }
 

@@ -43,6 +43,7 @@
 #include "solver/parallel/contact_stages.hpp"
 #include "solver/parallel/cuda/broad_phase_check.cuh"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
+#include "solver/parallel/cuda/dense_check.cuh"
 #include "solver/parallel/cuda/potential_check.cuh"
 #include "solver/parallel/cuda/relative_difference.cuh"
 #include "solver/parallel/elastic_stages.hpp"
@@ -815,6 +816,7 @@ struct SizeResult {
   int halving_most = 0;            // the most halvings any environment took (host)
   bool halving_identical = false;  // every environment's alpha and halvings, device and host
   PotentialCheck potential;
+  DenseCheck dense;
   bool pass() const {
     // The friction Hessian needs no eigen-solve: it is held to the gradient's tolerance.
     return energy <= kEnergyTolerance && gradient <= kGradientTolerance &&
@@ -833,7 +835,8 @@ struct SizeResult {
            broad_phase.lag_difference <= kGradientTolerance && halving_identical &&
            potential.energy <= kEnergyTolerance && potential.gradient <= kGradientTolerance &&
            potential.hessian <= kHessianTolerance &&
-           potential.kinematic_force <= kGradientTolerance && potential.decrease_identical;
+           potential.kinematic_force <= kGradientTolerance && potential.decrease_identical &&
+           dense.all_solved && dense.solution <= kGradientTolerance;
   }
 };
 
@@ -1073,6 +1076,7 @@ SizeResult check_size(const BoxMesh& mesh, int environments, int repeats, double
   result.broad_phase = check_broad_phase(environments, repeats);
   check_halving(batch, q, repeats, result);
   result.potential = check_potential(potential_scene(mesh, q, environments), repeats);
+  result.dense = check_dense_cholesky(environments, repeats);
   return result;
 }
 
@@ -1126,7 +1130,12 @@ void write_json_search(std::ostream& json, const SizeResult& r) {
        << ", \"decrease_host_ms\": " << r.potential.decrease_host_ms
        << ", \"decrease_fewest_halvings\": " << r.potential.fewest_halvings
        << ", \"decrease_most_halvings\": " << r.potential.most_halvings
-       << ", \"decrease_identical\": " << (r.potential.decrease_identical ? "true" : "false");
+       << ", \"decrease_identical\": " << (r.potential.decrease_identical ? "true" : "false")
+       << ", \"dense_cholesky_device_ms\": " << r.dense.device_ms
+       << ", \"dense_cholesky_host_ms\": " << r.dense.host_ms
+       << ", \"dense_cholesky_dofs\": " << r.dense.dofs
+       << ", \"dense_cholesky_relative_difference\": " << r.dense.solution
+       << ", \"dense_cholesky_all_solved\": " << (r.dense.all_solved ? "true" : "false");
 }
 
 // One size's row of gpu-check.json.
@@ -1207,7 +1216,9 @@ void write_markdown_row(std::ostream& md, const SizeResult& r) {
      << r.potential.kinematic_force << " | " << r.potential.decrease_device_ms << " | "
      << r.potential.decrease_host_ms << " | " << r.potential.fewest_halvings << " to "
      << r.potential.most_halvings << " | " << (r.potential.decrease_identical ? "yes" : "NO")
-     << " | " << (r.pass() ? "yes" : "NO") << " |\n";
+     << " | " << r.dense.device_ms << " | " << r.dense.host_ms << " | " << r.dense.solution
+     << (r.dense.all_solved ? "" : " (NOT all solved)") << " | " << (r.pass() ? "yes" : "NO")
+     << " |\n";
 }
 
 void write_reports(const std::string& directory, const std::string& device,
@@ -1251,12 +1262,13 @@ void write_reports(const std::string& directory, const std::string& device,
         "system diffs (gradient, matrix, kinematic force) | decrease device ms | decrease host ms "
         "| halvings | "
         "decrease "
-        "identical | within tolerance |\n"
+        "identical | dense Cholesky device ms | dense Cholesky host ms | dense Cholesky diff | "
+        "within tolerance |\n"
      << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
         "--- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | "
         "---: | ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: "
         "| ---: | ---: | --- | --- | ---: | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: "
-        "| ---: | ---: | ---: | --- | ---: | ---: | --- | --- | --- |\n";
+        "| ---: | ---: | ---: | --- | ---: | ---: | --- | --- | ---: | ---: | ---: | --- |\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     if (i > 0) json << ", ";
     write_json_row(json, results[i]);
