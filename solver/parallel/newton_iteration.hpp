@@ -107,9 +107,11 @@ struct NewtonIterate {
   // residual's scale, so this iteration is expected to converge.
   std::vector<unsigned char> convergence_expected;
   // Per environment, what the last iteration found (NewtonOutcome, NewtonFailure), its residual
-  // (N s^2, the largest free gradient entry) and the fraction of its step it took.
+  // (N s^2, the largest free gradient entry), the fraction of its step it took, and the CG
+  // iterations its solves took (0 where dense Cholesky solved it).
   std::vector<int> outcome, failure;
   std::vector<double> residual, alpha;
+  std::vector<int> cg_iterations;
 };
 
 // The barrier's pairs of every environment: the broad phase's candidates in `found` that
@@ -199,7 +201,7 @@ System evaluate(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
 
 // The Newton step p of every environment (its fixed DOFs' motion kept) and each one's CG status.
 template <class Launcher>
-std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, const NewtonIterate& it,
+std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
                           const System& s, std::vector<int>& status) {
   const std::vector<int>& dof_begin = nb.collision.dof_begin();
   const int dofs = static_cast<int>(it.q.size()), environments = static_cast<int>(it.active.size());
@@ -214,6 +216,7 @@ std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, const NewtonI
   pcg.solve(launch, s.blocks, nb.fixed, rhs, std::vector<double>(environments, nb.cg_tolerance),
             nb.cg_iterations, p, dense);
   status = pcg.status();
+  for (int e = 0; e < environments; ++e) it.cg_iterations[e] += pcg.iterations()[e];
   if (dense == nullptr) return p;
   const BlockPattern& pattern = s.structure.pattern;
   const std::vector<long long> matrix_begin = dense_matrix_begin(dof_begin, dense);
@@ -384,6 +387,7 @@ void newton_iteration(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it
   it.failure.assign(environments, kNewtonNoFailure);
   it.residual.assign(environments, 0.0);
   it.alpha.assign(environments, 0.0);
+  it.cg_iterations.assign(environments, 0);
   std::vector<unsigned char> exact(environments);
   for (std::size_t e = 0; e < environments; ++e) {
     if (it.active[e] == 0) continue;

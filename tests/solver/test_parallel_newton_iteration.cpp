@@ -83,6 +83,7 @@ struct Agreement {
   // largest where the solves stopped.
   double largest_difference = 0.0, final_difference = 0.0;
   std::vector<double> environment_largest;  // per environment, over its iterations
+  std::vector<int> cg_iterations;           // per environment, over its iterations
 };
 
 template <class Launcher>
@@ -93,6 +94,7 @@ Agreement compare_steps(std::vector<CpuStep>& steps, Launcher&& launch, Parallel
   a.last_outcome.assign(steps.size(), parallel::kNewtonIdle);
   a.first_progress.assign(steps.size(), 0.0);
   a.environment_largest.assign(steps.size(), 0.0);
+  a.cg_iterations.assign(steps.size(), 0);
   for (int iteration = 1; iteration <= 30; ++iteration) {
     parallel::newton_iteration(launch, run.batch, run.it);
     for (std::size_t e = 0; e < steps.size(); ++e) {
@@ -110,6 +112,7 @@ Agreement compare_steps(std::vector<CpuStep>& steps, Launcher&& launch, Parallel
       }
       a.largest_difference = std::max(a.largest_difference, difference / moved);
       a.environment_largest[e] = std::max(a.environment_largest[e], difference / moved);
+      a.cg_iterations[e] += run.it.cg_iterations[e];
       a.iterations[e] = iteration;
       a.last_outcome[e] = run.it.outcome[e];
       if (iteration == 1) a.first_progress[e] = run.it.step.progress[e];
@@ -190,6 +193,7 @@ TEST(ParallelNewtonIteration, DenseCholeskyIteratesAsTheCpuEngines) {
   for (int e = 0; e < 3; ++e) {
     EXPECT_EQ(a.last_outcome[e], parallel::kNewtonConverged) << "environment " << e;
     EXPECT_LE(a.environment_largest[e], e == 1 ? 1e-6 : 1e-9) << "environment " << e;
+    EXPECT_EQ(a.cg_iterations[e] > 0, e == 1) << "environment " << e;
   }
 }
 
