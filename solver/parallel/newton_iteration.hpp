@@ -25,6 +25,7 @@
 // engine's is a direct one), and a batch shares one ccd_rescaling. The host builds the contacts'
 // structures (derivative_structure, the PCG's pattern) and the barrier's pairs each iteration; the
 // engine on a GPU will keep them there.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -141,6 +142,14 @@ inline void fail(NewtonIterate& it, int e, NewtonFailure why) {
   it.failure[e] = why;
 }
 
+// Whether v[begin, end) holds numbers only.
+inline bool finite_range(const std::vector<double>& v, int begin, int end) {
+  for (int i = begin; i < end; ++i) {
+    if (!std::isfinite(v[i])) return false;
+  }
+  return true;
+}
+
 template <class Launcher>
 System newton_system(Launcher& launch, const NewtonBatch& nb, const NewtonIterate& it,
                      const std::vector<unsigned char>& exact) {
@@ -177,10 +186,7 @@ System evaluate(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
     it.outcome[e] = it.active[e] != 0 ? kNewtonContinue : kNewtonIdle;
     it.failure[e] = kNewtonNoFailure;
     if (!continues(it, e)) continue;
-    bool finite = true;
-    for (int d = dof_begin[e]; d < dof_begin[e + 1]; ++d)
-      finite = finite && std::isfinite(s.gradient[d]);
-    if (!finite) {
+    if (!finite_range(s.gradient, dof_begin[e], dof_begin[e + 1])) {
       fail(it, e, kNewtonNonFinite);
       continue;
     }
@@ -199,10 +205,14 @@ System evaluate(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
   return s;
 }
 
-// The Newton step p of every environment (its fixed DOFs' motion kept) and each one's CG status.
+// The Newton step p of the environments `wanted` marks, by CG or dense Cholesky (NewtonBatch::
+// dense), their fixed DOFs' motion kept (the others' p holds their fixed values alone), and each
+// one's status as CG's (a dense factorization that finds the matrix not positive definite is
+// CG's indefinite); their CG iterations are added to it.cg_iterations.
 template <class Launcher>
 std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
-                          const System& s, std::vector<int>& status) {
+                          const System& s, const std::vector<unsigned char>& wanted,
+                          std::vector<int>& status) {
   const std::vector<int>& dof_begin = nb.collision.dof_begin();
   const int dofs = static_cast<int>(it.q.size()), environments = static_cast<int>(it.active.size());
   std::vector<double> rhs(dofs), p(dofs);
@@ -211,15 +221,20 @@ std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, NewtonIterate
   launch(dofs, FixedMotionStage{dof_begin.data(), environments, it.step.progress.data(),
                                 nb.prescribed.data(), nb.prescribed_target.data(), it.q.data(),
                                 p.data()});
-  const unsigned char* dense = nb.dense.empty() ? nullptr : nb.dense.data();
+  std::vector<unsigned char> skip(environments), dense(environments);
+  for (int e = 0; e < environments; ++e) {
+    const bool direct = !nb.dense.empty() && nb.dense[e] != 0;
+    skip[e] = wanted[e] == 0 || direct;
+    dense[e] = wanted[e] != 0 && direct;
+  }
   HostPcg pcg(nb.fem, nb.affine, s.structure.pattern, dof_begin);
   pcg.solve(launch, s.blocks, nb.fixed, rhs, std::vector<double>(environments, nb.cg_tolerance),
-            nb.cg_iterations, p, dense);
+            nb.cg_iterations, p, skip.data());
   status = pcg.status();
   for (int e = 0; e < environments; ++e) it.cg_iterations[e] += pcg.iterations()[e];
-  if (dense == nullptr) return p;
+  if (std::none_of(dense.begin(), dense.end(), [](unsigned char d) { return d != 0; })) return p;
   const BlockPattern& pattern = s.structure.pattern;
-  const std::vector<long long> matrix_begin = dense_matrix_begin(dof_begin, dense);
+  const std::vector<long long> matrix_begin = dense_matrix_begin(dof_begin, dense.data());
   std::vector<double> matrix(static_cast<std::size_t>(matrix_begin.back()));
   std::vector<int> dense_status(environments);
   launch(environments,
@@ -227,47 +242,51 @@ std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, NewtonIterate
              {environments, dof_begin.data(), pattern.environment_begin.data(), pattern.row.data(),
               pattern.column.data(), s.blocks.data(), nb.fixed.data(), rhs.data(),
               matrix_begin.data(), matrix.data(), p.data(), dense_status.data()},
-             dense});
-  // A factorization that finds the matrix not positive definite is CG's indefinite: the
-  // contacts are projected and the system solved again.
+             dense.data()});
   for (int e = 0; e < environments; ++e) {
     if (dense[e] != 0) status[e] = dense_status[e] == kDenseSolved ? kPcgConverged : kPcgIndefinite;
   }
   return p;
 }
 
-// Step 3: the Newton step; where CG finds an exact matrix indefinite, the system again with its
-// contacts projected.
+// Step 3: the Newton step of every environment that goes on; where its exact matrix is found
+// indefinite, its system again with the contacts projected (the others' solves kept).
 template <class Launcher>
 std::vector<double> newton_step(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
                                 System& s, std::vector<unsigned char>& exact) {
+  const int environments = static_cast<int>(it.active.size());
+  std::vector<unsigned char> wanted(environments), again(environments);
+  for (int e = 0; e < environments; ++e) wanted[e] = continues(it, e) ? 1 : 0;
   std::vector<int> status;
-  std::vector<double> p = solve(launch, nb, it, s, status);
-  bool again = false;
-  for (std::size_t e = 0; e < exact.size(); ++e) {
-    if (exact[e] == 0 || !continues(it, static_cast<int>(e))) continue;
+  std::vector<double> p = solve(launch, nb, it, s, wanted, status);
+  for (int e = 0; e < environments; ++e) {
+    if (wanted[e] == 0 || exact[e] == 0) continue;
     if (status[e] == kPcgIndefinite || status[e] == kPcgBadPreconditioner) {
       exact[e] = 0;
-      again = true;
+      again[e] = 1;
     }
   }
-  if (again) {
-    s = newton_system(launch, nb, it, exact);
-    p = solve(launch, nb, it, s, status);
-  }
   const std::vector<int>& dof_begin = nb.collision.dof_begin();
-  const int environments = static_cast<int>(it.active.size());
+  if (std::any_of(again.begin(), again.end(), [](unsigned char a) { return a != 0; })) {
+    s = newton_system(launch, nb, it, exact);
+    std::vector<int> projected_status;
+    const std::vector<double> projected = solve(launch, nb, it, s, again, projected_status);
+    for (int e = 0; e < environments; ++e) {
+      if (again[e] == 0) continue;
+      status[e] = projected_status[e];
+      std::copy(projected.begin() + dof_begin[e], projected.begin() + dof_begin[e + 1],
+                p.begin() + dof_begin[e]);
+    }
+  }
   std::vector<double> displacement(environments);
   launch(environments, StepDisplacementStage{
                            nb.fem.vertices(), nb.fem.vertex_begin().data(), nb.collision.vertices(),
                            nb.collision.vertex_begin().data(), p.data(), displacement.data()});
   for (int e = 0; e < environments; ++e) {
     if (!continues(it, e)) continue;
-    bool finite = true;
-    for (int d = dof_begin[e]; d < dof_begin[e + 1]; ++d) finite = finite && std::isfinite(p[d]);
     if (status[e] != kPcgConverged) {
       fail(it, e, kNewtonLinearSolve);
-    } else if (!finite) {
+    } else if (!finite_range(p, dof_begin[e], dof_begin[e + 1])) {
       fail(it, e, kNewtonNonFinite);
     } else if (!moving(it, e) && nb.held[e] == 0 &&
                displacement[e] <= nb.velocity_tol[e] * it.step.h[e]) {
