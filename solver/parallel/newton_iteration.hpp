@@ -2,8 +2,8 @@
 // One Newton iteration of every environment of a batch at once, on a host launcher: the
 // data-parallel engine's stages strung together as the CPU engine's NewtonSolver::iterate takes
 // one environment's (solver/newton/newton_solver.cpp):
-//   1. the Newton system at q (derivative_stages.hpp), with the force of prescribed motion
-//      still to come (prescribed_motion_stages.hpp); a non-finite gradient fails;
+//   1. the Newton system at q (newton_system.hpp: derivative_stages.hpp's, with the force of
+//      prescribed motion still to come); a non-finite gradient fails;
 //   2. the residual over free DOFs against the solve's first (never less than the dynamic
 //      bodies' standard weight times h^2): converged at newton_tol once prescribed motion is
 //      done and the step is not held open;
@@ -42,6 +42,7 @@
 #include "solver/parallel/line_search_stages.hpp"
 #include "solver/parallel/map_stages.hpp"
 #include "solver/parallel/newton_stages.hpp"
+#include "solver/parallel/newton_system.hpp"
 #include "solver/parallel/potential_arrays.hpp"
 #include "solver/parallel/prescribed_motion_stages.hpp"
 #include "solver/parallel/reach_stages.hpp"
@@ -127,12 +128,6 @@ ContactPairs chosen_pairs(const ContactPairs& kept, const ContactPairs& fresh,
 
 namespace newton_detail {
 
-// The Newton system of an iteration and what its later parts read of it.
-struct System {
-  std::vector<double> gradient, blocks, force, x;  // x: the collision vertices at q
-  DerivativeStructure structure;
-};
-
 inline bool moving(const NewtonIterate& it, int e) { return it.step.progress[e] < 1.0; }
 
 inline bool continues(const NewtonIterate& it, int e) { return it.outcome[e] == kNewtonContinue; }
@@ -151,40 +146,23 @@ inline bool finite_range(const std::vector<double>& v, int begin, int end) {
 }
 
 template <class Launcher>
-System newton_system(Launcher& launch, const NewtonBatch& nb, const NewtonIterate& it,
-                     const std::vector<unsigned char>& exact) {
-  const PotentialArrays<HostArray> arrays(nb.fem, nb.affine, nb.collision, it.pairs, it.friction,
-                                          it.step);
-  const PotentialBuffers b = arrays.buffers();
-  PotentialStorage<HostArray> work(b);
-  System s;
-  s.structure = derivative_structure(nb.fem, nb.affine, nb.collision, it.pairs, it.friction);
-  DerivativeStorage<HostArray> storage(s.structure, nb.fem, nb.affine, nb.collision);
-  s.gradient.resize(it.q.size());
-  s.force.resize(it.q.size());
-  s.blocks.resize(9 * s.structure.pattern.row.size());
-  incremental_potential_derivatives(launch, b, storage.buffers(), it.q.data(), work.work(),
-                                    storage.work(), exact.data(), s.gradient.data(),
-                                    s.blocks.data());
-  std::vector<double> motion(work.x.size()), contact_force(3 * s.structure.contact_vertex.size());
-  kinematic_force(launch, b, storage.buffers(), work.work(), storage.work(), motion.data(),
-                  contact_force.data(), s.force.data());
-  s.x = work.x;
-  return s;
+NewtonSystem newton_system(Launcher& launch, const NewtonBatch& nb, const NewtonIterate& it,
+                           const std::vector<unsigned char>& exact) {
+  return parallel::newton_system(launch, nb.fem, nb.affine, nb.collision, it.pairs, it.friction,
+                                 it.step, it.q, exact.data());
 }
 
 // Steps 1 and 2: each active environment's residual, its scale, and convergence by it.
 template <class Launcher>
-System evaluate(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
-                const std::vector<unsigned char>& exact) {
-  System s = newton_system(launch, nb, it, exact);
+NewtonSystem evaluate(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
+                      const std::vector<unsigned char>& exact) {
+  NewtonSystem s = newton_system(launch, nb, it, exact);
   const std::vector<int>& dof_begin = nb.collision.dof_begin();
   const int environments = static_cast<int>(it.active.size());
   launch(environments, FreeResidualStage{dof_begin.data(), nb.fixed.data(), s.gradient.data(),
                                          it.residual.data()});
   for (int e = 0; e < environments; ++e) {
     it.outcome[e] = it.active[e] != 0 ? kNewtonContinue : kNewtonIdle;
-    it.failure[e] = kNewtonNoFailure;
     if (!continues(it, e)) continue;
     if (!finite_range(s.gradient, dof_begin[e], dof_begin[e + 1])) {
       fail(it, e, kNewtonNonFinite);
@@ -211,7 +189,7 @@ System evaluate(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
 // CG's indefinite); their CG iterations are added to it.cg_iterations.
 template <class Launcher>
 std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
-                          const System& s, const std::vector<unsigned char>& wanted,
+                          const NewtonSystem& s, const std::vector<unsigned char>& wanted,
                           std::vector<int>& status) {
   const std::vector<int>& dof_begin = nb.collision.dof_begin();
   const int dofs = static_cast<int>(it.q.size()), environments = static_cast<int>(it.active.size());
@@ -253,7 +231,7 @@ std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, NewtonIterate
 // indefinite, its system again with the contacts projected (the others' solves kept).
 template <class Launcher>
 std::vector<double> newton_step(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
-                                System& s, std::vector<unsigned char>& exact) {
+                                NewtonSystem& s, std::vector<unsigned char>& exact) {
   const int environments = static_cast<int>(it.active.size());
   std::vector<unsigned char> wanted(environments), again(environments);
   for (int e = 0; e < environments; ++e) wanted[e] = continues(it, e) ? 1 : 0;
@@ -412,7 +390,7 @@ void newton_iteration(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it
     if (it.active[e] == 0) continue;
     exact[e] = ++it.iteration[e] > nb.projected_iterations[e] ? 1 : 0;
   }
-  System s = evaluate(launch, nb, it, exact);
+  NewtonSystem s = evaluate(launch, nb, it, exact);
   const std::vector<double> p = newton_step(launch, nb, it, s, exact);
   const std::vector<double> x_end = step_end(launch, nb, it, p);
   const ContactPairs within_reach = path_bound(launch, nb, it, s.x, x_end);

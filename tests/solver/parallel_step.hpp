@@ -14,6 +14,7 @@
 #include "solver/environment.hpp"
 #include "solver/newton/newton_solver.hpp"
 #include "solver/parallel/launch.hpp"
+#include "solver/parallel/newton_system.hpp"
 #include "solver/parallel/potential_arrays.hpp"
 #include "solver/parallel/step_start_stages.hpp"
 #include "tests/solver/scene_builders.hpp"
@@ -146,6 +147,14 @@ inline ParallelStep parallel_step(const std::vector<const CpuStep*>& steps) {
   s.step.progress.assign(steps.size(), 1.0);  // the tests' scripted bodies stand still
   parallel::fill_step_start_constants(s.step, s.fem, s.affine, s.collision, s.v, s.gravity);
   return s;
+}
+
+// The environments' Newton system at q (the batch's DOFs), contacts projected.
+template <class Launcher>
+parallel::NewtonSystem newton_system(const ParallelStep& s, const std::vector<double>& q,
+                                     Launcher&& launch) {
+  return parallel::newton_system(launch, s.fem, s.affine, s.collision, s.pairs, s.friction, s.step,
+                                 q);
 }
 
 // The CPU steps of the test: two scenes, each environment its own velocities.

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "solver/batch/tbb_launcher.hpp"
-#include "solver/parallel/derivative_stages.hpp"
 #include "solver/parallel/launch.hpp"
+#include "solver/parallel/newton_system.hpp"
 #include "solver/parallel/potential_arrays.hpp"
 #include "tests/solver/parallel_batch.hpp"
 #include "tests/solver/parallel_step.hpp"
@@ -29,27 +29,6 @@ using testing::parallel_step;
 using testing::ParallelStep;
 using testing::pointers;
 
-struct Derivatives {
-  std::vector<double> gradient, blocks;
-  parallel::BlockPattern pattern;
-};
-
-template <class Launcher>
-Derivatives derivatives(const ParallelStep& s, const std::vector<double>& q, Launcher&& launch) {
-  const auto arrays = s.arrays();
-  const parallel::PotentialBuffers b = arrays.buffers();
-  parallel::PotentialStorage<parallel::HostArray> work(b);
-  const parallel::DerivativeStructure structure =
-      parallel::derivative_structure(s.fem, s.affine, s.collision, s.pairs, s.friction);
-  parallel::DerivativeStorage<parallel::HostArray> storage(structure, s.fem, s.affine, s.collision);
-  Derivatives d{std::vector<double>(q.size()),
-                std::vector<double>(9 * structure.pattern.row.size()), structure.pattern};
-  parallel::incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
-                                              storage.work(), nullptr, d.gradient.data(),
-                                              d.blocks.data());
-  return d;
-}
-
 std::vector<double> flat(const std::vector<Eigen::VectorXd>& q) {
   std::vector<double> out;
   for (const Eigen::VectorXd& qe : q) append(out, qe);
@@ -57,8 +36,9 @@ std::vector<double> flat(const std::vector<Eigen::VectorXd>& q) {
 }
 
 // Environment e's Newton matrix, its lower triangle over its own DOFs.
-Eigen::SparseMatrix<double> lower(const Derivatives& d, const std::vector<int>& dof_begin, int e) {
-  return testing::lower_triangle(d.pattern, d.blocks, dof_begin, e);
+Eigen::SparseMatrix<double> lower(const parallel::NewtonSystem& d,
+                                  const std::vector<int>& dof_begin, int e) {
+  return testing::lower_triangle(d.structure.pattern, d.blocks, dof_begin, e);
 }
 
 struct CpuDerivatives {
@@ -92,8 +72,8 @@ TEST(ParallelDerivatives, GradientAndNewtonMatrixMatchTheCpuEngines) {
   const std::vector<int>& dof_begin = s.collision.dof_begin();
   for (const double reach : {0.0, 1e-4}) {
     const std::vector<Eigen::VectorXd> q = moved(steps, reach, 21);
-    const Derivatives d = derivatives(s, flat(q), parallel::SerialLauncher{});
-    const Derivatives tbb = derivatives(s, flat(q), parallel::TbbLauncher{});
+    const parallel::NewtonSystem d = testing::newton_system(s, flat(q), parallel::SerialLauncher{});
+    const parallel::NewtonSystem tbb = testing::newton_system(s, flat(q), parallel::TbbLauncher{});
     EXPECT_EQ(d.gradient, tbb.gradient);
     EXPECT_EQ(d.blocks, tbb.blocks);
     for (int e = 0; e < 3; ++e) {
@@ -115,7 +95,7 @@ TEST(ParallelDerivatives, GradientIsTheEnergysSlope) {
   const std::vector<CpuStep> steps = cpu_steps();
   const ParallelStep s = parallel_step(pointers(steps));
   const std::vector<double> q = flat(moved(steps, 1e-4, 22));
-  const Derivatives d = derivatives(s, q, parallel::SerialLauncher{});
+  const parallel::NewtonSystem d = testing::newton_system(s, q, parallel::SerialLauncher{});
   const auto arrays = s.arrays();
   const parallel::PotentialBuffers b = arrays.buffers();
   parallel::PotentialStorage<parallel::HostArray> work(b);
@@ -151,11 +131,13 @@ TEST(ParallelDerivatives, AnEnvironmentIsTheSameAloneAsInTheBatch) {
   const std::vector<CpuStep> steps = cpu_steps();
   const ParallelStep together = parallel_step(pointers(steps));
   const std::vector<Eigen::VectorXd> q = moved(steps, 1e-4, 24);
-  const Derivatives all = derivatives(together, flat(q), parallel::SerialLauncher{});
+  const parallel::NewtonSystem all =
+      testing::newton_system(together, flat(q), parallel::SerialLauncher{});
   const std::vector<int>& dof_begin = together.collision.dof_begin();
   for (int e = 0; e < 3; ++e) {
     const ParallelStep alone = parallel_step({&steps[e]});
-    const Derivatives one = derivatives(alone, flat({q[e]}), parallel::SerialLauncher{});
+    const parallel::NewtonSystem one =
+        testing::newton_system(alone, flat({q[e]}), parallel::SerialLauncher{});
     const std::vector<double> part(all.gradient.begin() + dof_begin[e],
                                    all.gradient.begin() + dof_begin[e + 1]);
     EXPECT_EQ(one.gradient, part) << "env " << e;

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "solver/batch/tbb_launcher.hpp"
-#include "solver/parallel/derivative_stages.hpp"
 #include "solver/parallel/launch.hpp"
 #include "solver/parallel/newton_stages.hpp"
+#include "solver/parallel/newton_system.hpp"
 #include "tests/solver/parallel_step.hpp"
 
 namespace grip::solver {
@@ -50,17 +50,8 @@ TEST(ParallelNewton, ResidualAndRightHandSideAreTheCpuEnginesOverFreeDofs) {
   const std::vector<Eigen::VectorXd> moved_q = moved(steps, 1e-4, 31);
   for (const Eigen::VectorXd& qe : moved_q) append(q, qe);
   const std::vector<char> fixed = held_soft_box(steps);
-  const auto arrays = s.arrays();
-  const parallel::PotentialBuffers b = arrays.buffers();
-  parallel::PotentialStorage<parallel::HostArray> work(b);
-  const parallel::DerivativeStructure structure =
-      parallel::derivative_structure(s.fem, s.affine, s.collision, s.pairs, s.friction);
-  parallel::DerivativeStorage<parallel::HostArray> storage(structure, s.fem, s.affine, s.collision);
-  std::vector<double> gradient(q.size()), blocks(9 * structure.pattern.row.size());
   parallel::SerialLauncher launch;
-  parallel::incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
-                                              storage.work(), nullptr, gradient.data(),
-                                              blocks.data());
+  const std::vector<double> gradient = testing::newton_system(s, q, launch).gradient;
   std::vector<double> rhs(q.size()), residual(steps.size());
   const std::vector<int>& dof_begin = s.collision.dof_begin();
   launch(static_cast<int>(q.size()),

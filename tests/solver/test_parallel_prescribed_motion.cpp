@@ -16,8 +16,8 @@
 #include "solver/batch/tbb_launcher.hpp"
 #include "solver/parallel/block_pcg.hpp"
 #include "solver/parallel/dense_cholesky.hpp"
-#include "solver/parallel/derivative_stages.hpp"
 #include "solver/parallel/newton_stages.hpp"
+#include "solver/parallel/newton_system.hpp"
 #include "solver/parallel/prescribed_motion_stages.hpp"
 #include "tests/solver/parallel_step.hpp"
 
@@ -90,35 +90,6 @@ Eigen::VectorXd cpu_newton_step(const CpuSystem& s, const std::vector<char>& fix
   return p;
 }
 
-// The data-parallel system at the batch's q: gradient, blocks, the force of prescribed motion.
-struct ParallelSystem {
-  std::vector<double> gradient, blocks, force;
-  parallel::DerivativeStructure structure;
-};
-
-template <class Launcher>
-ParallelSystem parallel_system(const ParallelStep& s, const std::vector<double>& q,
-                               Launcher&& launch) {
-  const auto arrays = s.arrays();
-  const parallel::PotentialBuffers b = arrays.buffers();
-  parallel::PotentialStorage<parallel::HostArray> work(b);
-  ParallelSystem out;
-  out.structure = parallel::derivative_structure(s.fem, s.affine, s.collision, s.pairs, s.friction);
-  parallel::DerivativeStorage<parallel::HostArray> storage(out.structure, s.fem, s.affine,
-                                                           s.collision);
-  out.gradient.resize(q.size());
-  out.blocks.resize(9 * out.structure.pattern.row.size());
-  out.force.resize(q.size());
-  parallel::incremental_potential_derivatives(launch, b, storage.buffers(), q.data(), work.work(),
-                                              storage.work(), nullptr, out.gradient.data(),
-                                              out.blocks.data());
-  std::vector<double> motion(3 * std::size_t(s.collision.vertex_count()));
-  std::vector<double> contact_force(3 * out.structure.contact_vertex.size());
-  parallel::kinematic_force(launch, b, storage.buffers(), work.work(), storage.work(),
-                            motion.data(), contact_force.data(), out.force.data());
-  return out;
-}
-
 double largest(const Eigen::VectorXd& v) { return v.cwiseAbs().maxCoeff(); }
 
 // Per DOF whether it is fixed: the pinned DOFs, and in the second environment the soft box
@@ -158,8 +129,10 @@ struct Batch {
 
 TEST(ParallelPrescribedMotion, KinematicForceIsTheCpuEnginesWhileMotionIsToCome) {
   const Batch batch;
-  const ParallelSystem serial = parallel_system(batch.s, batch.batch_q, parallel::SerialLauncher{});
-  const ParallelSystem threaded = parallel_system(batch.s, batch.batch_q, parallel::TbbLauncher(2));
+  const parallel::NewtonSystem serial =
+      testing::newton_system(batch.s, batch.batch_q, parallel::SerialLauncher{});
+  const parallel::NewtonSystem threaded =
+      testing::newton_system(batch.s, batch.batch_q, parallel::TbbLauncher(2));
   EXPECT_EQ(serial.force, threaded.force);
   const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
   for (std::size_t e = 0; e < batch.q.size(); ++e) {
@@ -187,7 +160,8 @@ struct RightHandSide {
 };
 
 template <class Launcher>
-RightHandSide right_hand_side(const Batch& batch, const ParallelSystem& system, Launcher& launch) {
+RightHandSide right_hand_side(const Batch& batch, const parallel::NewtonSystem& system,
+                              Launcher& launch) {
   RightHandSide r{fixed_dofs(batch.m), {}, {}};
   const std::vector<char> prescribed = parallel::prescribed_dofs(batch.models);
   const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
@@ -210,8 +184,8 @@ struct DenseSolve {
 };
 
 template <class Launcher>
-DenseSolve dense_solve(const Batch& batch, const ParallelSystem& system, const RightHandSide& r,
-                       Launcher&& launch) {
+DenseSolve dense_solve(const Batch& batch, const parallel::NewtonSystem& system,
+                       const RightHandSide& r, Launcher&& launch) {
   const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
   const parallel::BlockPattern& pattern = system.structure.pattern;
   const std::vector<long long> matrix_begin = parallel::dense_matrix_begin(dof_begin);
@@ -263,7 +237,7 @@ void expect_step(const std::vector<double>& x, const Eigen::VectorXd& p, const B
 TEST(ParallelPrescribedMotion, NewtonStepIsTheCpuEnginesElimination) {
   const Batch batch;
   parallel::SerialLauncher launch;
-  const ParallelSystem system = parallel_system(batch.s, batch.batch_q, launch);
+  const parallel::NewtonSystem system = testing::newton_system(batch.s, batch.batch_q, launch);
   const RightHandSide r = right_hand_side(batch, system, launch);
   const std::vector<int>& dof_begin = batch.s.collision.dof_begin();
   const int environments = static_cast<int>(batch.q.size());
@@ -287,7 +261,7 @@ TEST(ParallelPrescribedMotion, NewtonStepIsTheCpuEnginesElimination) {
 TEST(ParallelPrescribedMotion, DenseCholeskyIsolatesEnvironments) {
   const Batch batch;
   parallel::SerialLauncher launch;
-  ParallelSystem system = parallel_system(batch.s, batch.batch_q, launch);
+  parallel::NewtonSystem system = testing::newton_system(batch.s, batch.batch_q, launch);
   const RightHandSide r = right_hand_side(batch, system, launch);
   const DenseSolve serial = dense_solve(batch, system, r, launch);
   EXPECT_EQ(serial.x, dense_solve(batch, system, r, parallel::TbbLauncher(2)).x);
