@@ -27,6 +27,7 @@
 // engine on a GPU will keep them there.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "solver/parallel/affine_batch.hpp"
@@ -287,40 +288,61 @@ std::vector<double> step_end(Launcher& launch, const NewtonBatch& nb, const Newt
   return x_end;
 }
 
+// The candidates of every environment's path x -> x_end (the broad phase) and the reach
+// filter's lists over them: the pairs within reach, and those CCD watches.
+struct PathCandidates {
+  HostBroadPhase found;
+  ReachStorage<HostArray> reach;
+  int reachable = 0, watched = 0;
+};
+
+template <class Launcher>
+PathCandidates path_candidates(Launcher& launch, const NewtonBatch& nb,
+                               const std::vector<double>& x, const std::vector<double>& x_end) {
+  HostBroadPhase found(nb.surface);
+  found.find(launch, x, x_end, nb.d_hat);
+  const SurfaceBuffers surface = nb.surface.buffers();
+  const int count = found.count();
+  PathCandidates c{std::move(found), ReachStorage<HostArray>(surface, count)};
+  const std::vector<double> rescaling(nb.d_hat.size(), nb.ccd_rescaling);
+  find_within_reach(
+      launch,
+      c.reach.buffers(surface, x.data(), x_end.data(), nb.d_hat.data(), rescaling.data(), count,
+                      c.found.vertex().data(), c.found.edge_edge().data(),
+                      c.found.environment().data(), c.found.environment_begin().data()),
+      c.reachable, c.watched);
+  return c;
+}
+
+// The barrier's pairs among `c`: those within reach, less those near at rest.
+inline ContactPairs reachable_pairs(const NewtonBatch& nb, const PathCandidates& c) {
+  return pairs_of(c.found, c.reach.reachable, c.reach.reachable_begin, nb.collision.vertex_begin(),
+                  nb.d_hat, nb.kappa);
+}
+
 // Step 4 up to CCD: the path's candidates, the pairs within reach (as the barrier's pairs) and
 // each environment's CCD bound in it.alpha.
 template <class Launcher>
 ContactPairs path_bound(Launcher& launch, const NewtonBatch& nb, NewtonIterate& it,
                         const std::vector<double>& x, const std::vector<double>& x_end) {
-  HostBroadPhase found(nb.surface);
-  found.find(launch, x, x_end, nb.d_hat);
-  const SurfaceBuffers surface = nb.surface.buffers();
-  ReachStorage<HostArray> reach(surface, found.count());
-  const std::vector<double> rescaling(it.active.size(), nb.ccd_rescaling);
-  int reachable = 0, watched = 0;
-  find_within_reach(
-      launch,
-      reach.buffers(surface, x.data(), x_end.data(), nb.d_hat.data(), rescaling.data(),
-                    found.count(), found.vertex().data(), found.edge_edge().data(),
-                    found.environment().data(), found.environment_begin().data()),
-      reachable, watched);
+  const PathCandidates c = path_candidates(launch, nb, x, x_end);
+  const int watched = c.watched;
   std::vector<int> vertex(4 * std::size_t(watched));
   std::vector<unsigned char> edge_edge(watched);
   for (int k = 0; k < watched; ++k) {
-    const int c = reach.ccd[k];
-    for (int i = 0; i < 4; ++i) vertex[4 * k + i] = found.vertex()[4 * c + i];
-    edge_edge[k] = found.edge_edge()[c];
+    const int candidate = c.reach.ccd[k];
+    for (int i = 0; i < 4; ++i) vertex[4 * k + i] = c.found.vertex()[4 * candidate + i];
+    edge_edge[k] = c.found.edge_edge()[candidate];
   }
   std::vector<double> toi(watched);
   launch(watched, CcdStage{vertex.data(), edge_edge.data(), x.data(), x_end.data(),
                            nb.ccd_rescaling, toi.data()});
   launch(static_cast<int>(it.active.size()),
-         EnvironmentMinStage{reach.ccd_begin.data(), toi.data(), it.alpha.data()});
+         EnvironmentMinStage{c.reach.ccd_begin.data(), toi.data(), it.alpha.data()});
   for (int e = 0; e < static_cast<int>(it.active.size()); ++e) {
     if (continues(it, e) && !(it.alpha[e] > 0.0)) fail(it, e, kNewtonNoMotion);
   }
-  return pairs_of(found, reach.reachable, reach.reachable_begin, nb.collision.vertex_begin(),
-                  nb.d_hat, nb.kappa);
+  return reachable_pairs(nb, c);
 }
 
 // Step 4 after CCD: halving until no tet inverts, then sufficient decrease with the barrier

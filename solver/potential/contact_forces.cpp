@@ -26,41 +26,46 @@ VertexContactForces vertex_contact_forces(const Model& model, const IncrementalP
   return forces;
 }
 
+void PairForceSum::add(const int vertex[4], int side_b, const Eigen::Matrix<double, 12, 1>& f,
+                       double normal) {
+  const int a = vertex_body_[vertex[0]], b = vertex_body_[vertex[side_b]];
+  if (a == b) return;  // self-contact: internal to the body
+  const int first = std::min(a, b), second = std::max(a, b);
+  PairForce& pf = forces_[{first, second}];
+  pf.body_a = first;
+  pf.body_b = second;
+  pf.normal_force += normal;
+  for (int i = 0; i < 4; ++i) {
+    if (vertex_body_[vertex[i]] == first) pf.force += f.segment<3>(3 * i);
+  }
+}
+
+std::vector<PairForce> PairForceSum::pairs() const {
+  std::vector<PairForce> result;
+  for (const auto& [key, pf] : forces_) result.push_back(pf);
+  return result;
+}
+
 std::vector<PairForce> pair_forces(const Model& model, const IncrementalPotential& potential,
                                    const Vertices& positions,
                                    const std::vector<ContactCandidate>& near,
                                    double& min_distance) {
-  const CollisionMesh& mesh = model.collision();
-  std::map<std::pair<int, int>, PairForce> forces;
-  // Adds the force on a stencil's vertices to the pair (side A's body, side B's body).
-  auto add = [&](const std::array<int, 4>& vertex, bool edge_edge,
-                 const Eigen::Matrix<double, 12, 1>& f, double normal) {
-    const int side_a = mesh.vertex_body[vertex[0]];
-    const int side_b = mesh.vertex_body[vertex[edge_edge ? 2 : 1]];
-    if (side_a == side_b) return;  // self-contact: internal to the body
-    const int first = std::min(side_a, side_b), second = std::max(side_a, side_b);
-    PairForce& pf = forces[{first, second}];
-    pf.body_a = first;
-    pf.body_b = second;
-    pf.normal_force += normal;
-    for (int i = 0; i < 4; ++i) {
-      if (mesh.vertex_body[vertex[i]] == first) pf.force += f.segment<3>(3 * i);
-    }
-  };
+  PairForceSum forces(model.collision().vertex_body);
   for (const ContactCandidate& c : near) {
     const ContactForce force = potential.barrier().contact_force(c, positions);
     // Pairs near at rest have no barrier: their distance would drive kappa's adaptation.
     if (!c.near_at_rest && force.distance < model.sim().d_hat) {
       min_distance = std::min(min_distance, force.distance);
     }
-    if (force.magnitude > 0.0) add(c.vertex, c.edge_edge, force.force, force.magnitude);
+    if (force.magnitude > 0.0) {
+      forces.add(c.vertex.data(), c.edge_edge ? 2 : 1, force.force, force.magnitude);
+    }
   }
   for (const FrictionContact& contact : potential.friction().contacts()) {
-    add(contact.vertex, contact.edge_edge, potential.friction().force(contact, positions), 0.0);
+    forces.add(contact.vertex.data(), contact.edge_edge ? 2 : 1,
+               potential.friction().force(contact, positions), 0.0);
   }
-  std::vector<PairForce> result;
-  for (const auto& [key, pf] : forces) result.push_back(pf);
-  return result;
+  return forces.pairs();
 }
 
 }  // namespace grip::solver
