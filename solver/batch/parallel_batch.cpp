@@ -3,7 +3,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -278,9 +277,9 @@ void Stepper<Launcher>::begin_parts(const Mask& which) {
 // A further friction lag at the current positions; the barrier's pairs are kept.
 template <class Launcher>
 void Stepper<Launcher>::lag(const Mask& which) {
-  parallel::StepContacts c =
-      parallel::contacts_at(launch_, nb_, positions(), eps(), policy_.friction_terms_at_zero_mu);
-  it_.friction = parallel::chosen_friction(it_.friction, c.friction, which);
+  const parallel::FrictionContacts fresh =
+      parallel::friction_at(launch_, nb_, positions(), eps(), policy_.friction_terms_at_zero_mu);
+  it_.friction = parallel::chosen_friction(it_.friction, fresh, which);
   for (int e = 0; e < environments(); ++e) {
     if (which[e] != 0) start_solve(e);
   }

@@ -67,6 +67,16 @@ FrictionContacts lag_friction(Launcher& launch, const NewtonBatch& nb, const Hos
                            nb.collision.vertex_begin(), eps);
 }
 
+// Every environment's friction lagged at x, over the broad phase's candidates there (a further
+// lag: the barrier's pairs are kept, so the reach filter is not needed).
+template <class Launcher>
+FrictionContacts friction_at(Launcher& launch, const NewtonBatch& nb, const std::vector<double>& x,
+                             const std::vector<double>& eps, bool at_zero_mu) {
+  HostBroadPhase found(nb.surface);
+  found.find(launch, x, x, nb.d_hat);
+  return lag_friction(launch, nb, found, x, eps, at_zero_mu);
+}
+
 // Every environment's contacts at x: the barrier's pairs within d_hat and the friction lagged
 // there.
 template <class Launcher>
