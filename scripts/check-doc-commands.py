@@ -58,6 +58,7 @@ PLACEHOLDERS = {
     "N": "2", "T": "2", "B": "2", "S": "1", "SEED": "1", "I": "0",
     "A": "0.01", "O": "0.001", "L": "0.01", "X": "1", "F": "50", "V": "0.01",
     "E": "1e6", "NU": "0.4", "RHO": "1000", "MU": "0.5",
+    "D": "host",  # --device: the data-parallel engine, on the CPU
 }
 PLACEHOLDER = re.compile(r"^[A-Z][A-Z0-9_]*(\.[a-z0-9]+)?$")
 FENCE = re.compile(r"^\s*(```+|~~~+)\s*([\w-]*)")

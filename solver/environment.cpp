@@ -103,18 +103,44 @@ Environment::Progress Environment::begin_step() {
   diagnostics_.kappa = state_.kappa;
   plan_.end_time = state_.time + model_->sim().dt;
   plan_.halvings = 0;
-  if (state_.time == 0.0) {
-    const StepTargets now = targets_at_rest(*model_, state_);
-    const Vertices start = solver::collision_positions(*model_, state_.q, now, 0.0);
-    near_ = newton_.broad_phase().find(model_->collision(), start, start, model_->sim().d_hat);
-    for (const ContactCandidate& c : *near_) {
-      if (!(newton_.potential().barrier().contact_force(c, start).distance > 0.0)) {
-        return fail(Failure::kIntersectingStart,
-                    "intersecting start: two surfaces touch or cross before the first step");
-      }
+  if (state_.time == 0.0 && !check_start()) return Progress::kFailed;
+  return begin_part();
+}
+
+bool Environment::check_start() {
+  const StepTargets now = targets_at_rest(*model_, state_);
+  const Vertices start = solver::collision_positions(*model_, state_.q, now, 0.0);
+  near_ = newton_.broad_phase().find(model_->collision(), start, start, model_->sim().d_hat);
+  for (const ContactCandidate& c : *near_) {
+    if (!(newton_.potential().barrier().contact_force(c, start).distance > 0.0)) {
+      fail(Failure::kIntersectingStart,
+           "intersecting start: two surfaces touch or cross before the first step");
+      return false;
     }
   }
-  return begin_part();
+  return true;
+}
+
+void Environment::adopt_step(AdoptedStep step) {
+  if (step_ || failed()) {
+    throw std::logic_error("Environment::adopt_step while a step is under way or after failing");
+  }
+  state_ = std::move(step.state);
+  diagnostics_ = std::move(step.diagnostics);
+  near_.reset();
+  newton_.adopt_step(std::move(step.start_positions), step.kappa, step.h, std::move(step.friction),
+                     step.cg_iterations);
+  const int iterations = diagnostics_.newton_iterations;
+  statistics_.newton_iterations += iterations;
+  statistics_.max_step_iterations = std::max(statistics_.max_step_iterations, iterations);
+  statistics_.retries += diagnostics_.retries;
+  statistics_.count_step(iterations);
+  if (step.failure != Failure::kNone) {
+    failure_code_ = step.failure;
+    failure_ = std::move(step.message);
+    return;
+  }
+  ++statistics_.steps;
 }
 
 Environment::Progress Environment::begin_part() {

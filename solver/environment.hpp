@@ -51,6 +51,29 @@ class Environment final : public EnvironmentHandle {
   // reports kConverged for such a step, and each further iterate() takes one more Newton step.
   Progress finish_held_step();
 
+  // Before the first step (at time 0): fails the environment with kIntersectingStart when two
+  // of its surfaces touch or cross; true when its start is free. begin_step checks this itself.
+  bool check_start();
+
+  // A step of this environment taken elsewhere: by an engine that steps many environments in
+  // buffers of its own (solver/batch/parallel_engine.hpp), for which this environment is the
+  // host handle between steps. What the step left becomes this environment's, as if step() had
+  // taken it: the state, the step's diagnostics and outcome, the statistics, and the contacts
+  // its potential ended with (so that vertex_contact_forces answers as after step()).
+  struct AdoptedStep {
+    State state;
+    StepDiagnostics diagnostics;
+    Failure failure = Failure::kNone;
+    std::string message;                    // why it failed, for people ("t = ... s: ...")
+    Vertices start_positions;               // the collision vertices at the start of its last part
+    double h = 0.0;                         // its last part's length
+    double kappa = 0.0;                     // the barrier stiffness it stepped with
+    std::vector<FrictionContact> friction;  // its last friction lag's contacts
+    long cg_iterations = 0;
+  };
+  // Throws std::logic_error while a step of its own is under way or once it has failed.
+  void adopt_step(AdoptedStep step);
+
   // Departures from the default step, only for measuring what the defaults save (StepPolicy).
   void set_policy(const StepPolicy& policy) { policy_ = policy; }
   const StepPolicy& policy() const { return policy_; }

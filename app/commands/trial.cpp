@@ -15,10 +15,11 @@
 #include <utility>
 
 #include "app/cli/command_line.hpp"
+#include "app/cli/device_option.hpp"
 #include "app/commands/commands.hpp"
 #include "app/commands/gripper_option.hpp"
 #include "app/commands/parameter_options.hpp"
-#include "solver/batch/batch.hpp"
+#include "solver/batch/engines.hpp"
 #include "src/geometry/boundary_surface.hpp"
 #include "src/geometry/mesh_measures.hpp"
 #include "src/geometry/tetrahedralize.hpp"
@@ -58,6 +59,7 @@ struct TrialArgs {
   std::string report;                  // JSON report file; stdout when empty
   std::string vtk;                     // folder for per-candidate VTK series; none when empty
   int threads = 0;                     // 0: all cores
+  std::string device = "cpu";          // the engine: cpu, host (data-parallel) or cuda
   bool compare_solo = false;           // also run each candidate alone: speedup and identity
   bool full_trials = false;            // run decided trials to the end (TrialRunOptions)
   trial::TrialParameters parameters;   // the protocol's and the solver's (their tables' options)
@@ -137,6 +139,7 @@ int run_and_report(const TrialArgs& args, const trial::TrialScene& scene,
                    const std::vector<std::uint64_t>& ids) {
   trial::TrialRunOptions options;
   options.threads = args.threads;
+  options.device = args.device == "host" ? solver::EngineDevice::kHost : solver::EngineDevice::kCpu;
   options.ids = ids;
   options.body_frames = !args.vtk.empty();
   options.full_trials = args.full_trials;
@@ -167,7 +170,8 @@ int run_and_report(const TrialArgs& args, const trial::TrialScene& scene,
   if (type && type->meshed_finger) report.fin_ray = fin_ray_options(args);
   report.soft = args.soft;
   report.grippers = scene.gripper_count();
-  report.threads = solver::Batch(args.threads).threads();
+  report.threads = solver::make_engine(options.device, args.threads)->threads();
+  report.device = args.device;
   report.wall_seconds = seconds;
   if (args.report.empty()) {
     trial::write_report(std::cout, report, outcomes);
@@ -394,6 +398,9 @@ void declare_trial(cli::Command& root) {
       .check(cli::Check::output_folder());
   trial.option("--threads", args->threads, "Threads (default: all cores)")
       .check(cli::Check::count());
+  trial.option("--device", args->device, cli::device_help())
+      .show_default()
+      .check(cli::device_check());
   trial.flag("--compare-solo", args->compare_solo,
              "Also run each candidate alone: batch speedup and bit-identity");
   trial.flag("--full-trials", args->full_trials,
@@ -419,6 +426,7 @@ void declare_trial(cli::Command& root) {
         throw cli::UsageError(soft_only, "applies to soft objects only: add --soft");
       }
     }
+    cli::refuse_cuda_device(args->device);
     try {
       trial::validate(args->parameters);  // values that contradict each other
     } catch (const std::invalid_argument& e) {

@@ -10,7 +10,7 @@
 #include <random>
 #include <utility>
 
-#include "solver/batch/batch.hpp"
+#include "solver/batch/engines.hpp"
 #include "src/json/json_text.hpp"
 #include "src/platform/process_memory.hpp"
 
@@ -24,7 +24,7 @@ double seconds_since(Clock::time_point start) {
 }
 
 // Where each copy starts: the scene's placement moved by a seeded jitter of its free bodies.
-void place_copy(solver::Environment& env, int copy, const BatchBenchmarkOptions& options) {
+void place_copy(solver::EnvironmentHandle& env, int copy, const BatchBenchmarkOptions& options) {
   if (!options.jitter) return;
   const solver::Model& model = env.model();
   std::mt19937_64 rng(*options.jitter * 1000003ull + static_cast<std::uint64_t>(copy));
@@ -46,9 +46,11 @@ BatchBenchmarkResult run_batch_benchmark(const scene::SceneFile& scene, const st
   const int steps = static_cast<int>(std::llround(scene.duration / scene.scene.sim.dt));
   BatchBenchmarkResult result;
   result.scene = name;
-  result.threads = solver::Batch(options.threads).threads();
+  result.threads = solver::make_engine(options.device, options.threads)->threads();
+  result.device = options.device;
   out << "scene " << name << ", " << steps << " steps per environment, " << result.threads
-      << " thread(s)" << (options.jitter ? ", jittered starts" : "") << "\n"
+      << " thread(s), engine " << solver::device_name(options.device)
+      << (options.jitter ? ", jittered starts" : "") << "\n"
       << "  envs  sequential s  batched s  speedup  Newton its  frozen  MiB/env  MiB/added  "
          "identical\n";
   for (const int n : options.envs) {
@@ -63,12 +65,13 @@ BatchBenchmarkResult run_batch_benchmark(const scene::SceneFile& scene, const st
     std::vector<Eigen::VectorXd> batched_state;
     {
       const Clock::time_point start = Clock::now();
-      solver::Batch batch(options.threads);
-      for (int e = 0; e < n; ++e) place_copy(batch.environment(batch.add(model)), e, options);
+      const std::unique_ptr<solver::Engine> batch =
+          solver::make_engine(options.device, options.threads);
+      for (int e = 0; e < n; ++e) place_copy(batch->environment(batch->add(model)), e, options);
       long iterations = 0;
       long frozen = 0;
-      for (int s = 0; s < steps && batch.any_active(); ++s) {
-        const solver::BatchStepReport report = batch.step();
+      for (int s = 0; s < steps && batch->any_active(); ++s) {
+        const solver::BatchStepReport report = batch->step();
         iterations += report.iterations;
         frozen += report.frozen;
       }
@@ -77,7 +80,7 @@ BatchBenchmarkResult run_batch_benchmark(const scene::SceneFile& scene, const st
       row.frozen_fraction =
           iterations + frozen > 0 ? static_cast<double>(frozen) / (iterations + frozen) : 0.0;
       for (int e = 0; e < n; ++e) {
-        const solver::Environment& env = batch.environment(e);
+        const solver::EnvironmentHandle& env = batch->environment(e);
         row.newton_iterations += env.statistics().newton_iterations;
         if (env.failed()) {
           ++row.failed;
@@ -98,10 +101,10 @@ BatchBenchmarkResult run_batch_benchmark(const scene::SceneFile& scene, const st
     const Clock::time_point start = Clock::now();
     long sequential_iterations = 0;
     for (int e = 0; e < n; ++e) {
-      solver::Environment env(model);
+      const std::unique_ptr<solver::Engine> alone = solver::make_engine(options.device, 1);
+      solver::EnvironmentHandle& env = alone->environment(alone->add(model));
       place_copy(env, e, options);
-      for (int s = 0; s < steps && env.step(); ++s) {
-      }
+      for (int s = 0; s < steps && alone->any_active(); ++s) alone->step();
       sequential_iterations += env.statistics().newton_iterations;
       row.identical = row.identical && env.dofs() == batched_state[e];
     }
@@ -141,6 +144,7 @@ void write_json_line(std::ostream& out, const BatchBenchmarkResult& result) {
   const nlohmann::ordered_json line = {{"benchmark", "batch"},
                                        {"scene", result.scene},
                                        {"threads", result.threads},
+                                       {"device", solver::device_name(result.device)},
                                        {"rows", std::move(rows)}};
   out << json::text(line, "%.6g") << '\n';
 }

@@ -1,13 +1,14 @@
 #pragma once
 // `grip bench batch`: N copies of one scene (optionally each placed with a seeded jitter) run
-// one after another and as one batch, timed both ways, with the batch's Newton iterations,
-// frozen fraction and memory per environment.
+// one after another and as one batch on one engine (solver/batch/engines.hpp), timed both ways,
+// with the batch's Newton iterations, frozen fraction and memory per environment.
 #include <cstdint>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "solver/batch/engines.hpp"
 #include "src/scene/scene_file.hpp"
 
 namespace grip::bench {
@@ -15,6 +16,8 @@ namespace grip::bench {
 struct BatchBenchmarkOptions {
   std::vector<int> envs{1, 2, 4, 8, 16, 32, 64};
   int threads = 0;  // 0: all cores
+  // The engine, both ways: the batch, and each copy alone in an engine of its own.
+  solver::EngineDevice device = solver::EngineDevice::kCpu;
   // Seed of the per-environment jitter: each free body (affine or FEM without pins) moves by
   // up to a quarter of d_hat along each axis, so the copies' contacts and iterations differ.
   std::optional<std::uint64_t> jitter;
@@ -23,7 +26,7 @@ struct BatchBenchmarkOptions {
 struct BatchBenchmarkRow {
   int envs = 0;
   int steps = 0;                 // per environment
-  double sequential_s = 0.0;     // wall time, one environment after another, one thread
+  double sequential_s = 0.0;     // wall time, one environment after another, one thread each
   double batched_s = 0.0;        // wall time as one batch on the given threads
   double speedup = 0.0;          // sequential / batched
   long newton_iterations = 0;    // over all environments and steps (the same both ways)
@@ -41,6 +44,7 @@ struct BatchBenchmarkRow {
 struct BatchBenchmarkResult {
   std::string scene;
   int threads = 0;
+  solver::EngineDevice device = solver::EngineDevice::kCpu;
   std::vector<BatchBenchmarkRow> rows;
 };
 

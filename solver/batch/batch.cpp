@@ -17,28 +17,14 @@ int resolve_threads(int threads) {
 Batch::Batch(int threads) : threads_(resolve_threads(threads)), arena_(threads_) {}
 
 int Batch::add(std::shared_ptr<const Model> model) {
-  environments_.push_back(std::make_unique<Environment>(std::move(model)));
-  environments_.back()->set_policy(policy_);
-  active_.push_back(1);
-  return size() - 1;
-}
-
-bool Batch::active(int index) const {
-  return active_.at(static_cast<std::size_t>(index)) && !environment(index).failed();
-}
-
-bool Batch::any_active() const {
-  for (int i = 0; i < size(); ++i) {
-    if (active(i)) return true;
-  }
-  return false;
+  const int index = HostEnvironments::add(std::move(model));
+  environment(index).set_policy(policy_);
+  return index;
 }
 
 void Batch::set_policy(const StepPolicy& policy) {
   policy_ = policy;
-  for (const std::unique_ptr<Environment>& environment : environments_) {
-    environment->set_policy(policy);
-  }
+  for (int i = 0; i < size(); ++i) environment(i).set_policy(policy);
 }
 
 BatchStepReport Batch::step() {
@@ -48,7 +34,7 @@ BatchStepReport Batch::step() {
     if (active(i)) iterating.push_back(i);
   }
   report.stepped = static_cast<int>(iterating.size());
-  std::vector<Environment::Progress> progress(environments_.size());
+  std::vector<Environment::Progress> progress(static_cast<std::size_t>(size()));
 
   // Runs `work` on every environment in `iterating`, one task per environment so that the
   // threads balance environments of different sizes.
@@ -63,7 +49,7 @@ BatchStepReport Batch::step() {
     });
   };
 
-  for_each_iterating([&](int i) { progress[i] = environments_[i]->begin_step(); });
+  for_each_iterating([&](int i) { progress[i] = environment(i).begin_step(); });
   for (;;) {
     // Drop environments that finished their step (frozen until the next one) or failed.
     // Converged ones are held only without freezing, until all have converged.
@@ -75,13 +61,13 @@ BatchStepReport Batch::step() {
     if (iterating.empty()) break;
     if (std::all_of(iterating.begin(), iterating.end(),
                     [&](int i) { return progress[i] == Environment::Progress::kConverged; })) {
-      for_each_iterating([&](int i) { progress[i] = environments_[i]->finish_held_step(); });
+      for_each_iterating([&](int i) { progress[i] = environment(i).finish_held_step(); });
       break;
     }
     ++report.rounds;
     report.iterations += static_cast<long>(iterating.size());
     report.frozen += static_cast<long>(report.stepped - static_cast<int>(iterating.size()));
-    for_each_iterating([&](int i) { progress[i] = environments_[i]->iterate(); });
+    for_each_iterating([&](int i) { progress[i] = environment(i).iterate(); });
   }
   return report;
 }

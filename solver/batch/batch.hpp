@@ -12,34 +12,19 @@
 
 #include <tbb/task_arena.h>
 
-#include "solver/engine/engine.hpp"
-#include "solver/environment.hpp"
+#include "solver/batch/host_environments.hpp"
 
 namespace grip::solver {
 
 // The CPU engine: its environments (solver::Environment) stepped on a TBB arena.
-class Batch final : public Engine {
+class Batch final : public HostEnvironments {
  public:
   // threads = 0: all the machine's cores.
   explicit Batch(int threads = 0);
 
-  // Adds an environment of `model` and returns its index. Take it with environment(i) to place
-  // bodies, set gravity and scripts between steps.
+  // Adds an environment of `model` under the batch's policy and returns its index.
   int add(std::shared_ptr<const Model> model) override;
-  Environment& environment(int index) override {
-    return *environments_.at(static_cast<std::size_t>(index));
-  }
-  const Environment& environment(int index) const override {
-    return *environments_.at(static_cast<std::size_t>(index));
-  }
-  int size() const override { return static_cast<int>(environments_.size()); }
   int threads() const override { return threads_; }
-
-  // Takes an environment out of further steps (its trial is over); it keeps its state.
-  void retire(int index) override { active_.at(static_cast<std::size_t>(index)) = 0; }
-  // Not retired and not failed.
-  bool active(int index) const override;
-  bool any_active() const override;
 
   // The step policy of every environment, present and future (StepPolicy). By default an
   // environment whose Newton converged is frozen for the rest of the step; without
@@ -53,8 +38,6 @@ class Batch final : public Engine {
  private:
   int threads_;
   tbb::task_arena arena_;
-  std::vector<std::unique_ptr<Environment>> environments_;
-  std::vector<char> active_;
   StepPolicy policy_;
 };
 

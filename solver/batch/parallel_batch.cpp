@@ -36,6 +36,13 @@ std::vector<const Model*> raw_models(const std::vector<std::shared_ptr<const Mod
   return raw;
 }
 
+// CG's tolerance for an environment: what the CPU engine accepts of a solve by CG on an earlier
+// factorization (reuse_tolerance); where that engine factorizes every system (reuse_iterations
+// 0), as good as a direct solve.
+double cg_tolerance(const SimParameters& sim) {
+  return sim.reuse_iterations > 0 ? sim.reuse_tolerance : parallel::kExactCgTolerance;
+}
+
 // The CPU engine's failure of an iteration, and its message.
 std::pair<Failure, std::string> iteration_failure(int code) {
   switch (code) {
@@ -84,6 +91,7 @@ struct ParallelBatch::Buffers {
     newton.newton_tol.push_back(sim.newton_tol);
     newton.velocity_tol.push_back(sim.newton_velocity_tol);
     newton.projected_iterations.push_back(sim.projected_iterations);
+    newton.cg_tolerance.push_back(cg_tolerance(sim));
     double weight = 0.0;
     for (const BodyModel& body : model.bodies()) {
       weight += body.kind->mass(body.local) * kStandardGravity;
@@ -101,6 +109,7 @@ struct ParallelBatch::Buffers {
   parallel::SurfaceBatch surface;
   parallel::NewtonBatch newton;
   int threads;
+  int rounds = 0;  // of the last step
 };
 
 namespace {
@@ -139,6 +148,7 @@ class Stepper {
   void finish_converged_part(int e, Mask& begin);
   void finish_part(int e);
   void finish_step(int e);
+  void record_contacts(int e);
   void start_solve(int e);
   std::vector<double> eps() const;
   std::vector<double> positions() const;
@@ -166,6 +176,7 @@ std::vector<ParallelStepResult> Stepper<Launcher>::run(const Mask& stepping) {
     if (stepping[e] == 0) load(e);  // every environment's buffers hold its state
   }
   begin_parts(stepping);
+  b_.rounds = 0;
   const auto iterating = [&] { return any(it_.active); };
   while (iterating()) {
     Mask begin(environments()), relag(environments());
@@ -178,6 +189,7 @@ std::vector<ParallelStepResult> Stepper<Launcher>::run(const Mask& stepping) {
     if (any(begin)) begin_parts(begin);
     if (!iterating()) break;
     parallel::newton_iteration(launch_, nb_, it_);
+    ++b_.rounds;
     begin.assign(environments(), 0);
     take_outcomes(begin, relag);
     if (any(relag)) lag(relag);
@@ -332,6 +344,7 @@ void Stepper<Launcher>::fail(int e, Failure code, const std::string& why) {
   std::copy(it_.q.begin() + dof_begin(e), it_.q.begin() + dof_begin(e) + s.q.size(), s.q.data());
   results_[e].failure = code;
   results_[e].message = "t = " + std::to_string(s.time) + " s: " + why;
+  record_contacts(e);
 }
 
 template <class Launcher>
@@ -374,7 +387,35 @@ void Stepper<Launcher>::finish_step(int e) {
   contact_diagnostics(e, x, d);
   d.min_volume_ratio = m.min_volume_ratio(s.q);
   d.friction_contacts = it_.friction.contact_begin()[e + 1] - it_.friction.contact_begin()[e];
+  record_contacts(e);
   if (m.sim().adaptive_kappa && d.min_distance < 0.1 * m.sim().d_hat) s.kappa *= 2.0;
+}
+
+// The contacts the environment's potential ends the step with, in its own vertex numbering.
+// A FrictionContact's edge_edge only picks the vertex whose body is side B in sums per pair of
+// bodies; the batch does not keep the kind, and vertex 2 is side B of either kind
+// (contact_diagnostics), so every contact is marked edge-edge.
+template <class Launcher>
+void Stepper<Launcher>::record_contacts(int e) {
+  ParallelStepResult& r = results_[e];
+  const int v0 = b_.collision.vertex_begin()[e];
+  const int vertices = b_.collision.vertex_begin()[e + 1] - v0;
+  r.start_positions =
+      Eigen::Map<const Vertices>(it_.step.start_positions.data() + 3 * v0, vertices, 3);
+  r.h = it_.step.h[e];
+  r.kappa = nb_.kappa[e];
+  const parallel::FrictionContacts& friction = it_.friction;
+  const int first = friction.vertex_begin()[e];
+  r.friction.clear();
+  for (int k = friction.contact_begin()[e]; k < friction.contact_begin()[e + 1]; ++k) {
+    FrictionContact c;
+    for (int i = 0; i < 4; ++i) c.vertex[i] = friction.vertex()[4 * std::size_t(k) + i] - first;
+    c.edge_edge = true;
+    c.mu_lambda = friction.mu_lambda()[k];
+    c.tangent_operator =
+        Eigen::Map<const Eigen::Matrix<double, 12, 2>>(&friction.tangent()[24 * std::size_t(k)]);
+    r.friction.push_back(c);
+  }
 }
 
 // At x (the step's end), as the CPU engine's pair_forces measures them: the closest of the
@@ -451,6 +492,8 @@ ParallelBatch::ParallelBatch(std::vector<std::shared_ptr<const Model>> models, i
 ParallelBatch::~ParallelBatch() = default;
 
 int ParallelBatch::size() const { return static_cast<int>(buffers_->raw.size()); }
+
+int ParallelBatch::rounds() const { return buffers_->rounds; }
 
 std::vector<ParallelStepResult> ParallelBatch::step(std::vector<State>& states,
                                                     const Mask& stepping,

@@ -26,6 +26,7 @@
 #include "solver/newton/diagnostics.hpp"
 #include "solver/newton/failure.hpp"
 #include "solver/newton/step_policy.hpp"
+#include "solver/potential/friction_term.hpp"
 #include "solver/scene/state.hpp"
 
 namespace grip::solver {
@@ -38,6 +39,12 @@ struct ParallelStepResult {
   std::string message;  // why it failed, for people
   StepDiagnostics diagnostics;
   long cg_iterations = 0;  // over every Newton iteration of the step
+  // The contacts its potential ended with (Environment::AdoptedStep): the collision vertices at
+  // its last part's start, that part's length, the barrier stiffness and the last friction lag.
+  Vertices start_positions;
+  double h = 0.0;
+  double kappa = 0.0;
+  std::vector<FrictionContact> friction;
 };
 
 class ParallelBatch {
@@ -50,6 +57,9 @@ class ParallelBatch {
   ParallelBatch& operator=(const ParallelBatch&) = delete;
 
   int size() const;
+  // Rounds of Newton iterations the last step took (each over every environment still
+  // iterating).
+  int rounds() const;
 
   // One step of dt (each environment's own) of the environments `stepping` marks, from and into
   // states[e]; the others' states are read, not changed. The states must be free of

@@ -81,6 +81,12 @@ void NewtonSolver::lag_friction(const State& state, NewtonStep& step, bool frict
       solver::lag_friction(potential_.barrier(), x, candidates, friction_at_zero_mu));
 }
 
+void NewtonSolver::adopt_step(Vertices start_positions, double kappa, double h,
+                              std::vector<FrictionContact> friction, long cg_iterations) {
+  potential_.adopt_contacts(std::move(start_positions), kappa, h, std::move(friction));
+  linear_solves_.cg_iterations += cg_iterations;
+}
+
 NewtonSolver::Outcome NewtonSolver::iterate(State& state, NewtonStep& step,
                                             StepDiagnostics& diagnostics, FailureReport& failure) {
   ++step.iteration;

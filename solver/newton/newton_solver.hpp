@@ -81,6 +81,10 @@ class NewtonSolver {
                   FailureReport& failure);
 
   const IncrementalPotential& potential() const { return potential_; }
+  // A step taken elsewhere (Environment::adopt_step): the contacts its potential ended with
+  // (IncrementalPotential::adopt_contacts) and the CG iterations its solves took.
+  void adopt_step(Vertices start_positions, double kappa, double h,
+                  std::vector<FrictionContact> friction, long cg_iterations);
 
   // The broad phase this solver keeps; its owner's queries between steps may use it too.
   ContactBroadPhase& broad_phase() { return broad_phase_; }

@@ -112,19 +112,29 @@ struct PrimitiveBoxStage {
   }
 };
 
-// Each environment's sweep axis: the one along which its vertex boxes' lower corners spread
-// most (the lowest such axis on a tie).
+// Each environment's sweep axis: the one along which its vertex boxes' lower corners deviate
+// most from their mean (mean absolute deviation; the lowest such axis on a tie). The spread of
+// its whole extent would pick a long object's axis, along which a gripper's many small
+// primitives all overlap; the deviation follows where the primitives lie. Sums and differences
+// only, so that every launcher (a GPU's fused multiply-adds included) picks the same axis.
 struct SweepAxisStage {
   BroadPhaseBuffers b;
 
   GRIP_HD void operator()(int e) const {
-    Aabb spread;
-    for (int v = b.surface.vertex_begin[e]; v < b.surface.vertex_begin[e + 1]; ++v) {
-      spread.expand(load_box(b.vertex_box + 6 * v).min);
+    const int first = b.surface.vertex_begin[e], last = b.surface.vertex_begin[e + 1];
+    if (first == last) {
+      b.axis[e] = 0;
+      return;
+    }
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero(), deviation = Eigen::Vector3d::Zero();
+    for (int v = first; v < last; ++v) mean += load_box(b.vertex_box + 6 * v).min;
+    mean /= static_cast<double>(last - first);
+    for (int v = first; v < last; ++v) {
+      deviation += (load_box(b.vertex_box + 6 * v).min - mean).cwiseAbs();
     }
     int axis = 0;
     for (int k = 1; k < 3; ++k) {
-      if (spread.max[k] - spread.min[k] > spread.max[axis] - spread.min[axis]) axis = k;
+      if (deviation[k] > deviation[axis]) axis = k;
     }
     b.axis[e] = axis;
   }

@@ -21,8 +21,9 @@
 // before) or stops this iteration is left as it is. The contacts' Hessians are PSD-projected in
 // a solve's first projected_iterations iterations and left exact after, and projected after all
 // where CG finds the matrix indefinite (the CPU engine projects them where its factorization
-// refuses it). Where the CPU engine differs: the linear solve is CG to cg_tolerance (the CPU
-// engine's is a direct one), and a batch shares one ccd_rescaling. The host builds the contacts'
+// refuses it). Where the CPU engine differs: the linear solve is CG to each environment's
+// cg_tolerance (the CPU engine factorizes, and solves by CG on an earlier factorization to
+// reuse_tolerance in between), and a batch shares one ccd_rescaling. The host builds the contacts'
 // structures (derivative_structure, the PCG's pattern) and the barrier's pairs each iteration; the
 // engine on a GPU will keep them there.
 #include <algorithm>
@@ -69,6 +70,9 @@ enum NewtonFailure : int {
   kNewtonNoDecrease = 5    // the line search cannot decrease the incremental potential
 };
 
+// CG's relative residual where a solve should be as good as a direct one.
+constexpr double kExactCgTolerance = 1e-10;
+
 // What an iteration reads that its step holds fixed: the batch's bodies, its pinned and fixed
 // DOFs, and per environment its parameters.
 struct NewtonBatch {
@@ -92,8 +96,9 @@ struct NewtonBatch {
   // Per environment: 1 where its Newton system is solved by dense Cholesky (a rigid object and
   // a hand's driven links), else by CG; empty: CG for all.
   std::vector<unsigned char> dense;
-  double ccd_rescaling = 0.1;   // SimParameters::ccd_rescaling, one for the batch
-  double cg_tolerance = 1e-10;  // CG's relative residual
+  double ccd_rescaling = 0.1;  // SimParameters::ccd_rescaling, one for the batch
+  // Per environment: CG's relative residual; empty: kExactCgTolerance for all.
+  std::vector<double> cg_tolerance;
   int cg_iterations = 10000;
 };
 
@@ -207,8 +212,10 @@ std::vector<double> solve(Launcher& launch, const NewtonBatch& nb, NewtonIterate
     dense[e] = wanted[e] != 0 && direct;
   }
   HostPcg pcg(nb.fem, nb.affine, s.structure.pattern, dof_begin);
-  pcg.solve(launch, s.blocks, nb.fixed, rhs, std::vector<double>(environments, nb.cg_tolerance),
-            nb.cg_iterations, p, skip.data());
+  const std::vector<double> tolerance = nb.cg_tolerance.empty()
+                                            ? std::vector<double>(environments, kExactCgTolerance)
+                                            : nb.cg_tolerance;
+  pcg.solve(launch, s.blocks, nb.fixed, rhs, tolerance, nb.cg_iterations, p, skip.data());
   status = pcg.status();
   for (int e = 0; e < environments; ++e) it.cg_iterations[e] += pcg.iterations()[e];
   if (std::none_of(dense.begin(), dense.end(), [](unsigned char d) { return d != 0; })) return p;

@@ -21,6 +21,13 @@ void IncrementalPotential::begin_step(const Eigen::VectorXd& q_start, Eigen::Vec
   friction_.begin_step(std::move(start_positions), h);
 }
 
+void IncrementalPotential::adopt_contacts(Vertices start_positions, double kappa, double h,
+                                          std::vector<FrictionContact> friction) {
+  barrier_.set_kappa(kappa);
+  friction_.begin_step(std::move(start_positions), h);
+  friction_.set_contacts(std::move(friction));
+}
+
 double IncrementalPotential::energy(const Eigen::VectorXd& q, const Vertices& positions,
                                     const std::vector<ContactCandidate>& candidates) const {
   const PotentialPoint at{q, positions, candidates};

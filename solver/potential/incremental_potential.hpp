@@ -32,6 +32,11 @@ class IncrementalPotential {
   void set_friction(std::vector<FrictionContact> friction) {
     friction_.set_contacts(std::move(friction));
   }
+  // The contacts a step taken elsewhere ended with (a data-parallel engine's): its kappa, its
+  // last part's start positions and length h, and its last friction lag, so that the forces
+  // between steps (contact_forces.hpp) are that step's. The other terms are left as they were.
+  void adopt_contacts(Vertices start_positions, double kappa, double h,
+                      std::vector<FrictionContact> friction);
 
   // positions: the collision vertices at q (kinematic ones where the step has moved them).
   double energy(const Eigen::VectorXd& q, const Vertices& positions,

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "solver/batch/batch.hpp"
+#include "solver/batch/engines.hpp"
 #include "src/scene/invariants.hpp"
 #include "src/trial/contact_patch.hpp"
 #include "src/trial/finger_servo.hpp"
@@ -151,7 +151,7 @@ class ProtocolRunner {
         p_(gripper.parameters()),
         options_(options),
         fingers_(gripper.finger_count()),
-        engine_(std::make_unique<solver::Batch>(options.threads)),
+        engine_(solver::make_engine(options.device, options.threads)),
         arena_(engine_->threads()) {
     steps_per_phase_ = static_cast<int>(phase_steps(p_));
     max_steps_per_phase_ = steps_per_phase_ + static_cast<int>(rest_steps(p_));
@@ -685,6 +685,11 @@ std::vector<TrialOutcome> run_protocol(const TrialGripper& gripper,
   if (options.big_system_solver && options.threads != 1) {
     throw std::invalid_argument("run_trials: a big-system solver needs threads = 1, not " +
                                 std::to_string(options.threads));
+  }
+  if (options.big_system_solver && options.device != solver::EngineDevice::kCpu) {
+    throw std::invalid_argument(
+        "run_trials: a big-system solver serves the CPU engine's environments, not the "
+        "data-parallel engine's");
   }
   ProtocolRunner runner(gripper, options);
   return runner.run();

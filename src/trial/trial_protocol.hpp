@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "solver/batch/engines.hpp"
 #include "solver/engine/engine.hpp"
 #include "solver/linear/linear_system_solver.hpp"
 #include "solver/model/model.hpp"
@@ -25,9 +26,12 @@
 namespace grip::trial {
 
 struct TrialRunOptions {
-  int threads = 0;           // the batch's threads; 0: all cores. Results do not depend on it.
-  bool trajectory = true;    // fill CandidateResult::trajectory
-  bool body_frames = false;  // fill TrialOutcome::body_frames (all bodies, stress; for VTK)
+  int threads = 0;  // the batch's threads; 0: all cores. Results do not depend on it.
+  // The engine that steps the trials: the CPU engine, or the data-parallel engine on the host
+  // launcher (its numerics differ: docs/simulation.md, "The engine seam").
+  solver::EngineDevice device = solver::EngineDevice::kCpu;
+  bool trajectory = true;          // fill CandidateResult::trajectory
+  bool body_frames = false;        // fill TrialOutcome::body_frames (all bodies, stress; for VTK)
   std::vector<std::uint64_t> ids;  // record ids per candidate; empty: 0, 1, 2, ...
   // Trials stepping at once; the next candidate starts as soon as one ends, so no thread waits
   // for a batch's slowest trial. 0: every candidate at once. Results do not depend on it.
@@ -42,7 +46,8 @@ struct TrialRunOptions {
   bool full_trials = false;
   // Every Newton system of these trials goes to this solver instead of their environments' own
   // CHOLMOD (the farm's PETSc group, for a model too big for one rank). It serves one system at
-  // a time and may talk MPI: it needs threads = 1. Null: CHOLMOD solves every system.
+  // a time and may talk MPI: it needs threads = 1 and the CPU engine. Null: CHOLMOD solves every
+  // system.
   std::shared_ptr<solver::LinearSystemSolver> big_system_solver;
 };
 

@@ -51,10 +51,13 @@ nlohmann::ordered_json gripper_json(int grippers, const TrialOutcome& outcome) {
 
 void write_report(std::ostream& out, const TrialReport& report,
                   const std::vector<TrialOutcome>& outcomes) {
-  nlohmann::ordered_json root = {
-      {"object", report.object},       {"gripper", report.gripper},
-      {"soft", report.soft},           {"threads", report.threads},
-      {"candidates", outcomes.size()}, {"wall_seconds", report.wall_seconds}};
+  nlohmann::ordered_json root = {{"object", report.object},
+                                 {"gripper", report.gripper},
+                                 {"soft", report.soft},
+                                 {"threads", report.threads},
+                                 {"device", report.device},
+                                 {"candidates", outcomes.size()},
+                                 {"wall_seconds", report.wall_seconds}};
   if (report.fin_ray) {
     root["finger_mesh"] = {{"layers", report.fin_ray->layers},
                            {"edge_length", report.fin_ray->edge_length}};

@@ -22,6 +22,7 @@ struct TrialReport {
   bool soft = false;
   int grippers = 1;  // 2: a bimanual trial, reported per gripper too
   int threads = 1;
+  std::string device = "cpu";  // the engine (grip trial --device)
   double wall_seconds = 0.0;
   bool compared_solo = false;  // the candidates were also run one by one:
   double solo_wall_seconds = 0.0;

@@ -80,6 +80,19 @@ TEST(GripCli, SimulateWritesAReportAndFailsClearlyOnBadScenes) {
   EXPECT_NE(bench.out.find("\"identical\": true"), std::string::npos) << bench.out;
   EXPECT_EQ(bench.out.find("\"identical\": false"), std::string::npos) << bench.out;
   EXPECT_NE(bench.out.find("\"envs\": 2, \"steps\": 5"), std::string::npos) << bench.out;
+  // The same on the data-parallel engine: its batch against its own one-by-one runs.
+  const GripRun host = run_grip("bench batch --scene " + scene.string() +
+                                " --envs 2 --threads 2 --jitter 7 --device host");
+  EXPECT_EQ(host.exit_code, 0) << host.err;
+  EXPECT_NE(host.out.find("\"device\": \"host\""), std::string::npos) << host.out;
+  EXPECT_NE(host.out.find("\"identical\": true"), std::string::npos) << host.out;
+  // No CUDA engine to step on: exit 2 in one line naming the flag and what to use.
+  const GripRun cuda = run_grip("bench batch --scene " + scene.string() + " --device cuda");
+  EXPECT_EQ(cuda.exit_code, 2);
+  EXPECT_EQ(count_lines(cuda.err), 1) << cuda.err;
+  EXPECT_NE(cuda.err.find("--device cuda: this grip has no CUDA engine"), std::string::npos)
+      << cuda.err;
+  EXPECT_NE(cuda.err.find("use --device host"), std::string::npos) << cuda.err;
 
   std::ofstream(scene) << "[sim]\nduration = 0.05\nfoo = 1\n";
   const GripRun bad = run_grip("simulate " + scene.string());

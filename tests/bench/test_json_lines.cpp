@@ -28,12 +28,14 @@ TEST(BenchJsonLines, BatchLine) {
                   std::numeric_limits<double>::quiet_NaN(), 0, true}};
   std::ostringstream out;
   write_json_line(out, result);
-  EXPECT_EQ(out.str(),
-            "{\"benchmark\": \"batch\", \"scene\": \"box.toml\", \"threads\": 2, \"rows\": "
-            "[{\"envs\": 1, \"steps\": 100, \"sequential_s\": 0.178327, \"batched_s\": 0.173269, "
-            "\"speedup\": 1.02919, \"newton_iterations\": 828, \"frozen_fraction\": 0, "
-            "\"memory_mib\": 0.992188, \"memory_per_env_mib\": 0.992188, "
-            "\"memory_per_added_env_mib\": null, \"failed\": 0, \"identical\": true}]}\n");
+  EXPECT_EQ(
+      out.str(),
+      "{\"benchmark\": \"batch\", \"scene\": \"box.toml\", \"threads\": 2, \"device\": \"cpu\", "
+      "\"rows\": "
+      "[{\"envs\": 1, \"steps\": 100, \"sequential_s\": 0.178327, \"batched_s\": 0.173269, "
+      "\"speedup\": 1.02919, \"newton_iterations\": 828, \"frozen_fraction\": 0, "
+      "\"memory_mib\": 0.992188, \"memory_per_env_mib\": 0.992188, "
+      "\"memory_per_added_env_mib\": null, \"failed\": 0, \"identical\": true}]}\n");
 
   result.scene = kOdd;
   out.str("");

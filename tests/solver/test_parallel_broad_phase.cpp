@@ -158,6 +158,26 @@ TEST(ParallelBroadPhase, AnEnvironmentsCandidatesDoNotDependOnItsBatch) {
   EXPECT_EQ(solo.axis()[0], in_batch.axis()[0]);
 }
 
+// A gripper-like scene: a soft bar standing 10 cm tall in 5 mm cells beside a rigid bar 40 cm
+// long (8 vertices). The whole extent is longest along x, but the soft bar's many small
+// primitives lie along z, where they overlap least: the sweep runs along z, and the candidates
+// are still the CPU engine's.
+TEST(ParallelBroadPhase, SweepsAlongWhereThePrimitivesLie) {
+  SceneDescription scene;
+  scene.sim.d_hat = 1e-3;
+  scene.bodies = {
+      testing::soft_box("standing", {0.02, 0.02, 0.1}, 0.005, {0.0, 0.0, 0.05}, 1e6),
+      testing::rigid_box("bar", BodyType::kKinematic, {0.4, 0.02, 0.02}, {0.0, 0.0, -0.0105})};
+  const Paths p = make_paths({Model::build(scene)}, {1e-3}, 0.0);
+  const parallel::SurfaceBatch surfaces = parallel::surface_batch(raw(p));
+  parallel::HostBroadPhase found(surfaces);
+  parallel::SerialLauncher launch;
+  found.find(launch, p.flat_start, p.flat_end, p.d_hat);
+  EXPECT_EQ(found.axis()[0], 2);
+  EXPECT_GT(found.count(), 0);
+  expect_cpu_candidates(p, surfaces, found, 0);
+}
+
 // The reach filter's lists over a broad phase's candidates (each list's first entries count).
 struct Reach {
   parallel::ReachStorage<parallel::HostArray> lists;

@@ -67,6 +67,7 @@ TEST(TrialReport, KeepsItsLayout) {
 "gripper": "parallel-jaw",
 "soft": false,
 "threads": 2,
+"device": "cpu",
 "candidates": 2,
 "wall_seconds": 2,
 "solo_wall_seconds": 3,

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # grip trial takes its object and gripper from the candidate file: run without --object it
 # builds the candidates' object; told another object, seed or gripper it refuses in one line
-# naming the file and the option, and writes nothing.
+# naming the file and the option, and writes nothing; --device host runs it on the data-parallel
+# engine, --device cuda is refused.
 set -euo pipefail
 grip=$1
 dir=$(mktemp -d)
@@ -26,4 +27,8 @@ refused() {  # refused WHAT EXPECTED-TEXT ARGS...
 refused "another object" "c.txt: the candidates were synthesized with --object plate, not box" --object box
 refused "another seed" "synthesized with --seed 1, not 2" --seed 2
 refused "another gripper" "synthesized with --gripper parallel-jaw, not fin-ray" --gripper fin-ray
+refused "--device cuda" "--device cuda: this grip has no CUDA engine to step environments on yet" --device cuda
+# The data-parallel engine on the CPU: its report names it.
+"$grip" trial --candidates "$dir/c.txt" --threads 1 --device host --report "$dir/host.json" 2>/dev/null
+grep -q '"device": "host"' "$dir/host.json" || { echo "FAIL: the report does not name the engine"; exit 1; }
 echo "ok"

@@ -1,0 +1,21 @@
+#pragma once
+// The engines behind the seam (solver/engine/engine.hpp), by where they step environments.
+#include <memory>
+#include <string>
+
+#include "solver/engine/engine.hpp"
+
+namespace grip::solver {
+
+enum class EngineDevice {
+  kCpu,   // the CPU engine (solver::Batch): one Environment per thread, CHOLMOD
+  kHost,  // the data-parallel engine (solver::ParallelEngine) on the host launcher
+};
+
+// "cpu" or "host" (what grip trial --device takes).
+const char* device_name(EngineDevice device);
+
+// threads = 0: all the machine's cores.
+std::unique_ptr<Engine> make_engine(EngineDevice device, int threads);
+
+}  // namespace grip::solver
