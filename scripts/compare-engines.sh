@@ -20,18 +20,29 @@ shapes=("$@")
 grip=${GRIP:-$(dirname "$0")/../build/grip}
 read -r -a trial_options <<< "${GRIP_TRIAL_OPTIONS:-}"
 mkdir -p "$out"
+ran=()
 for shape in "${shapes[@]}"; do
   category=${shape%%:*}
   seed=${shape##*:}
   name=$category-$seed
+  # Synthesis exits 1 when it finds fewer candidates than asked (none on a shape wider than the
+  # gripper opens); what it found is in the file it wrote.
+  rm -f "$out/$name.txt"
   "$grip" -q synth --object "$category" --seed "$seed" --gripper "$gripper" --count "$count" \
-    --out "$out/$name.txt"
+    --out "$out/$name.txt" || [ -s "$out/$name.txt" ]
+  found=$(awk '$1 == "count" { print $2 }' "$out/$name.txt")
+  if [ "$found" -eq 0 ]; then
+    echo "$name: no candidates for $gripper; left out" >&2
+    continue
+  fi
+  ran+=("$shape")
   for device in cpu host; do
-    "$grip" -q trial --candidates "$out/$name.txt" --index "0-$((count - 1))" --device "$device" \
+    "$grip" -q trial --candidates "$out/$name.txt" --index "0-$((found - 1))" --device "$device" \
       "${trial_options[@]}" --report "$out/$name-$device.json"
   done
 done
-/usr/bin/python3 - "$out" "${shapes[@]}" <<'PY'
+[ ${#ran[@]} -gt 0 ] || { echo "no shape gave $gripper candidates" >&2; exit 1; }
+/usr/bin/python3 - "$out" "${ran[@]}" <<'PY'
 import json, sys
 out, shapes = sys.argv[1], sys.argv[2:]
 same = total = 0

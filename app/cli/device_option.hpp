@@ -1,5 +1,5 @@
 #pragma once
-// --device of grip trial and grip bench batch: the engine that steps the batch
+// --device of grip trial, grip simulate and grip bench batch: the engine that steps the batch
 // (solver/batch/engines.hpp): cpu, host (the data-parallel engine on the CPU) or cuda.
 #include <string>
 

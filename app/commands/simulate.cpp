@@ -1,5 +1,5 @@
-// grip simulate SCENE.toml... [--threads T] [--report out.json] [--trace]: scenes run for their
-// durations as one batch, with the JSON report on stdout or in a file.
+// grip simulate SCENE.toml... [--threads T] [--device D] [--report out.json] [--trace]: scenes
+// run for their durations as one batch, with the JSON report on stdout or in a file.
 #include <spdlog/spdlog.h>
 
 #include <fstream>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/cli/command_line.hpp"
+#include "app/cli/device_option.hpp"
 #include "app/commands/commands.hpp"
 #include "src/config/config.hpp"
 #include "src/geometry/tetrahedralize.hpp"
@@ -19,9 +20,10 @@ namespace {
 
 struct SimulateArgs {
   std::vector<std::string> scenes;
-  int threads = 0;     // 0: all cores
-  std::string report;  // JSON report file; stdout when empty
-  bool trace = false;  // add each step's time and centres of mass to the report
+  int threads = 0;             // 0: all cores
+  std::string device = "cpu";  // the engine: cpu, host (data-parallel) or cuda
+  std::string report;          // JSON report file; stdout when empty
+  bool trace = false;          // add each step's time and centres of mass to the report
   double max_tets = geometry::kMaxEstimatedTets;  // an FEM body of more tets is refused
 };
 
@@ -35,7 +37,9 @@ int simulate(const SimulateArgs& args) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  const scene::BatchReport report = scene::run_scenes(files, args.scenes, args.trace, args.threads);
+  const scene::BatchReport report = scene::run_scenes(
+      files, args.scenes, args.trace, args.threads,
+      args.device == "host" ? solver::EngineDevice::kHost : solver::EngineDevice::kCpu);
   if (args.report.empty()) {
     scene::write_json(std::cout, report, args.trace);
   } else {
@@ -70,6 +74,10 @@ void declare_simulate(cli::Command& root) {
   simulate.option("scenes", args->scenes, "Scene files (docs/scene-format.md)").required();
   simulate.option("--threads", args->threads, "Threads (default: all cores)")
       .check(cli::Check::count());
+  simulate.option("--device", args->device, cli::device_help())
+      .show_default()
+      .check(cli::device_check());
+  simulate.on_check([args] { cli::refuse_cuda_device(args->device); });
   simulate
       .option("--max-tets", args->max_tets,
               "Refuse an FEM body that would make more tets (estimated before meshing)")

@@ -2,22 +2,24 @@
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <utility>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
-#include "solver/batch/batch.hpp"
+#include "solver/batch/engines.hpp"
 #include "src/json/json_text.hpp"
 #include "src/scene/invariants.hpp"
 
 namespace grip::scene {
 
 BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<std::string>& names,
-                       bool trace, int threads) {
+                       bool trace, int threads, solver::EngineDevice device) {
   const auto start = std::chrono::steady_clock::now();
-  solver::Batch batch(threads);
+  const std::unique_ptr<solver::Engine> engine = solver::make_engine(device, threads);
+  solver::Engine& batch = *engine;
   BatchReport report;
   report.threads = batch.threads();
   report.scenes.resize(files.size());
@@ -57,7 +59,7 @@ BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<st
     checks.execute([&] {
       tbb::parallel_for(std::size_t{0}, stepped.size(), [&](std::size_t k) {
         const int i = stepped[k];
-        const solver::Environment& env = batch.environment(i);
+        const solver::EnvironmentHandle& env = batch.environment(i);
         SceneReport& r = report.scenes[i];
         if (env.failed()) {
           r.ok = false;
@@ -85,7 +87,7 @@ BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<st
     }
   }
   for (std::size_t i = 0; i < files.size(); ++i) {
-    const solver::Environment& env = batch.environment(static_cast<int>(i));
+    const solver::EnvironmentHandle& env = batch.environment(static_cast<int>(i));
     for (int b = 0; b < static_cast<int>(files[i].scene.bodies.size()); ++b) {
       report.scenes[i].bodies.push_back({files[i].scene.bodies[b].name, env.center_of_mass(b),
                                          env.center_of_mass_velocity(b), env.rotation(b)});

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/batch/engines.hpp"
 #include "src/scene/scene_file.hpp"
 
 namespace grip::scene {
@@ -43,10 +44,12 @@ struct BatchReport {
   std::vector<SceneReport> scenes;  // in the order given
 };
 
-// Steps every scene in one solver::Batch on `threads` threads (0: all cores) until each has
-// run for its duration or failed. Each scene's result equals a run of it alone.
+// Steps every scene in one batch of `device`'s engine (solver/batch/engines.hpp) on `threads`
+// threads (0: all cores) until each has run for its duration or failed, checking every step for
+// intersections exactly. Each scene's result equals a run of it alone on that engine.
 BatchReport run_scenes(const std::vector<SceneFile>& files, const std::vector<std::string>& names,
-                       bool trace, int threads);
+                       bool trace, int threads,
+                       solver::EngineDevice device = solver::EngineDevice::kCpu);
 
 void write_json(std::ostream& out, const BatchReport& report, bool trace);
 
