@@ -37,9 +37,8 @@ int simulate(const SimulateArgs& args) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  const scene::BatchReport report = scene::run_scenes(
-      files, args.scenes, args.trace, args.threads,
-      args.device == "host" ? solver::EngineDevice::kHost : solver::EngineDevice::kCpu);
+  const scene::BatchReport report = scene::run_scenes(files, args.scenes, args.trace, args.threads,
+                                                      solver::engine_device(args.device));
   if (args.report.empty()) {
     scene::write_json(std::cout, report, args.trace);
   } else {

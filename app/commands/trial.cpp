@@ -139,7 +139,7 @@ int run_and_report(const TrialArgs& args, const trial::TrialScene& scene,
                    const std::vector<std::uint64_t>& ids) {
   trial::TrialRunOptions options;
   options.threads = args.threads;
-  options.device = args.device == "host" ? solver::EngineDevice::kHost : solver::EngineDevice::kCpu;
+  options.device = solver::engine_device(args.device);
   options.ids = ids;
   options.body_frames = !args.vtk.empty();
   options.full_trials = args.full_trials;

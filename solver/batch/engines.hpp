@@ -12,8 +12,10 @@ enum class EngineDevice {
   kHost,  // the data-parallel engine (solver::ParallelEngine) on the host launcher
 };
 
-// "cpu" or "host" (what grip trial --device takes).
+// "cpu" or "host" (what --device of grip trial, grip simulate and grip bench batch takes), and
+// back; another name throws std::invalid_argument.
 const char* device_name(EngineDevice device);
+EngineDevice engine_device(const std::string& name);
 
 // threads = 0: all the machine's cores.
 std::unique_ptr<Engine> make_engine(EngineDevice device, int threads);

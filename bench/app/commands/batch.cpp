@@ -34,7 +34,7 @@ int bench_batch(const BenchBatchArgs& args) {
   bench::BatchBenchmarkOptions options;
   options.envs = args.envs;
   options.threads = args.threads;
-  options.device = args.device == "host" ? solver::EngineDevice::kHost : solver::EngineDevice::kCpu;
+  options.device = solver::engine_device(args.device);
   if (args.jitter >= 0) options.jitter = static_cast<std::uint64_t>(args.jitter);
   const bench::BatchBenchmarkResult result =
       bench::run_batch_benchmark(file, args.scene, options, std::cout);
