@@ -14,6 +14,9 @@ HostBroadPhase::HostBroadPhase(const SurfaceBatch& surfaces) : surfaces_(surface
   edge_order_.resize(static_cast<std::size_t>(s.edge_count));
   point_face_found_.resize(point_face_order_.size() + 1);
   edge_found_.resize(edge_order_.size() + 1);
+  body_point_begin_.resize(static_cast<std::size_t>(s.body_count) + 1);
+  body_face_begin_.resize(body_point_begin_.size());
+  body_edge_begin_.resize(body_point_begin_.size());
   environment_begin_.resize(static_cast<std::size_t>(s.environment_count) + 1);
 }
 
@@ -38,6 +41,9 @@ BroadPhaseBuffers HostBroadPhase::buffers(const std::vector<double>& start,
   b.edge_order = edge_order_.data();
   b.point_face_found = point_face_found_.data();
   b.edge_found = edge_found_.data();
+  b.body_point_begin = body_point_begin_.data();
+  b.body_face_begin = body_face_begin_.data();
+  b.body_edge_begin = body_edge_begin_.data();
   return b;
 }
 

@@ -6,16 +6,19 @@
 // environment's d_hat; an edge's or face's is the union of its vertices'; two primitives are a
 // candidate when their boxes overlap and their bodies may touch.
 //
-// Sort and sweep, one environment filtering another out: the points and faces of the batch are
-// sorted by (environment, their box's lower bound along the environment's sweep axis), and so
-// are the edges; each primitive then sweeps forward through the sorted list while the others'
-// lower bounds lie below its upper bound, within its environment. A pair is found once, from
-// the primitive that comes first. The sweep axis is the one along which the environment's
-// vertex boxes spread most. Pairs are counted, the counts scanned into offsets, the pairs
-// written, then sorted into the CPU engine's order: per environment point-triangle pairs by
-// (vertex, face), then edge-edge pairs by (edge, edge). Sorts and scans are the launcher's
-// (the standard library's on the host, Thrust's on a GPU); every comparison is a total order,
-// so every launcher gives the same lists.
+// Sort and sweep per pair of bodies that may touch: the points, the faces and the edges of the
+// batch are each sorted by (body, their box's lower bound along their environment's sweep axis);
+// each primitive then sweeps, for every body of its environment that its own may touch (itself
+// included only where a body touches itself), through that body's part of the list it pairs
+// with, from where their lower bounds reach its own (a binary search) while they lie below its
+// upper bound. A pair is found once, from the primitive whose lower bound comes first. So a
+// hand's links, which never touch each other, sweep only the object, and a rigid body never
+// sweeps its own primitives. The sweep axis is the one along which the environment's vertex
+// boxes spread most. Pairs are counted, the counts scanned into offsets, the pairs written,
+// then sorted into the CPU engine's order: per environment point-triangle pairs by (vertex,
+// face), then edge-edge pairs by (edge, edge). Sorts and scans are the launcher's (the standard
+// library's on the host, Thrust's on a GPU); every comparison is a total order, so every
+// launcher gives the same lists.
 #include <vector>
 
 #include "solver/kernels/aabb.hpp"
@@ -35,8 +38,11 @@ struct BroadPhaseBuffers {
   // pairs it finds, then their offsets (one more entry: the total).
   double *vertex_box = nullptr, *edge_box = nullptr, *face_box = nullptr;
   int* axis = nullptr;
-  int* point_face_order = nullptr;  // vertex_count + face_count
+  int* point_face_order = nullptr;  // vertex_count + face_count: the points', then the faces'
   int* edge_order = nullptr;        // edge_count
+  // Per body (one more entry: the list's length) its first place in the sorted points, faces
+  // (counted from the faces' first) and edges.
+  int *body_point_begin = nullptr, *body_face_begin = nullptr, *body_edge_begin = nullptr;
   int* point_face_found = nullptr;  // vertex_count + face_count + 1
   int* edge_found = nullptr;        // edge_count + 1
 };
@@ -145,43 +151,79 @@ struct IotaStage {
   GRIP_HD void operator()(int i) const { items[i] = i; }
 };
 
-// The points and faces as sort-and-sweep items: item i < vertex_count is point i, the others
-// face i - vertex_count.
-GRIP_HD inline int point_face_environment(const BroadPhaseBuffers& b, int item) {
-  const int points = b.surface.vertex_count;
-  return item < points ? b.surface.vertex_environment[item]
-                       : b.surface.face_environment[item - points];
+// The three sorted lists: points (vertices), faces and edges, each by (body, lower bound along
+// its environment's sweep axis, index). Bodies are numbered across the batch in environment
+// order, so that each environment's items, and within it each body's, lie together.
+enum SweepList : int { kSweepPoints = 0, kSweepFaces = 1, kSweepEdges = 2 };
+
+GRIP_HD inline int item_body(const BroadPhaseBuffers& b, int list, int item) {
+  const SurfaceBuffers& s = b.surface;
+  if (list == kSweepPoints) return s.vertex_body[item];
+  return s.vertex_body[list == kSweepFaces ? s.face[3 * item] : s.edge[2 * item]];
 }
 
-GRIP_HD inline const double* point_face_box(const BroadPhaseBuffers& b, int item) {
-  const int points = b.surface.vertex_count;
-  return item < points ? b.vertex_box + 6 * item : b.face_box + 6 * (item - points);
+GRIP_HD inline const double* item_box(const BroadPhaseBuffers& b, int list, int item) {
+  if (list == kSweepPoints) return b.vertex_box + 6 * item;
+  return list == kSweepFaces ? b.face_box + 6 * item : b.edge_box + 6 * item;
 }
 
-// (environment, lower bound along its sweep axis, item): a total order.
-struct PointFaceSweepOrder {
+// The item's lower bound along its environment's sweep axis.
+GRIP_HD inline double item_lower(const BroadPhaseBuffers& b, int list, int item) {
+  const int body = item_body(b, list, item);
+  return item_box(b, list, item)[b.axis[b.surface.body_environment[body]]];
+}
+
+// (body, lower bound, index): a total order.
+struct SweepOrder {
   BroadPhaseBuffers b;
+  int list = kSweepPoints;
 
   GRIP_HD bool operator()(int i, int j) const {
-    const int ei = point_face_environment(b, i), ej = point_face_environment(b, j);
-    if (ei != ej) return ei < ej;
-    const double li = point_face_box(b, i)[b.axis[ei]], lj = point_face_box(b, j)[b.axis[ej]];
+    const int bi = item_body(b, list, i), bj = item_body(b, list, j);
+    if (bi != bj) return bi < bj;
+    const double li = item_lower(b, list, i), lj = item_lower(b, list, j);
     if (li != lj) return li < lj;
     return i < j;
   }
 };
 
-struct EdgeSweepOrder {
+// Each body's first place in a sorted list (item body_count: the list's length), by binary
+// search.
+struct SweepBodyBeginStage {
   BroadPhaseBuffers b;
+  int list = kSweepPoints;
+  const int* sorted = nullptr;
+  int count = 0;  // items in the list
+  int* begin = nullptr;
 
-  GRIP_HD bool operator()(int i, int j) const {
-    const int ei = b.surface.edge_environment[i], ej = b.surface.edge_environment[j];
-    if (ei != ej) return ei < ej;
-    const double li = b.edge_box[6 * i + b.axis[ei]], lj = b.edge_box[6 * j + b.axis[ej]];
-    if (li != lj) return li < lj;
-    return i < j;
+  GRIP_HD void operator()(int body) const {
+    int low = 0, high = count;
+    while (low < high) {
+      const int mid = low + (high - low) / 2;
+      if (item_body(b, list, sorted[mid]) < body) {
+        low = mid + 1;
+      } else {
+        high = mid;
+      }
+    }
+    begin[body] = low;
   }
 };
+
+// The first place m in sorted[begin, end) (one body's items) from which the items' lower bounds
+// are no longer `below` the sweeping item's: where its sweep through that body starts.
+template <class Below>
+GRIP_HD int sweep_start(const int* sorted, int begin, int end, const Below& below) {
+  while (begin < end) {
+    const int mid = begin + (end - begin) / 2;
+    if (below(sorted[mid])) {
+      begin = mid + 1;
+    } else {
+      end = mid;
+    }
+  }
+  return begin;
+}
 
 // Aabb::overlaps on stored boxes.
 GRIP_HD inline bool boxes_overlap(const double* a, const double* c) {
@@ -206,40 +248,55 @@ GRIP_HD inline bool edge_edge_allowed(const SurfaceBuffers& s, int a, int c) {
   return pair_friction(s, s.vertex_body[ea[0]], s.vertex_body[ec[0]]) >= 0.0;
 }
 
-// One sorted point or face's sweep: counts its pairs (found = null) or writes them from
-// found[k] on.
+// One sorted point's (k below the vertex count) or face's sweep: counts its pairs (primitive =
+// null) or writes them from point_face_found[k] on. It visits only the faces (or points) of the
+// bodies its own may touch, each body's from where their lower bounds reach its own: a point
+// finds the faces whose lower bound is not below its own, a face the points whose lower bound
+// is above its own, so that each pair of overlapping boxes is found once.
 struct PointFaceSweepStage {
   BroadPhaseBuffers b;
   int* primitive = nullptr;  // null: count
 
   GRIP_HD void operator()(int k) const {
-    const int items = b.surface.vertex_count + b.surface.face_count;
-    const int points = b.surface.vertex_count;
-    const int i = b.point_face_order[k], e = point_face_environment(b, i), axis = b.axis[e];
-    const double* box = point_face_box(b, i);
+    const SurfaceBuffers& s = b.surface;
+    const bool point = k < s.vertex_count;
+    const int list = point ? kSweepPoints : kSweepFaces,
+              other_list = point ? kSweepFaces : kSweepPoints;
+    const int* sorted = b.point_face_order + (point ? 0 : s.vertex_count);
+    const int* others = b.point_face_order + (point ? s.vertex_count : 0);
+    const int* other_begin = point ? b.body_face_begin : b.body_point_begin;
+    const int i = sorted[point ? k : k - s.vertex_count], body = item_body(b, list, i);
+    const int e = s.body_environment[body], axis = b.axis[e];
+    const double* box = item_box(b, list, i);
     int n = 0;
-    for (int m = k + 1; m < items; ++m) {
-      const int j = b.point_face_order[m];
-      if (point_face_environment(b, j) != e) break;
-      const double* other = point_face_box(b, j);
-      if (other[axis] > box[3 + axis]) break;
-      if ((i < points) == (j < points)) continue;
-      const int v = i < points ? i : j, f = (i < points ? j : i) - points;
-      if (!boxes_overlap(b.vertex_box + 6 * v, b.face_box + 6 * f)) continue;
-      if (!point_triangle_allowed(b.surface, v, f)) continue;
-      if (primitive != nullptr) {
-        const int p = b.point_face_found[k] + n;
-        primitive[2 * p] = v;
-        primitive[2 * p + 1] = f;
+    for (int other = s.body_begin[e]; other < s.body_begin[e + 1]; ++other) {
+      if (pair_friction(s, point ? body : other, point ? other : body) < 0.0) continue;
+      const auto below = [&](int j) {
+        const double lower = item_box(b, other_list, j)[axis];
+        return point ? lower < box[axis] : lower <= box[axis];
+      };
+      const int end = other_begin[other + 1];
+      for (int m = sweep_start(others, other_begin[other], end, below); m < end; ++m) {
+        const int j = others[m];
+        const double* other_box = item_box(b, other_list, j);
+        if (other_box[axis] > box[3 + axis]) break;
+        const int v = point ? i : j, f = point ? j : i;
+        if (!boxes_overlap(box, other_box) || !point_triangle_allowed(s, v, f)) continue;
+        if (primitive != nullptr) {
+          const int p = b.point_face_found[k] + n;
+          primitive[2 * p] = v;
+          primitive[2 * p + 1] = f;
+        }
+        ++n;
       }
-      ++n;
     }
     if (primitive == nullptr) b.point_face_found[k] = n;
   }
 };
 
-// One sorted edge's sweep. A pair is listed from its edge among untouching bodies, else from
-// its lower-numbered edge (as the CPU engine lists it).
+// One sorted edge's sweep, through the edges of each body its own may touch from where their
+// (lower bound, index) comes after its own. A pair is listed from its edge among untouching
+// bodies, else from its lower-numbered edge (as the CPU engine lists it).
 struct EdgeSweepStage {
   BroadPhaseBuffers b;
   int first_pair = 0;        // the edge-edge pairs' first place among the pairs found
@@ -247,24 +304,32 @@ struct EdgeSweepStage {
 
   GRIP_HD void operator()(int k) const {
     const SurfaceBuffers& s = b.surface;
-    const int i = b.edge_order[k], e = s.edge_environment[i], axis = b.axis[e];
+    const int i = b.edge_order[k], body = item_body(b, kSweepEdges, i);
+    const int e = s.body_environment[body], axis = b.axis[e];
     const double* box = b.edge_box + 6 * i;
+    const auto below = [&](int j) {
+      const double lower = b.edge_box[6 * j + axis];
+      return lower < box[axis] || (lower == box[axis] && j <= i);
+    };
     int n = 0;
-    for (int m = k + 1; m < s.edge_count; ++m) {
-      const int j = b.edge_order[m];
-      if (s.edge_environment[j] != e) break;
-      const double* other = b.edge_box + 6 * j;
-      if (other[axis] > box[3 + axis]) break;
-      if (!boxes_overlap(box, other) || !edge_edge_allowed(s, i, j)) continue;
-      if (primitive != nullptr) {
-        const bool ui = s.untouching[s.vertex_body[s.edge[2 * i]]] != 0;
-        const bool uj = s.untouching[s.vertex_body[s.edge[2 * j]]] != 0;
-        const bool i_first = ui == uj ? i < j : ui;
-        const int p = first_pair + b.edge_found[k] + n;
-        primitive[2 * p] = i_first ? i : j;
-        primitive[2 * p + 1] = i_first ? j : i;
+    for (int other = s.body_begin[e]; other < s.body_begin[e + 1]; ++other) {
+      if (pair_friction(s, body, other) < 0.0) continue;
+      const int end = b.body_edge_begin[other + 1];
+      for (int m = sweep_start(b.edge_order, b.body_edge_begin[other], end, below); m < end; ++m) {
+        const int j = b.edge_order[m];
+        const double* other_box = b.edge_box + 6 * j;
+        if (other_box[axis] > box[3 + axis]) break;
+        if (!boxes_overlap(box, other_box) || !edge_edge_allowed(s, i, j)) continue;
+        if (primitive != nullptr) {
+          const bool ui = s.untouching[body] != 0;
+          const bool uj = s.untouching[other] != 0;
+          const bool i_first = ui == uj ? i < j : ui;
+          const int p = first_pair + b.edge_found[k] + n;
+          primitive[2 * p] = i_first ? i : j;
+          primitive[2 * p + 1] = i_first ? j : i;
+        }
+        ++n;
       }
-      ++n;
     }
     if (primitive == nullptr) b.edge_found[k] = n;
   }
@@ -403,10 +468,19 @@ CandidateCounts count_candidates(Launcher& launch, const BroadPhaseBuffers& b) {
   launch(s.edge_count, PrimitiveBoxStage{b, s.edge, 2, b.edge_box});
   launch(s.environment_count, SweepAxisStage{b});
   const int items = s.vertex_count + s.face_count;
-  launch(items, IotaStage{b.point_face_order});
+  int* faces = b.point_face_order + s.vertex_count;
+  launch(s.vertex_count, IotaStage{b.point_face_order});
+  launch(s.face_count, IotaStage{faces});
   launch(s.edge_count, IotaStage{b.edge_order});
-  launch.sort(b.point_face_order, items, PointFaceSweepOrder{b});
-  launch.sort(b.edge_order, s.edge_count, EdgeSweepOrder{b});
+  launch.sort(b.point_face_order, s.vertex_count, SweepOrder{b, kSweepPoints});
+  launch.sort(faces, s.face_count, SweepOrder{b, kSweepFaces});
+  launch.sort(b.edge_order, s.edge_count, SweepOrder{b, kSweepEdges});
+  const int bodies = s.body_count + 1;
+  launch(bodies, SweepBodyBeginStage{b, kSweepPoints, b.point_face_order, s.vertex_count,
+                                     b.body_point_begin});
+  launch(bodies, SweepBodyBeginStage{b, kSweepFaces, faces, s.face_count, b.body_face_begin});
+  launch(bodies,
+         SweepBodyBeginStage{b, kSweepEdges, b.edge_order, s.edge_count, b.body_edge_begin});
   launch(items, PointFaceSweepStage{b, nullptr});
   launch(s.edge_count, EdgeSweepStage{b, 0, nullptr});
   launch(1, TotalSlotStage{b.point_face_found, items});
@@ -464,6 +538,7 @@ class HostBroadPhase {
   const SurfaceBatch& surfaces_;
   std::vector<double> vertex_box_, edge_box_, face_box_;
   std::vector<int> axis_, point_face_order_, edge_order_, point_face_found_, edge_found_;
+  std::vector<int> body_point_begin_, body_face_begin_, body_edge_begin_;
   std::vector<int> primitive_, order_, vertex_, environment_, environment_begin_;
   std::vector<unsigned char> edge_edge_, near_at_rest_;
   std::vector<double> friction_, mollifier_eps_;

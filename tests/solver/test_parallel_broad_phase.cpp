@@ -5,9 +5,9 @@
 // soft box has pairs near at rest), each on its own path (DOFs moved by up to 1 cm, the floor
 // part way up). Every environment's candidates equal the CPU engine's, in its order, field for
 // field; the serial and TBB launchers give the same lists; an environment's list does not
-// depend on its batch. Then the reach filter (solver/parallel/reach_stages.hpp) against the CPU
-// engine's within_reach: the pairs within reach and those CCD watches, each environment's
-// equal to the CPU engine's, in its order.
+// depend on its batch; bodies of one collision group are never swept against each other. Then the
+// reach filter (solver/parallel/reach_stages.hpp) against the CPU engine's within_reach: the pairs
+// within reach and those CCD watches, each environment's equal to the CPU engine's, in its order.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -176,6 +176,35 @@ TEST(ParallelBroadPhase, SweepsAlongWhereThePrimitivesLie) {
   EXPECT_EQ(found.axis()[0], 2);
   EXPECT_GT(found.count(), 0);
   expect_cpu_candidates(p, surfaces, found, 0);
+}
+
+// The sweep runs per pair of bodies that may touch: the crowded scene with its soft box and its
+// affine box in one collision group (as a hand's links are) still gives the CPU engine's list,
+// with no pair of those two bodies and pairs of each with the others.
+TEST(ParallelBroadPhase, SweepsOnlyPairsOfBodiesThatMayTouch) {
+  SceneDescription scene = testing::every_kind_of_body();
+  scene.bodies[1].pose.position = {0.0, 0.0, 0.02};
+  scene.bodies[2].pose.position = {0.03, 0.0, 0.025};
+  scene.bodies[3].pose.position = {-0.03, 0.0, 0.02};
+  scene.bodies[1].collision_group = scene.bodies[2].collision_group = 1;
+  const Paths p = make_paths({Model::build(scene)}, {0.05});
+  const parallel::SurfaceBatch surfaces = parallel::surface_batch(raw(p));
+  parallel::HostBroadPhase found(surfaces);
+  parallel::SerialLauncher launch;
+  found.find(launch, p.flat_start, p.flat_end, p.d_hat);
+  expect_cpu_candidates(p, surfaces, found, 0);
+  const parallel::SurfaceBuffers s = surfaces.buffers();
+  int grouped = 0, soft_with_others = 0, box_with_others = 0;
+  for (int k = 0; k < found.count(); ++k) {
+    const int* v = &found.vertex()[4 * k];
+    const int a = s.vertex_body[v[0]], b = s.vertex_body[v[3]];
+    grouped += (a == 1 && b == 2) || (a == 2 && b == 1) ? 1 : 0;
+    soft_with_others += (a == 1) != (b == 1) && a != 2 && b != 2 ? 1 : 0;
+    box_with_others += (a == 2) != (b == 2) && a != 1 && b != 1 ? 1 : 0;
+  }
+  EXPECT_EQ(grouped, 0);
+  EXPECT_GT(soft_with_others, 0);
+  EXPECT_GT(box_with_others, 0);
 }
 
 // The reach filter's lists over a broad phase's candidates (each list's first entries count).

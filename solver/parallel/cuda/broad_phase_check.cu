@@ -264,6 +264,45 @@ void check_friction_lag(const SheetScene& scene, const HostBroadPhase& host,
                                   relative_difference(on_device.tangent, on_host.tangent, 24));
 }
 
+// The broad phase's work arrays in device memory, as HostBroadPhase holds them on the host.
+struct DeviceSweepWork {
+  explicit DeviceSweepWork(const SurfaceBuffers& s)
+      : vertex_box(6 * std::size_t(s.vertex_count)),
+        edge_box(6 * std::size_t(s.edge_count)),
+        face_box(6 * std::size_t(s.face_count)),
+        axis(s.environment_count),
+        point_face_order(std::size_t(s.vertex_count + s.face_count)),
+        edge_order(s.edge_count),
+        point_face_found(point_face_order.size() + 1),
+        edge_found(edge_order.size() + 1),
+        body_point_begin(std::size_t(s.body_count) + 1),
+        body_face_begin(body_point_begin.size()),
+        body_edge_begin(body_point_begin.size()) {}
+
+  BroadPhaseBuffers buffers(const SurfaceBuffers& on_device, const double* start, const double* end,
+                            const double* d_hat) {
+    return {on_device,
+            start,
+            end,
+            d_hat,
+            vertex_box.data(),
+            edge_box.data(),
+            face_box.data(),
+            axis.data(),
+            point_face_order.data(),
+            edge_order.data(),
+            point_face_found.data(),
+            edge_found.data(),
+            body_point_begin.data(),
+            body_face_begin.data(),
+            body_edge_begin.data()};
+  }
+
+  DeviceArray<double> vertex_box, edge_box, face_box;
+  DeviceArray<int> axis, point_face_order, edge_order, point_face_found, edge_found,
+      body_point_begin, body_face_begin, body_edge_begin;
+};
+
 }  // namespace
 
 BroadPhaseCheck check_broad_phase(int environments, int repeats) {
@@ -276,24 +315,10 @@ BroadPhaseCheck check_broad_phase(int environments, int repeats) {
 
   const DeviceSurfaces surfaces(scene.surfaces);
   DeviceArray<double> start(scene.start), end(scene.end), d_hat(scene.d_hat),
-      rescaling(scene.ccd_rescaling), vertex_box(6 * std::size_t(s.vertex_count)),
-      edge_box(6 * std::size_t(s.edge_count)), face_box(6 * std::size_t(s.face_count));
-  const std::size_t items = std::size_t(s.vertex_count + s.face_count);
-  DeviceArray<int> axis(environments), point_face_order(items), edge_order(s.edge_count),
-      point_face_found(items + 1), edge_found(std::size_t(s.edge_count) + 1);
+      rescaling(scene.ccd_rescaling);
+  DeviceSweepWork work(s);
   const SurfaceBuffers on_device = surfaces.buffers(s);
-  const BroadPhaseBuffers b{on_device,
-                            start.data(),
-                            end.data(),
-                            d_hat.data(),
-                            vertex_box.data(),
-                            edge_box.data(),
-                            face_box.data(),
-                            axis.data(),
-                            point_face_order.data(),
-                            edge_order.data(),
-                            point_face_found.data(),
-                            edge_found.data()};
+  const BroadPhaseBuffers b = work.buffers(on_device, start.data(), end.data(), d_hat.data());
   CudaLauncher launch;
   const CandidateCounts counts = count_candidates(launch, b);
   DeviceCandidates found(counts.total(), environments);
@@ -315,13 +340,15 @@ BroadPhaseCheck check_broad_phase(int environments, int repeats) {
                     device_reach.reachable_begin.to_host() == host_reach.reachable_begin &&
                     device_reach.ccd_begin.to_host() == host_reach.ccd_begin;
   check_friction_lag(scene, host, found, check);
-  check.bytes = 8.0 * double(start.size() + end.size() + vertex_box.size() + edge_box.size() +
-                             face_box.size() + surfaces.rest.size() + found.friction.size() +
-                             found.mollifier_eps.size() + 2 * std::size_t(s.vertex_count)) +
-                4.0 * double(items * 3 + 3 * std::size_t(s.edge_count) + found.primitive.size() +
-                             found.order.size() + found.vertex.size() + found.environment.size() +
-                             surfaces.edge.size() + surfaces.face.size() +
-                             surfaces.vertex_body.size() + 4 * std::size_t(counts.total()));
+  const std::size_t items = std::size_t(s.vertex_count + s.face_count);
+  check.bytes =
+      8.0 * double(start.size() + end.size() + work.vertex_box.size() + work.edge_box.size() +
+                   work.face_box.size() + surfaces.rest.size() + found.friction.size() +
+                   found.mollifier_eps.size() + 2 * std::size_t(s.vertex_count)) +
+      4.0 * double(items * 3 + 3 * std::size_t(s.edge_count) + 3 * (std::size_t(s.body_count) + 1) +
+                   found.primitive.size() + found.order.size() + found.vertex.size() +
+                   found.environment.size() + surfaces.edge.size() + surfaces.face.size() +
+                   surfaces.vertex_body.size() + 4 * std::size_t(counts.total()));
   return check;
 }
 
