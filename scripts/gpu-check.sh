@@ -32,7 +32,7 @@ sources=(solver/parallel/cuda/device_check.cu solver/parallel/cuda/broad_phase_c
   solver/parallel/fem_batch.cpp
   solver/parallel/surface_batch.cpp solver/parallel/broad_phase.cpp
   solver/parallel/affine_batch.cpp solver/parallel/collision_batch.cpp
-  solver/parallel/block_assembly.cpp solver/parallel/block_pcg.cpp
+  solver/parallel/block_assembly.cpp solver/parallel/block_pcg.cpp solver/parallel/coarse_space.cpp
   solver/parallel/contact_stages.cpp solver/parallel/friction_stages.cpp
   solver/parallel/derivative_stages.cpp solver/parallel/step_start_stages.cpp)
 start=$(date +%s)

@@ -71,15 +71,20 @@ JacobiBlocks jacobi_blocks(const FemBatch& fem, const AffineBatch& affine,
 }
 
 PcgStructure pcg_structure(const FemBatch& fem, const AffineBatch& affine,
-                           const BlockPattern& pattern, const std::vector<int>& dof_begin) {
+                           const BlockPattern& pattern, const std::vector<int>& dof_begin,
+                           int aggregate_vertices) {
+  const int units = dof_begin.back() / 3;
   PcgStructure s{pattern.row,
                  pattern.column,
-                 block_rows(pattern, dof_begin.back() / 3),
+                 block_rows(pattern, units),
                  jacobi_blocks(fem, affine, pattern, dof_begin),
+                 {},
+                 pattern.environment_begin,
                  {},
                  {}};
   const int environments = static_cast<int>(dof_begin.size()) - 1;
   for (int e = 0; e <= environments; ++e) s.unit_begin.push_back(dof_begin[e] / 3);
+  s.coarse = coarse_space(fem, aggregate_vertices, units, s.unit_begin);
   for (int e = 0; e < environments; ++e) {
     s.unit_environment.insert(s.unit_environment.end(), s.unit_begin[e + 1] - s.unit_begin[e], e);
   }

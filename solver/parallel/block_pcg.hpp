@@ -1,9 +1,11 @@
 #pragma once
 // Every environment's Newton system of a batch solved at once by preconditioned conjugate
 // gradients on the 3x3 blocks of block_assembly.hpp, each environment with its own scalars
-// (step lengths, residuals, tolerance, iteration count, status). The preconditioner is block
-// Jacobi over DOF blocks: an FEM vertex's 3x3 diagonal block, an affine body's whole 12x12
-// (its position and matrix rows are coupled strongly, and on different scales).
+// (step lengths, residuals, tolerance, iteration count, status). The preconditioner is two-level
+// additive Schwarz: block Jacobi over DOF blocks (an FEM vertex's 3x3 diagonal block, an affine
+// body's whole 12x12: its position and matrix rows are coupled strongly, and on different
+// scales) plus, where a batch has FEM bodies, a coarse level over aggregates of their vertices
+// (coarse_space.hpp).
 //
 // Fixed DOFs (pinned, held) keep the values x holds on entry: the solve is the CPU engine's
 // elimination (NewtonSolver::eliminate_prescribed), A_ff x_f = b_f - A_fc x_c, done as CG on
@@ -22,6 +24,7 @@
 #include "solver/kernels/spd_inverse.hpp"
 #include "solver/parallel/affine_batch.hpp"
 #include "solver/parallel/block_assembly.hpp"
+#include "solver/parallel/coarse_space.hpp"
 #include "solver/parallel/fem_batch.hpp"
 #include "solver/parallel/launch.hpp"
 
@@ -33,7 +36,8 @@ enum PcgStatus : int {
   kPcgConverged = 1,         // |r| <= tolerance |r0|
   kPcgIterationLimit = 2,    // not converged within the iteration limit
   kPcgIndefinite = 3,        // a direction of non-positive curvature: the matrix is not SPD
-  kPcgBadPreconditioner = 4  // a DOF block's diagonal block is not positive definite
+  kPcgBadPreconditioner = 4  // a DOF block's diagonal block, or the coarse matrix, is not
+                             // positive definite
 };
 
 // Per unit, the blocks of its row of the whole symmetric matrix: each lower block (u, c) as it
@@ -76,6 +80,7 @@ struct PcgBuffers {
   const double* block = nullptr;  // 9 per block, column-major
   BlockRowBuffers rows;
   JacobiBuffers jacobi;
+  CoarseBuffers coarse;
   int unit_count = 0;
   const int* unit_environment = nullptr;  // per unit
   const char* fixed = nullptr;            // per DOF
@@ -177,6 +182,85 @@ struct PreconditionStage {
   }
 };
 
+// Each running environment's coarse matrix P^T A P over its free DOFs (an aggregate's rows
+// with no free DOF the identity's), factored in place. A block (u, w) of A, u > w, stands for
+// itself and its transpose (w, u): it adds to (r, c) and (c, r) of A_c, one entry of the lower
+// triangle, or twice to a diagonal entry where the two coincide.
+struct CoarseFactorStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int e) const {
+    const CoarseBuffers& c = p.coarse;
+    const int first = c.aggregate_begin[e], n = 3 * (c.aggregate_begin[e + 1] - first);
+    c.ok[e] = 1;
+    if (n == 0 || p.status[e] != kPcgRunning) return;
+    double* a = c.matrix + c.matrix_begin[e];
+    for (long long k = 0; k < static_cast<long long>(n) * n; ++k) a[k] = 0.0;
+    for (int k = c.block_begin[e]; k < c.block_begin[e + 1]; ++k) add_block(k, first, n, a);
+    for (int i = 0; i < n; ++i) {
+      if (a[coarse_lower(i, i, n)] == 0.0) a[coarse_lower(i, i, n)] = 1.0;
+    }
+    c.ok[e] = DenseCholeskyStage::factor(n, a) ? 1 : 0;
+  }
+
+  GRIP_HD void add_block(int k, int first, int n, double* a) const {
+    const int u = p.pattern.row[k], w = p.pattern.column[k];
+    const int au = p.coarse.unit_aggregate[u], aw = p.coarse.unit_aggregate[w];
+    if (au < 0 || aw < 0) return;
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        if (p.fixed[3 * u + i] || p.fixed[3 * w + j]) continue;
+        if (u == w && i < j) continue;  // a diagonal block's upper half is its lower's
+        const int r = 3 * (au - first) + i, col = 3 * (aw - first) + j;
+        const double value = p.block[9 * k + 3 * j + i];
+        a[coarse_lower(r, col, n)] += u != w && r == col ? 2.0 * value : value;
+      }
+    }
+  }
+};
+
+// P^T r: each aggregate's sum of its free residuals, per axis.
+struct CoarseRestrictStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int g) const {
+    const CoarseBuffers& c = p.coarse;
+    const int begin = c.aggregate_unit_begin[g], end = c.aggregate_unit_begin[g + 1];
+    if (!pcg_running(p, c.aggregate_unit[begin])) return;
+    double sum[3] = {};
+    for (int k = begin; k < end; ++k) {
+      const int u = c.aggregate_unit[k];
+      for (int i = 0; i < 3; ++i) sum[i] += p.fixed[3 * u + i] ? 0.0 : p.r[3 * u + i];
+    }
+    for (int i = 0; i < 3; ++i) c.vector[3 * g + i] = sum[i];
+  }
+};
+
+// A_c^-1 P^T r by the factor, per running environment.
+struct CoarseSolveStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int e) const {
+    const CoarseBuffers& c = p.coarse;
+    const int first = c.aggregate_begin[e], n = 3 * (c.aggregate_begin[e + 1] - first);
+    if (n == 0 || p.status[e] != kPcgRunning) return;
+    cholesky_substitute(n, c.matrix + c.matrix_begin[e], c.vector + 3 * first);
+  }
+};
+
+// z += P A_c^-1 P^T r on each free DOF of an aggregate's unit.
+struct CoarseProlongStage {
+  PcgBuffers p;
+
+  GRIP_HD void operator()(int u) const {
+    const int g = p.coarse.unit_aggregate[u];
+    if (g < 0 || !pcg_running(p, u)) return;
+    for (int i = 0; i < 3; ++i) {
+      if (!p.fixed[3 * u + i]) p.z[3 * u + i] += p.coarse.vector[3 * g + i];
+    }
+  }
+};
+
 // partial[u] = a . b over unit u's three DOFs.
 struct UnitDotStage {
   const double* a = nullptr;
@@ -223,6 +307,10 @@ struct PcgStartStage {
         p.status[e] = kPcgBadPreconditioner;
         return;
       }
+    }
+    if (p.coarse.aggregate_count > 0 && !p.coarse.ok[e]) {
+      p.status[e] = kPcgBadPreconditioner;
+      return;
     }
     if (p.rr[e] == 0.0) {
       p.status[e] = kPcgConverged;
@@ -295,6 +383,11 @@ struct DirectionStage {
 template <class Launcher>
 void launch_preconditioned_dots(Launcher& launch, const PcgBuffers& p, double* rz) {
   launch(p.jacobi.count, PreconditionStage{p});
+  if (p.coarse.aggregate_count > 0) {
+    launch(p.coarse.aggregate_count, CoarseRestrictStage{p});
+    launch(p.environment_count, CoarseSolveStage{p});
+    launch(p.unit_count, CoarseProlongStage{p});
+  }
   launch(p.unit_count, UnitDotStage{p.r, p.z, p.partial});
   launch(p.environment_count, EnvironmentDotStage{p, rz});
   launch(p.unit_count, UnitDotStage{p.r, p.r, p.partial});
@@ -308,6 +401,7 @@ void solve_block_pcg(Launcher& launch, const PcgBuffers& p) {
   const int dofs = 3 * p.unit_count;
   launch(p.environment_count, PcgResetStage{p});
   launch(p.jacobi.count, JacobiFactorStage{p});
+  if (p.coarse.aggregate_count > 0) launch(p.environment_count, CoarseFactorStage{p});
   launch(p.unit_count, BlockProductStage{p, p.x, p.q});
   launch(dofs, FirstResidualStage{p});
   launch_preconditioned_dots(launch, p, p.rz);
@@ -332,13 +426,17 @@ struct PcgStructure {
   std::vector<int> row, column;  // the pattern's blocks (all the solve reads of the pattern)
   BlockRows rows;
   JacobiBlocks jacobi;
+  CoarseSpace coarse;
+  std::vector<int> block_begin;       // environments + 1 offsets into the pattern's blocks
   std::vector<int> unit_environment;  // per unit
   std::vector<int> unit_begin;        // environments + 1 offsets
   int environment_count() const { return static_cast<int>(unit_begin.size()) - 1; }
 };
 
+// aggregate_vertices: FEM vertices per coarse aggregate; 0: block Jacobi alone.
 PcgStructure pcg_structure(const FemBatch& fem, const AffineBatch& affine,
-                           const BlockPattern& pattern, const std::vector<int>& dof_begin);
+                           const BlockPattern& pattern, const std::vector<int>& dof_begin,
+                           int aggregate_vertices);
 
 // A solve's structure and work arrays in host (HostArray) or device (DeviceArray) memory.
 template <template <class> class Array>
@@ -357,11 +455,20 @@ struct PcgStorage {
         status(std::size_t(s.environment_count())),
         iterations(std::size_t(s.environment_count())),
         running(std::size_t(1)),
+        unit_aggregate(s.coarse.unit_aggregate),
+        aggregate_unit_begin(s.coarse.aggregate_unit_begin),
+        aggregate_unit(s.coarse.aggregate_unit),
+        aggregate_begin(s.coarse.aggregate_begin),
+        block_begin(s.block_begin),
+        coarse_matrix_begin(s.coarse.matrix_begin),
         jacobi_ok(s.jacobi.units.size()),
+        coarse_ok(std::size_t(s.environment_count())),
         vectors(12 * s.unit_environment.size()),
         scalars(8 * std::size_t(s.environment_count())),
         partial(s.unit_environment.size()),
-        inverse(144 * s.jacobi.units.size()) {}
+        inverse(144 * s.jacobi.units.size()),
+        coarse_matrix(std::size_t(s.coarse.matrix_begin.back())),
+        coarse_vector(3 * std::size_t(s.coarse.aggregate_count())) {}
 
   // The buffers of a solve of the systems `block` (9 per pattern block) with these fixed DOFs
   // (per DOF), right-hand side, per-environment tolerances and solution x (the fixed DOFs'
@@ -396,6 +503,16 @@ struct PcgStorage {
     p.partial = partial.data();
     p.jacobi_inverse = inverse.data();
     p.jacobi_ok = jacobi_ok.data();
+    p.coarse = {static_cast<int>(aggregate_unit_begin.size()) - 1,
+                unit_aggregate.data(),
+                aggregate_unit_begin.data(),
+                aggregate_unit.data(),
+                aggregate_begin.data(),
+                block_begin.data(),
+                coarse_matrix_begin.data(),
+                coarse_matrix.data(),
+                coarse_vector.data(),
+                coarse_ok.data()};
     p.running = running.data();
     return p;
   }
@@ -405,23 +522,29 @@ struct PcgStorage {
     return 4.0 * double(row.size() + column.size() + rows_begin.size() + rows_entry.size() +
                         first_unit.size() + jacobi_units.size() + matrix_block.size() +
                         jacobi_begin.size() + unit_environment.size() + unit_begin.size() +
-                        status.size() + iterations.size() + running.size()) +
-           double(jacobi_ok.size()) +
-           8.0 * double(vectors.size() + scalars.size() + partial.size() + inverse.size());
+                        status.size() + iterations.size() + running.size() + unit_aggregate.size() +
+                        aggregate_unit_begin.size() + aggregate_unit.size() +
+                        aggregate_begin.size() + block_begin.size()) +
+           double(jacobi_ok.size() + coarse_ok.size()) +
+           8.0 * double(vectors.size() + scalars.size() + partial.size() + inverse.size() +
+                        coarse_matrix_begin.size() + coarse_matrix.size() + coarse_vector.size());
   }
 
   Array<int> row, column, rows_begin, rows_entry, first_unit, jacobi_units, matrix_block,
-      jacobi_begin, unit_environment, unit_begin, status, iterations, running;
-  Array<char> jacobi_ok;
-  Array<double> vectors, scalars, partial, inverse;
+      jacobi_begin, unit_environment, unit_begin, status, iterations, running, unit_aggregate,
+      aggregate_unit_begin, aggregate_unit, aggregate_begin, block_begin;
+  Array<long long> coarse_matrix_begin;
+  Array<char> jacobi_ok, coarse_ok;
+  Array<double> vectors, scalars, partial, inverse, coarse_matrix, coarse_vector;
 };
 
 // A solve in host memory, for the host launchers.
 class HostPcg {
  public:
   HostPcg(const FemBatch& fem, const AffineBatch& affine, const BlockPattern& pattern,
-          const std::vector<int>& dof_begin)
-      : structure_(pcg_structure(fem, affine, pattern, dof_begin)), storage_(structure_) {}
+          const std::vector<int>& dof_begin, int aggregate_vertices = kCoarseAggregateVertices)
+      : structure_(pcg_structure(fem, affine, pattern, dof_begin, aggregate_vertices)),
+        storage_(structure_) {}
 
   // Solves the batch's systems with these blocks, fixed DOFs, right-hand side and per
   // environment tolerances; x holds the fixed DOFs' values and the first guess on entry. The

@@ -19,6 +19,21 @@ namespace grip::solver::parallel {
 // What became of an environment's solve.
 enum DenseStatus : int { kDenseSolved = 1, kDenseNotPositiveDefinite = 2 };
 
+// L y = x, then L^T x = y, in x: the solve of L L^T x = x with the column-major lower triangle
+// `a` that DenseCholeskyStage::factor leaves.
+GRIP_HD inline void cholesky_substitute(int n, const double* a, double* x) {
+  for (int i = 0; i < n; ++i) {
+    double value = x[i];
+    for (int k = 0; k < i; ++k) value -= a[i + n * k] * x[k];
+    x[i] = value / a[i + n * i];
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    double value = x[i];
+    for (int k = i + 1; k < n; ++k) value -= a[k + n * i] * x[k];
+    x[i] = value / a[i + n * i];
+  }
+}
+
 struct DenseCholeskyBuffers {
   int environment_count = 0;
   const int* dof_begin = nullptr;           // environments + 1 offsets into the batch's DOFs
@@ -105,19 +120,8 @@ struct DenseCholeskyStage {
     return true;
   }
 
-  // L y = x, then L^T x = y, in x.
   GRIP_HD void substitute(int first, int n, const double* a) const {
-    double* x = b.x + first;
-    for (int i = 0; i < n; ++i) {
-      double value = x[i];
-      for (int k = 0; k < i; ++k) value -= a[i + n * k] * x[k];
-      x[i] = value / a[i + n * i];
-    }
-    for (int i = n - 1; i >= 0; --i) {
-      double value = x[i];
-      for (int k = i + 1; k < n; ++k) value -= a[k + n * i] * x[k];
-      x[i] = value / a[i + n * i];
-    }
+    cholesky_substitute(n, a, b.x + first);
   }
 };
 

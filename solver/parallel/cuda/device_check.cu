@@ -773,7 +773,8 @@ PcgValues host_pcg(const PcgScene& s, const FemBatch& batch, double& ms) {
 
 PcgValues device_pcg(const PcgScene& s, const FemBatch& batch, int repeats, double& ms,
                      double& bytes) {
-  PcgStorage<DeviceArray> device(pcg_structure(batch, AffineBatch{}, s.pattern, batch.dof_begin()));
+  PcgStorage<DeviceArray> device(
+      pcg_structure(batch, AffineBatch{}, s.pattern, batch.dof_begin(), kCoarseAggregateVertices));
   DeviceArray<char> fixed(s.fixed);
   DeviceArray<double> blocks(s.blocks), rhs(s.rhs), tolerance(s.tolerance), x(s.rhs.size());
   const PcgBuffers p = device.buffers(blocks.data(), fixed.data(), rhs.data(), tolerance.data(),
