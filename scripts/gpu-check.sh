@@ -3,7 +3,7 @@
 # headers: from .gpu-carry/, which scripts/gpu-carry.sh fills, or the system's), runs it, and
 # writes gpu-check.json, gpu-check.md and the GPU's nvidia-smi report into OUTDIR. It compares
 # the data-parallel engine's stages (elastic, FEM inertia, barrier, CCD, friction, affine, map,
-# Hessian blocks, block-Jacobi CG, broad phase, step halving, incremental potential, Newton
+# Hessian blocks, two-level CG, broad phase, step halving, incremental potential, Newton
 # system, sufficient decrease, dense Cholesky) on the GPU with the host launcher on the same
 # batches, and times them at 1 to 512 environments (docs/architecture.md, "Engines"). Sized to finish well
 # inside 8 minutes: the build takes about 4 minutes of one core, its sources compiled side by

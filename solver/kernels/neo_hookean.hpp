@@ -249,7 +249,10 @@ GRIP_HD inline Matrix9d stable_neo_hookean_stress_derivative_psd(
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> modes;
   modes.computeDirect(scaling);
   for (int k = 0; k < 3; ++k) {
-    remove_if_negative(modes.eigenvalues()[k], modes.eigenvectors().col(k).asDiagonal());
+    // Written out: Eigen 3.4 turns a DiagonalWrapper into a dense matrix by host-only code.
+    Eigen::Matrix3d scaling_mode = Eigen::Matrix3d::Zero();
+    for (int i = 0; i < 3; ++i) scaling_mode(i, i) = modes.eigenvectors()(i, k);
+    remove_if_negative(modes.eigenvalues()[k], scaling_mode);
   }
   return dpdf;
 }

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "solver/parallel/broad_phase.hpp"
 #include "solver/parallel/cuda/cuda_launcher.cuh"
@@ -157,12 +160,31 @@ bool same_prefix(const DeviceArray<int>& device, const std::vector<int>& host, i
   return std::equal(copy.begin(), copy.begin() + n, host.begin());
 }
 
-bool equals_host(DeviceCandidates& d, const HostBroadPhase& host) {
-  return d.vertex.to_host() == host.vertex() && d.edge_edge.to_host() == host.edge_edge() &&
-         d.near_at_rest.to_host() == host.near_at_rest() &&
-         d.friction.to_host() == host.friction() && d.environment.to_host() == host.environment() &&
-         d.environment_begin.to_host() == host.environment_begin() &&
-         d.mollifier_eps.to_host() == host.mollifier_eps();
+// The first of the device's candidate arrays that differs from the host's ("" when none):
+// integers and mu exactly, the mollifier thresholds (computed) to round-off.
+std::string candidate_mismatch(DeviceCandidates& d, const HostBroadPhase& host) {
+  if (d.vertex.to_host() != host.vertex()) return "vertex";
+  if (d.edge_edge.to_host() != host.edge_edge()) return "edge_edge";
+  if (d.near_at_rest.to_host() != host.near_at_rest()) return "near_at_rest";
+  if (d.friction.to_host() != host.friction()) return "friction";
+  if (d.environment.to_host() != host.environment()) return "environment";
+  if (d.environment_begin.to_host() != host.environment_begin()) return "environment_begin";
+  if (relative_difference(d.mollifier_eps.to_host(), host.mollifier_eps(), 1) > 1e-12) {
+    return "mollifier_eps";
+  }
+  return "";
+}
+
+// The reach filter's lists on the device against the host's ("" when equal).
+std::string reach_mismatch(const ReachStorage<DeviceArray>& device, int reachable, int watched,
+                           const ReachStorage<HostArray>& host, const BroadPhaseCheck& check) {
+  if (reachable != check.reachable) return "within-reach count";
+  if (watched != check.watched) return "watched count";
+  if (!same_prefix(device.reachable, host.reachable, reachable)) return "reachable";
+  if (!same_prefix(device.ccd, host.ccd, watched)) return "ccd";
+  if (device.reachable_begin.to_host() != host.reachable_begin) return "reachable_begin";
+  if (device.ccd_begin.to_host() != host.ccd_begin) return "ccd_begin";
+  return "";
 }
 
 // The host launcher's candidates and lists, timed.
@@ -232,6 +254,18 @@ LagResult friction_lag(Launcher& launch, const LagInputs& in) {
           host_copy(out_tangent)};
 }
 
+// Per contact T T^T (12 x 12) of its tangent operator T (12 x 2, by column): what friction
+// depends on. T itself is not compared: where the closest features tie (grid-aligned sheets), a
+// round-off picks the contact type, whose tangent basis is the other's turned in the same plane.
+std::vector<double> tangent_projectors(const std::vector<double>& tangent) {
+  std::vector<double> projector(tangent.size() / 24 * 144);
+  for (std::size_t c = 0; 24 * c < tangent.size(); ++c) {
+    const Eigen::Map<const Eigen::Matrix<double, 12, 2>> t(tangent.data() + 24 * c);
+    Eigen::Map<Eigen::Matrix<double, 12, 12>>(projector.data() + 144 * c) = t * t.transpose();
+  }
+  return projector;
+}
+
 // The friction lag over the candidates, the upper sheets raised 0.5 mm off their start (whose
 // ripples reach below the lower sheet where the gap is smallest): 0.4 to 2.4 mm apart.
 void check_friction_lag(const SheetScene& scene, const HostBroadPhase& host,
@@ -261,7 +295,8 @@ void check_friction_lag(const SheetScene& scene, const HostBroadPhase& host,
                         on_device.environment == on_host.environment &&
                         on_device.contact_begin == on_host.contact_begin;
   check.lag_difference = std::max(relative_difference(on_device.mu_lambda, on_host.mu_lambda, 1),
-                                  relative_difference(on_device.tangent, on_host.tangent, 24));
+                                  relative_difference(tangent_projectors(on_device.tangent),
+                                                      tangent_projectors(on_host.tangent), 144));
 }
 
 // The broad phase's work arrays in device memory, as HostBroadPhase holds them on the host.
@@ -281,21 +316,22 @@ struct DeviceSweepWork {
 
   BroadPhaseBuffers buffers(const SurfaceBuffers& on_device, const double* start, const double* end,
                             const double* d_hat) {
-    return {on_device,
-            start,
-            end,
-            d_hat,
-            vertex_box.data(),
-            edge_box.data(),
-            face_box.data(),
-            axis.data(),
-            point_face_order.data(),
-            edge_order.data(),
-            point_face_found.data(),
-            edge_found.data(),
-            body_point_begin.data(),
-            body_face_begin.data(),
-            body_edge_begin.data()};
+    // Designated, so that an order other than BroadPhaseBuffers' own does not compile.
+    return {.surface = on_device,
+            .start = start,
+            .end = end,
+            .d_hat = d_hat,
+            .vertex_box = vertex_box.data(),
+            .edge_box = edge_box.data(),
+            .face_box = face_box.data(),
+            .axis = axis.data(),
+            .point_face_order = point_face_order.data(),
+            .edge_order = edge_order.data(),
+            .body_point_begin = body_point_begin.data(),
+            .body_face_begin = body_face_begin.data(),
+            .body_edge_begin = body_edge_begin.data(),
+            .point_face_found = point_face_found.data(),
+            .edge_found = edge_found.data()};
   }
 
   DeviceArray<double> vertex_box, edge_box, face_box;
@@ -333,12 +369,12 @@ BroadPhaseCheck check_broad_phase(int environments, int repeats) {
     write_candidates(launch, b, counts, found.buffers());
     find_within_reach(launch, reach, reachable, watched);
   });
-  check.identical = counts.total() == host.count() && equals_host(found, host) &&
-                    reachable == check.reachable && watched == check.watched &&
-                    same_prefix(device_reach.reachable, host_reach.reachable, reachable) &&
-                    same_prefix(device_reach.ccd, host_reach.ccd, watched) &&
-                    device_reach.reachable_begin.to_host() == host_reach.reachable_begin &&
-                    device_reach.ccd_begin.to_host() == host_reach.ccd_begin;
+  check.mismatch =
+      counts.total() != host.count() ? "candidate count" : candidate_mismatch(found, host);
+  if (check.mismatch.empty()) {
+    check.mismatch = reach_mismatch(device_reach, reachable, watched, host_reach, check);
+  }
+  check.identical = check.mismatch.empty();
   check_friction_lag(scene, host, found, check);
   const std::size_t items = std::size_t(s.vertex_count + s.face_count);
   check.bytes =

@@ -6,7 +6,10 @@
 // with itself, then the reach filter over them (CCD rescaling 0.1), then the friction lag with
 // the upper sheets raised 0.5 mm off their start (kappa = 1 kN/m). The candidates, both of the
 // filter's lists and the lagged contacts' vertices found on the device must equal the host
-// launcher's exactly, the contacts' mu lambda and tangent operators to round-off.
+// launcher's exactly (the mollifier thresholds to round-off), the contacts' mu lambda and
+// tangent-plane projectors to round-off.
+#include <string>
+
 namespace grip::solver::parallel {
 
 struct BroadPhaseCheck {
@@ -14,9 +17,10 @@ struct BroadPhaseCheck {
   int pairs = 0;                   // candidates, on the host
   int reachable = 0, watched = 0;  // within reach; watched by CCD (host)
   bool identical = false;      // every array of the device's candidates and lists equals the host's
+  std::string mismatch;        // else the first that differs
   int lagged = 0;              // friction contacts (host)
   bool lag_identical = false;  // their vertices and environments, device and host
-  double lag_difference = 0.0;  // their mu lambda and tangents' largest relative difference
+  double lag_difference = 0.0;  // their mu lambda and T T^T's largest relative difference
 };
 
 BroadPhaseCheck check_broad_phase(int environments, int repeats);

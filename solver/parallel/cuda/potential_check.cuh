@@ -27,8 +27,9 @@ struct PotentialCheck {
   double host_ms = 0.0, device_ms = 0.0;  // the energies at q
   double energy = 0.0;                    // their largest relative difference
   double derivatives_host_ms = 0.0, derivatives_device_ms = 0.0;
-  // Relative differences: per environment, per block, per environment.
-  double gradient = 0.0, hessian = 0.0, kinematic_force = 0.0;
+  // Relative differences: per environment, per block row, per environment; and the matrix's
+  // per block, relative to each block's own largest entry (reported, not held to a tolerance).
+  double gradient = 0.0, hessian = 0.0, kinematic_force = 0.0, hessian_own_block = 0.0;
   int blocks = 0;  // the Newton matrices' 3x3 blocks
   double decrease_host_ms = 0.0, decrease_device_ms = 0.0;
   int fewest_halvings = 0, most_halvings = 0;  // over environments (host)
