@@ -5,11 +5,11 @@
 # the data-parallel engine's stages (elastic, FEM inertia, barrier, CCD, friction, affine, map,
 # Hessian blocks, two-level CG, broad phase, step halving, incremental potential, Newton
 # system, sufficient decrease, dense Cholesky) on the GPU with the host launcher on the same
-# batches, and times them at 1 to 512 environments (docs/architecture.md, "Engines"). Sized to finish well
-# inside 8 minutes: the build takes about 4 minutes of one core, its sources compiled side by
-# side (2 minutes on two cores), and the host's share of the largest batch (1.2 million tets,
-# 262,144 pairs and as many friction contacts) under two minutes of one core, 34 s of it the
-# potential check's (its scene, Newton structure, Newton system and search). Exit status:
+# batches, and times them at 1 to 512 environments (docs/architecture.md, "Engines"). Sized to
+# finish well inside 8 minutes: on an H200 machine with 16 cores it built in 82 s and ran in
+# 106 s (docs/results/gpu.md); the build is about 4 minutes of one core, its sources compiled
+# side by side, and the host's share of the largest batch (1.2 million tets, 262,144 pairs and
+# as many friction contacts) 31 s of one core in its stages. Exit status:
 # grip-gpu-check's (0 all within tolerance, 1 a difference outside it, 2 no device), or the
 # build's.
 #   scripts/gpu-check.sh OUTDIR [grip-gpu-check options]

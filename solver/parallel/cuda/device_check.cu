@@ -1183,6 +1183,15 @@ void write_json_row(std::ostream& json, const SizeResult& r) {
        << ", \"assembly_device_ms\": " << r.assembly_device_ms
        << ", \"assembly_host_ms\": " << r.assembly_host_ms
        << ", \"assembly_relative_difference\": " << r.assembly
+       << ", \"ccd_device_ms\": " << r.ccd_device_ms << ", \"ccd_host_ms\": " << r.ccd_host_ms
+       << ", \"ccd_impacts\": " << r.ccd_impacts
+       << ", \"ccd_time_of_impact_relative_difference\": " << r.ccd_toi
+       << ", \"ccd_bound_relative_difference\": " << r.ccd_bound
+       << ", \"inertia_device_ms\": " << r.inertia_device_ms
+       << ", \"inertia_host_ms\": " << r.inertia_host_ms
+       << ", \"inertia_target_relative_difference\": " << r.inertia_target
+       << ", \"inertia_energy_relative_difference\": " << r.inertia_energy
+       << ", \"inertia_gradient_relative_difference\": " << r.inertia_gradient
        << ", \"pcg_device_ms\": " << r.pcg_device_ms << ", \"pcg_host_ms\": " << r.pcg_host_ms
        << ", \"pcg_device_mib_per_environment\": " << mib(r.pcg_bytes)
        << ", \"pcg_iterations\": " << r.pcg_iterations
