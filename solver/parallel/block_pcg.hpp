@@ -394,6 +394,20 @@ void launch_preconditioned_dots(Launcher& launch, const PcgBuffers& p, double* r
   launch(p.environment_count, EnvironmentDotStage{p, p.rr});
 }
 
+// How many CG iterations a launcher runs between reads of the running count: its
+// poll_interval where it has one, else 1. On a GPU a read stalls the host until the device has
+// drained, so that each iteration's launches wait for the last; iterations after every
+// environment has stopped change nothing (each stage leaves a stopped environment as it is), so
+// the solutions, iterations and statuses do not depend on it.
+template <class Launcher>
+int poll_interval(const Launcher& launch) {
+  if constexpr (requires { launch.poll_interval; }) {
+    return launch.poll_interval;
+  } else {
+    return 1;
+  }
+}
+
 // Solves every environment's system; afterwards status, iterations and residual say how each
 // went. The launcher's fetch() reads the running count; every other value stays where it is.
 template <class Launcher>
@@ -407,9 +421,12 @@ void solve_block_pcg(Launcher& launch, const PcgBuffers& p) {
   launch_preconditioned_dots(launch, p, p.rz);
   launch(p.environment_count, PcgStartStage{p});
   launch(dofs, DirectionStage{p, true});
-  for (;;) {
-    launch(1, StatusCountStage{p.status, p.environment_count, kPcgRunning, p.running});
-    if (launch.fetch(p.running) == 0) return;
+  const int poll = poll_interval(launch);
+  for (int iteration = 0;; ++iteration) {
+    if (iteration % poll == 0) {
+      launch(1, StatusCountStage{p.status, p.environment_count, kPcgRunning, p.running});
+      if (launch.fetch(p.running) == 0) return;
+    }
     launch(p.unit_count, BlockProductStage{p, p.d, p.q});
     launch(p.unit_count, UnitDotStage{p.d, p.q, p.partial});
     launch(p.environment_count, EnvironmentDotStage{p, p.pap});

@@ -229,6 +229,31 @@ TEST(ParallelPcg, TbbAndSerialLaunchersAgreeBitForBit) {
   EXPECT_EQ(serial.iterations, threaded.iterations);
 }
 
+// The serial launcher reading the running count every fifth iteration, as a GPU's reads it
+// every poll_interval-th.
+struct PollingLauncher : parallel::SerialLauncher {
+  int poll_interval = 5;
+};
+
+TEST(ParallelPcg, ReadingTheRunningCountLessOftenChangesNothing) {
+  const Batch b =
+      spd_batch({testing::mixed_scene(), testing::soft_scene(), testing::mixed_scene()});
+  const System s = make_system(b);
+  for (const int aggregate : {0, parallel::kCoarseAggregateVertices}) {
+    SCOPED_TRACE("aggregates of " + std::to_string(aggregate));
+    const Solved every = solve(b, s, parallel::SerialLauncher{}, 1e-10, 2000, aggregate);
+    const Solved fifth = solve(b, s, PollingLauncher{}, 1e-10, 2000, aggregate);
+    // Environments that stop at different iterations, none of them a multiple of five apart
+    // from every other, so that some went on past their stop.
+    ASSERT_NE(every.iterations[0], every.iterations[1]);
+    ASSERT_NE((every.iterations[1] - every.iterations[0]) % 5, 0);
+    EXPECT_EQ(every.x, fifth.x);
+    EXPECT_EQ(every.iterations, fifth.iterations);
+    EXPECT_EQ(every.status, fifth.status);
+    EXPECT_EQ(every.residual, fifth.residual);
+  }
+}
+
 // Environment `e` of batch `of` against environment 0 of batch `alone`, bit for bit.
 void expect_same_environment(const Batch& of, const Solved& in_batch, int e, const Batch& alone,
                              const Solved& solo) {

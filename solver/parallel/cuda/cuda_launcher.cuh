@@ -31,6 +31,9 @@ __global__ void run_stage(int count, Stage stage) {
 
 struct CudaLauncher {
   int block = 128;  // threads per block: a tet's 12x12 Hessian keeps many registers busy
+  // CG iterations between reads of the running count (block_pcg.hpp, poll_interval): queued
+  // without a read between them, an iteration's launches overlap the one before.
+  int poll_interval = 8;
 
   template <class Stage>
   void operator()(int count, const Stage& stage) const {
