@@ -10,8 +10,8 @@
 # 106 s (docs/results/gpu.md); the build is about 4 minutes of one core, its sources compiled
 # side by side, and the host's share of the largest batch (1.2 million tets, 262,144 pairs and
 # as many friction contacts) 31 s of one core in its stages. Exit status:
-# grip-gpu-check's (0 all within tolerance, 1 a difference outside it, 2 no device), or the
-# build's.
+# grip-gpu-check's (0 all within tolerance, 1 a difference outside it, 2 no device), else 3
+# when memcheck finds an error, or the build's.
 #   scripts/gpu-check.sh OUTDIR [grip-gpu-check options]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -48,4 +48,17 @@ for job in "${jobs[@]}"; do wait "$job" || failed=$?; done
 "$nvcc" -arch=sm_90 "${objects[@]}" -o "$root/build-gpu/grip-gpu-check"
 echo "gpu-check: built in $(($(date +%s) - start)) s"
 nvidia-smi >"$out/nvidia-smi.txt" 2>&1 || true
-"$root/build-gpu/grip-gpu-check" "$out" "$@"
+status=0
+"$root/build-gpu/grip-gpu-check" "$out" "$@" || status=$?
+# Then every stage again at 8 environments under compute-sanitizer's memcheck (about 20 s on an
+# H200), which names the kernel and the array of an access out of bounds; its errors exit 3.
+sanitizer=$(command -v compute-sanitizer || echo "$(dirname "$nvcc")/compute-sanitizer")
+if [[ -x $sanitizer ]]; then
+  mkdir -p "$out/memcheck"
+  timeout 300 "$sanitizer" --tool memcheck --error-exitcode 3 --print-limit 20 \
+    "$root/build-gpu/grip-gpu-check" "$out/memcheck" --sizes 8 --repeats 1 \
+    >"$out/memcheck.log" 2>&1 || { ((status != 0)) || status=3; }
+  echo "gpu-check: memcheck at 8 environments: $(grep -o 'ERROR SUMMARY: [0-9]* error' \
+    "$out/memcheck.log" || echo 'no summary'), $out/memcheck.log"
+fi
+exit "$status"
