@@ -5,8 +5,8 @@
 #
 #   scripts/compare-engines.sh OUT [GRIPPER] [COUNT] [CATEGORY:SEED ...]
 #
-# OUT: a folder for the candidate files and reports; GRIPPER: fin-ray (default), parallel-jaw
-# or leap; COUNT: candidates per shape (default 4); shapes: categories and seeds (default
+# OUT: a folder for the candidate files and reports; GRIPPER: fin-ray (default), parallel-jaw,
+# leap or a gripper description file (*.toml); COUNT: candidates per shape (default 4); shapes: categories and seeds (default
 # box:4 cylinder:1 capsule:1 bottle:1, the labels benchmark's categories at the first seed of
 # each that gives the fin-ray gripper candidates). Extra options for grip trial (--soft,
 # --threads) go in GRIP_TRIAL_OPTIONS. The grip binary is $GRIP or build/grip.
@@ -19,6 +19,8 @@ shapes=("$@")
 [ ${#shapes[@]} -gt 0 ] || shapes=(box:4 cylinder:1 capsule:1 bottle:1)
 grip=${GRIP:-$(dirname "$0")/../build/grip}
 read -r -a trial_options <<< "${GRIP_TRIAL_OPTIONS:-}"
+# A described gripper's candidates name it "described": the trial needs its file again.
+if [[ $gripper == *.toml ]]; then trial_options+=(--gripper "$gripper"); fi
 mkdir -p "$out"
 ran=()
 for shape in "${shapes[@]}"; do

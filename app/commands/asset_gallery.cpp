@@ -4,7 +4,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -28,6 +27,19 @@ void write_parallel_gripper(const std::filesystem::path& folder,
   geometry::write_obj(folder / (gripper.name + "_open.obj"), gripper.surface(gripper.max_opening));
   geometry::write_obj(folder / (gripper.name + "_closed.obj"),
                       gripper.surface(gripper.min_opening));
+}
+
+// The finger's tet mesh as Gmsh 2.2 and VTU, `stem` + extension, and its figures in the log.
+void write_fin_ray_finger(const std::filesystem::path& stem, const std::string& title,
+                          const grippers::FinRayFinger& finger) {
+  const geometry::TetQuality quality = geometry::tet_quality(finger.mesh);
+  spdlog::info(
+      "{}: {} vertices, {} tets, dihedral angles {:.1f} to {:.1f} deg, {} inverted, {} mount "
+      "vertices",
+      title, finger.mesh.vertices.rows(), finger.mesh.tets.rows(), quality.min_dihedral_deg,
+      quality.max_dihedral_deg, quality.inverted_count, finger.mount_vertices.size());
+  geometry::write_msh(std::filesystem::path(stem).concat(".msh"), finger.mesh);
+  geometry::write_vtu(std::filesystem::path(stem).concat(".vtu"), finger.mesh);
 }
 
 // Open: every joint at 0 (clamped into its limits); closed: every joint at the middle of its
@@ -69,15 +81,11 @@ int asset_gallery(const std::string& out_dir) {
   for (const grippers::GripperType& type : grippers::gripper_types()) {
     if (type.is_hand()) continue;
     const grippers::ParallelGripper gripper = grippers::make_parallel_gripper(type.kind);
-    if (const std::optional<grippers::FinRayFinger>& finger = gripper.soft_finger) {
-      const geometry::TetQuality quality = geometry::tet_quality(finger->mesh);
-      spdlog::info(
-          "fin-ray finger: {} vertices, {} tets, dihedral angles {:.1f} to {:.1f} deg, {} "
-          "inverted, {} mount vertices",
-          finger->mesh.vertices.rows(), finger->mesh.tets.rows(), quality.min_dihedral_deg,
-          quality.max_dihedral_deg, quality.inverted_count, finger->mount_vertices.size());
-      geometry::write_msh(grippers_dir / "fin_ray_finger.msh", finger->mesh);
-      geometry::write_vtu(grippers_dir / "fin_ray_finger.vtu", finger->mesh);
+    if (gripper.soft_finger) {
+      write_fin_ray_finger(grippers_dir / "fin_ray_finger", "fin-ray finger", *gripper.soft_finger);
+      // grip's first finger, described from this file by jobs/grippers/fin-ray-80mm.toml.
+      write_fin_ray_finger(grippers_dir / "fin_ray_finger_80mm", "80 mm fin-ray finger",
+                           grippers::make_fin_ray_finger(grippers::fin_ray_80mm_options()));
     }
     write_parallel_gripper(grippers_dir, gripper);
   }

@@ -42,9 +42,10 @@ trial::TrialParameters reduced() {
   return p;
 }
 
-// The fin-ray gripper with `layers` tet layers across the finger's depth (4 in production).
+// The 80 mm fin-ray gripper with `layers` tet layers across the finger's depth (4 in its own
+// mesh): the scenes' hand-made grasps are placed for its length.
 grippers::ParallelGripper fin_ray(double layers) {
-  grippers::FinRayOptions options;
+  grippers::FinRayOptions options = grippers::fin_ray_80mm_options();
   options.layers = static_cast<int>(std::lround(layers));
   return grippers::make_umi_soft_gripper(options);
 }
@@ -71,12 +72,13 @@ AccuracyScene fin_ray_rigid() {
   AccuracyScene scene;
   scene.name = "fin-ray x rigid";
   scene.setup =
-      "rigid cylinder r 2 cm, 3 cm long along the approach axis, mu 1 (3.5 on the fingers), "
+      "80 mm fin-ray fingers; rigid cylinder r 2 cm, 3 cm long along the approach axis, mu 1 "
+      "(3.5 on the fingers), "
       "3 hand-made candidates (centred; fingertips only; 1.5 cm off-centre across the fingers)";
   scene.parameters = fin_ray_parameters(0.04);
   scene.mesh_setting = "fin-ray tet layers";
-  // Production's finger has 4 layers; this scene's default keeps the benchmark affordable, and
-  // the sweep measures every count against 8.
+  // The 80 mm finger's own mesh has 4 layers; this scene's default keeps the benchmark
+  // affordable, and the sweep measures every count against 8.
   scene.mesh_values = {1, 2, 3, 4, 6, 8};
   scene.default_mesh = 1;
   scene.run = [](const trial::TrialParameters& p, double layers, int threads) {
@@ -100,7 +102,7 @@ AccuracyScene fin_ray_soft() {
   AccuracyScene scene;
   scene.name = "fin-ray x soft";
   scene.setup =
-      "soft box 6 x 3 x 2 cm (E 1 MPa, nu 0.4, mu 0.5), structured tets, "
+      "80 mm fin-ray fingers; soft box 6 x 3 x 2 cm (E 1 MPa, nu 0.4, mu 0.5), structured tets, "
       "3 hand-made candidates (centred; 2 cm towards one end; fingertips only)";
   scene.parameters = fin_ray_parameters(0.03);
   scene.mesh_setting = "object tet cell (m)";

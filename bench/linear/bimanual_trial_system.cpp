@@ -65,8 +65,9 @@ NewtonSystem capture_bimanual_trial_system(double cell) {
   bar.material.youngs = 1e6;  // the middle (log) of the farm's default range, 0.1-10 MPa
   bar.material.poisson = 0.4;
   const trial::TrialParameters parameters;
+  // The 80 mm fin-ray fingers: the grasps below are placed for their length.
   const trial::ParallelTrialScene scene(
-      bar, grippers::make_parallel_gripper(grippers::GripperKind::kFinRay), parameters, 2);
+      bar, grippers::make_umi_soft_gripper(grippers::fin_ray_80mm_options()), parameters, 2);
   // Both grippers approach from below (-z) and close across the bar's width, 12 cm either side
   // of its middle, their jaws open 4.6 mm beyond it.
   std::vector<trial::ParallelGrasp> grasps(2);

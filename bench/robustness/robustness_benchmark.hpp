@@ -62,14 +62,13 @@ struct RobustnessBatch {
   int candidates = 0;  // synthesized and run (at most the set's)
 };
 
-// The finer fin-ray finger's mesh: 8 tet layers, profile edges up to 2.5 mm (production: 4 and
-// 3.6 mm), 3.9x production's tets; the finest mesh affordable over a labels run
-// (docs/results.md, "The finger's profile, not its layers").
+// The finer fin-ray finger's mesh: 8 tet layers, profile edges up to 4 mm (production: 4 and
+// 6 mm), 4.5x production's tets (docs/assets.md, "The fin-ray finger's mesh").
 inline constexpr int kFineFinRayLayers = 8;
-inline constexpr double kFineFinRayEdge = 0.0025;  // m
+inline constexpr double kFineFinRayEdge = 0.004;  // m
 
-// The finer fin-ray finger, in words, against production's: "8 tet layers and 2.5 mm profile
-// edges (production: 4 and 3.6 mm)".
+// The finer fin-ray finger, in words, against production's: "8 tet layers and 4 mm profile
+// edges (production: 4 and 6 mm)".
 std::string fine_fin_ray_model();
 
 // The gripper each registry name is simulated with in this benchmark, in words.

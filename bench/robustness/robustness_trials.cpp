@@ -38,10 +38,11 @@ const grippers::ParallelGripper& rigid_jaws() {
   return gripper;
 }
 
-// The fin-ray finger with one tet layer across its depth (4 in production), same profile.
+// The 80 mm fin-ray finger with one tet layer across its depth (4 in its own mesh): the cheap
+// stand-in, as it was before the production finger took GRIP's size.
 const grippers::ParallelGripper& coarse_fin_ray() {
   static const grippers::ParallelGripper gripper = [] {
-    grippers::FinRayOptions options;
+    grippers::FinRayOptions options = grippers::fin_ray_80mm_options();
     options.layers = 1;
     return grippers::make_umi_soft_gripper(options);
   }();
@@ -114,8 +115,11 @@ std::string robustness_object_model(bool soft, bool production_models, double in
 std::vector<synth::Candidate> synthesize_candidates(const RobustnessSet& set, std::uint64_t seed,
                                                     int count) {
   const synth::PreparedObject prepared(synth::load_object(set.category, seed));
-  return synth::synthesize(prepared, grippers::gripper_type(set.gripper),
-                           /*bimanual=*/false, synth::SynthesisParams{}, seed, count)
+  // Coarse models' candidates are the 80 mm finger's, whose one-layer mesh runs them.
+  return synth::synthesize(
+             prepared, grippers::gripper_type(set.gripper),
+             /*bimanual=*/false, synth::SynthesisParams{}, seed, count,
+             set.production_models ? grippers::FinRayOptions{} : grippers::fin_ray_80mm_options())
       .candidates;
 }
 

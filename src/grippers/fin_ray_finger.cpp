@@ -83,6 +83,7 @@ Profile make_profile(const FinRayOptions& o) {
 
   Profile profile;
   profile.outer = {{0.0, 0.0}, {o.base_width, 0.0}, {o.tip_width, o.length}, {0.0, o.length}};
+  if (!o.hollow) return profile;
 
   // The cavity: inside the contact wall, above the mount plate, inside the back wall, below
   // the height where it narrows to top_cavity_width.
@@ -139,6 +140,18 @@ double tet_volume(const geometry::Vertices& v, const std::array<int, 4>& t) {
 }
 
 }  // namespace
+
+FinRayOptions fin_ray_80mm_options() {
+  FinRayOptions o;
+  o.length = 0.080;
+  o.base_width = 0.030;
+  o.tip_width = 0.004;
+  o.depth = 0.022;
+  o.hollow = true;
+  o.edge_length = 0.0036;
+  o.layers = 4;
+  return o;
+}
 
 FinRayFinger make_fin_ray_finger(const FinRayOptions& options) {
   const Profile profile = make_profile(options);

@@ -11,23 +11,40 @@ namespace grip::grippers {
 // z runs from the mount face (z = 0) to the tip (z = length); the contact wall's outer face is
 // the plane y = 0 with outward normal -y, and the back wall slants from y = base_width at the
 // mount to y = tip_width at the tip. Lengths in metres.
+// The production finger is the finger body GRIP simulates (its released models'
+// finray_finger_L_body meshes: a solid wedge 123.5 mm from the mount to the tip, 41.5 mm deep at
+// the mount, about 3.3 mm at the tip, 26 mm wide; docs/assets.md): solid, with a straight back
+// where GRIP's bulges slightly and without the small knob on its back. `hollow` makes the
+// classic fin-ray of walls and cross ribs instead (the 80 mm variant below).
 struct FinRayOptions {
-  double length = 0.080;          // mount face to tip
-  double base_width = 0.030;      // profile width at the mount (y)
-  double tip_width = 0.004;       // profile width at the tip (y)
-  double depth = 0.022;           // extrusion: the finger's width along x
+  double length = 0.1235;      // mount face to tip
+  double base_width = 0.0415;  // profile width at the mount (y)
+  double tip_width = 0.0033;   // profile width at the tip (y)
+  double depth = 0.026;        // extrusion: the finger's width along x
+  // A solid profile measured by the fields above, or walls, a mount plate and ribs around
+  // cavities, measured by those below.
+  bool hollow = false;
   double wall_thickness = 0.002;  // contact wall, back wall and tip cap
   double rib_thickness = 0.0016;
-  double base_thickness = 0.005;  // the mount plate, clamped in the jaw
+  double base_thickness = 0.005;  // the mount plate, clamped in the jaw; the mount region
   int rib_count = 5;
   double rib_angle_deg = 12.0;  // ribs rise by this angle from the contact wall to the back wall
   double top_cavity_width = 0.005;  // the cavity ends (under a solid tip) where it is this narrow
-  double edge_length = 0.0036;      // largest triangle edge of the profile mesh
-  // Tet layers across the depth. Four: within 0.07 mm (pose) of eight at 40 % of the cost
-  // (grip bench accuracy, mesh sweep: docs/assets.md). Fewer stretch the tets along the depth
-  // (two: 366 slivers) or move the grasp (one: 2.4 mm).
+  double edge_length = 0.006;       // largest triangle edge of the profile mesh
+  // Tet layers across the depth; an even count puts tet faces on the mid-plane, where a
+  // centred grasp presses (grip bench accuracy, mesh sweep: docs/assets.md).
   int layers = 4;
 };
+
+// grip's first finger, a hollow fin-ray 80 mm long, 30 mm deep at the mount and 22 mm wide, with
+// five ribs, meshed at 3.6 mm edges: a named variant (jobs/grippers/fin-ray-80mm.toml describes
+// it from a file), and the tests' small finger.
+FinRayOptions fin_ray_80mm_options();
+
+// grip's first finger, 80 mm long, 30 mm deep at the mount and 22 mm wide, five ribs: a named
+// variant (jobs/grippers/fin-ray-80mm.toml describes it from a file), and the tests' small
+// finger.
+FinRayOptions fin_ray_80mm_options();
 
 // TPU/TPE as printed for UMI fingers. E and mu are GRIP's (paper, Sec. III-D); density is that
 // of TPU 95A; Poisson's ratio and the damping are our choices for a soft elastomer under linear

@@ -18,7 +18,7 @@ const std::array<GripperType, 3>& table() {
        [](const FinRayOptions& finger) { return make_umi_soft_gripper(finger); },
        nullptr,
        true,
-       17.0,
+       4.6,
        {}},
       {GripperKind::kParallelJaw,
        "parallel-jaw",

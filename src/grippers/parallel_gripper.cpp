@@ -73,10 +73,13 @@ std::optional<FinRayFinger> ParallelGripper::soft_finger_of(Jaw jaw) const {
 
 namespace {
 
-// Measured with the production finger and grip trials at the defaults (docs/synthesis.md,
-// "Grasp depth"): at full stroke it pushes 48-52 N with the object 0.064-0.068 m deep and
-// 9-19 N at 0-0.044 m.
-constexpr double kFinRayMinGraspDepth = 0.75;
+// How deep, as a fraction of the finger's length, an object must reach between the fingers for
+// them to squeeze 50 N before the jaws close (docs/synthesis.md, "Grasp depth"). The solid
+// production finger on a 67 mm cylinder: 48-49 N at 0.34-0.91 of its length deep, 27 N with the
+// jaws closed at 0.26; the gate keeps a step of margin for narrower objects. The hollow 80 mm
+// finger bends away more: 48-52 N at 0.80-0.85, 9-19 N at 0-0.55.
+constexpr double kSolidFingerMinGraspDepth = 0.45;
+constexpr double kHollowFingerMinGraspDepth = 0.75;
 
 }  // namespace
 
@@ -85,7 +88,8 @@ ParallelGripper make_umi_soft_gripper(const FinRayOptions& options) {
   gripper.name = "umi_soft";
   gripper.soft_finger = make_fin_ray_finger(options);
   gripper.finger_surface = geometry::boundary_surface(gripper.soft_finger->mesh);
-  gripper.min_grasp_depth = kFinRayMinGraspDepth * options.length;
+  gripper.min_grasp_depth =
+      (options.hollow ? kHollowFingerMinGraspDepth : kSolidFingerMinGraspDepth) * options.length;
   return gripper;
 }
 

@@ -63,7 +63,7 @@ struct ParallelGripper {
 };
 
 // UMI-style: two fin-ray fingers (the surface is the tet mesh's boundary), jaw opening 0-85 mm,
-// grasps at least 3/4 of the finger's length deep.
+// grasps at least 0.45 (solid fingers) or 0.75 (hollow ones) of the finger's length deep.
 ParallelGripper make_umi_soft_gripper(const FinRayOptions& options = {});
 
 // Two rigid box fingers on the same jaws, opening 0-85 mm.

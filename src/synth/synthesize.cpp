@@ -20,14 +20,14 @@ void add(SynthesisResult& total, const SynthesisResult& part) {
 
 SynthesisResult synthesize(const PreparedObject& object, const grippers::GripperType& gripper,
                            bool bimanual, const SynthesisParams& params, std::uint64_t seed,
-                           int count) {
+                           int count, const grippers::FinRayOptions& finger) {
   const auto start = std::chrono::steady_clock::now();
   const bool is_hand = gripper.is_hand();
   const auto prepared_hand = [&](grippers::HandSide side) {
     return PreparedHand(grippers::make_hand(gripper.kind, side));
   };
   std::optional<grippers::ParallelGripper> jaws;
-  if (!is_hand) jaws = gripper.make_parallel(grippers::FinRayOptions{});
+  if (!is_hand) jaws = gripper.make_parallel(finger);
   const auto unimanual = [&](const PreparedHand* hand, std::uint64_t s, int n) {
     return hand ? optimize_hand_grasps(object, *hand, params.hand, s, n)
                 : sample_antipodal_grasps(object, *jaws, gripper.kind, params.antipodal, s, n);

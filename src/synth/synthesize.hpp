@@ -4,6 +4,7 @@
 // right and a left pool of them.
 #include <cstdint>
 
+#include "src/grippers/fin_ray_finger.hpp"
 #include "src/synth/antipodal_sampler.hpp"
 #include "src/synth/bimanual.hpp"
 #include "src/synth/hand_optimizer.hpp"
@@ -22,9 +23,9 @@ struct SynthesisParams {
 // `count` candidates (fewer if the attempt limits are reached; the result says how many
 // attempts it took). Same object, gripper, parameters and seed give the same candidates
 // whatever the thread count. The gripper is built here from its type (a hand from its shipped
-// assets, a described gripper from its file).
+// assets, a described gripper from its file; the fin-ray with `finger`'s shape).
 SynthesisResult synthesize(const PreparedObject& object, const grippers::GripperType& gripper,
                            bool bimanual, const SynthesisParams& params, std::uint64_t seed,
-                           int count);
+                           int count, const grippers::FinRayOptions& finger = {});
 
 }  // namespace grip::synth

@@ -86,12 +86,12 @@ TEST_F(GripperDescription, AFingerInMillimetresAlongOtherAxesEntersTheFingerFram
   EXPECT_EQ(gripper.finger_surface.vertices.rows(), 165 - 27);
 }
 
-// The shipped example describes grip's own fin-ray finger, exported by grip asset gallery:
-// read back, it is the built-in gripper bit for bit.
+// The shipped example describes grip's 80 mm fin-ray finger, exported by grip asset gallery
+// (--finger 80mm): read back, it is the built-in gripper at those options bit for bit.
 TEST(ShippedGripperDescription, TheExportedFinRayIsTheBuiltInOne) {
   const ParallelGripper described =
       load_gripper_description(std::filesystem::path(GRIP_JOBS_DIR) / "grippers/fin-ray-80mm.toml");
-  const ParallelGripper built_in = make_umi_soft_gripper();
+  const ParallelGripper built_in = make_umi_soft_gripper(fin_ray_80mm_options());
   EXPECT_EQ(described.name, "fin-ray-80mm");
   EXPECT_EQ(described.min_opening, built_in.min_opening);
   EXPECT_EQ(described.max_opening, built_in.max_opening);

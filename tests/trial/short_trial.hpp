@@ -25,10 +25,11 @@ inline TrialParameters short_parameters() {
   return p;
 }
 
-// A fin-ray finger with one tet layer across its depth instead of eight (same profile).
+// grip's 80 mm fin-ray finger with one tet layer across its depth instead of four (same
+// profile).
 inline const grippers::ParallelGripper& one_layer_fin_ray() {
   static const grippers::ParallelGripper gripper = [] {
-    grippers::FinRayOptions options;
+    grippers::FinRayOptions options = grippers::fin_ray_80mm_options();
     options.layers = 1;
     return grippers::make_umi_soft_gripper(options);
   }();

@@ -426,7 +426,7 @@ TEST(GraspTrial, SqueezedSoftBoxIsStressedUnderTheFingers) {
   ASSERT_EQ(stress.size(), static_cast<std::size_t>(soft.tets->tets.rows()));
   // Mean von Mises stress of the tets under the fingers (|x| < half the finger width)
   // against the tets of the free ends (|x| > 2 cm).
-  const double half_width = 0.5 * grippers::FinRayOptions{}.depth;
+  const double half_width = 0.5 * grippers::fin_ray_80mm_options().depth;
   double under = 0, ends = 0;
   int n_under = 0, n_ends = 0;
   for (Eigen::Index t = 0; t < soft.tets->tets.rows(); ++t) {
