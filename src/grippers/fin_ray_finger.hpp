@@ -1,6 +1,7 @@
 #pragma once
-// The soft fin-ray finger of the UMI-style gripper: a tapered two-wall profile joined by
-// inclined cross ribs, extruded and tetrahedralized, with its mount region and TPU material.
+// The soft fin-ray finger of the UMI-style gripper: a tapered profile, solid (GRIP's finger) or
+// two walls joined by inclined cross ribs (the classic fin-ray), extruded and tetrahedralized,
+// with its mount region and TPU material.
 #include <vector>
 
 #include "src/geometry/mesh.hpp"
@@ -14,7 +15,7 @@ namespace grip::grippers {
 // The production finger is the finger body GRIP simulates (its released models'
 // finray_finger_L_body meshes: a solid wedge 123.5 mm from the mount to the tip, 41.5 mm deep at
 // the mount, about 3.3 mm at the tip, 26 mm wide; docs/assets.md): solid, with a straight back
-// where GRIP's bulges slightly and without the small knob on its back. `hollow` makes the
+// where GRIP's is convex and without the small knob on its back. `hollow` makes the
 // classic fin-ray of walls and cross ribs instead (the 80 mm variant below).
 struct FinRayOptions {
   double length = 0.1235;      // mount face to tip
@@ -26,7 +27,7 @@ struct FinRayOptions {
   bool hollow = false;
   double wall_thickness = 0.002;  // contact wall, back wall and tip cap
   double rib_thickness = 0.0016;
-  double base_thickness = 0.005;  // the mount plate, clamped in the jaw; the mount region
+  double base_thickness = 0.005;  // the mount region pinned to the jaw (a hollow finger's plate)
   int rib_count = 5;
   double rib_angle_deg = 12.0;  // ribs rise by this angle from the contact wall to the back wall
   double top_cavity_width = 0.005;  // the cavity ends (under a solid tip) where it is this narrow
@@ -39,11 +40,6 @@ struct FinRayOptions {
 // grip's first finger, a hollow fin-ray 80 mm long, 30 mm deep at the mount and 22 mm wide, with
 // five ribs, meshed at 3.6 mm edges: a named variant (jobs/grippers/fin-ray-80mm.toml describes
 // it from a file), and the tests' small finger.
-FinRayOptions fin_ray_80mm_options();
-
-// grip's first finger, 80 mm long, 30 mm deep at the mount and 22 mm wide, five ribs: a named
-// variant (jobs/grippers/fin-ray-80mm.toml describes it from a file), and the tests' small
-// finger.
 FinRayOptions fin_ray_80mm_options();
 
 // TPU/TPE as printed for UMI fingers. E and mu are GRIP's (paper, Sec. III-D); density is that
