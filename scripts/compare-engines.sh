@@ -6,9 +6,9 @@
 #   scripts/compare-engines.sh OUT [GRIPPER] [COUNT] [CATEGORY:SEED ...]
 #
 # OUT: a folder for the candidate files and reports; GRIPPER: fin-ray (default), parallel-jaw,
-# leap or a gripper description file (*.toml); COUNT: candidates per shape (default 4); shapes: categories and seeds (default
-# box:4 cylinder:1 capsule:1 bottle:1, the labels benchmark's categories at the first seed of
-# each that gives the fin-ray gripper candidates). Extra options for grip trial (--soft,
+# leap or a gripper description file (*.toml); COUNT: candidates per shape (default 4); shapes:
+# categories and seeds (default box:4 cylinder:1 capsule:1 bottle:1, the labels benchmark's
+# categories at the first seed of each that gives the fin-ray gripper candidates). Extra options for grip trial (--soft,
 # --threads) go in GRIP_TRIAL_OPTIONS. The grip binary is $GRIP or build/grip.
 set -euo pipefail
 out=${1:?usage: scripts/compare-engines.sh OUT [GRIPPER] [COUNT] [CATEGORY:SEED ...]}

@@ -33,7 +33,7 @@ struct FinRayOptions {
   double top_cavity_width = 0.005;  // the cavity ends (under a solid tip) where it is this narrow
   double edge_length = 0.006;       // largest triangle edge of the profile mesh
   // Tet layers across the depth; an even count puts tet faces on the mid-plane, where a
-  // centred grasp presses (grip bench accuracy, mesh sweep: docs/assets.md).
+  // centred grasp presses (docs/assets.md, "The fin-ray finger's mesh").
   int layers = 4;
 };
 

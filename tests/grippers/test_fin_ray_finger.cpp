@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -30,10 +31,12 @@ struct Shape {
 class GrippersFinRayShapes : public ::testing::TestWithParam<Shape> {
  protected:
   const FinRayOptions& o() const { return GetParam().options; }
+  // Each shape's finger, meshed once for all its tests.
   const FinRayFinger& finger() const {
-    static const FinRayFinger production = make_fin_ray_finger();
-    static const FinRayFinger eighty = make_fin_ray_finger(fin_ray_80mm_options());
-    return o().hollow ? eighty : production;
+    static std::map<std::string, FinRayFinger> meshed;
+    auto it = meshed.find(GetParam().name);
+    if (it == meshed.end()) it = meshed.emplace(GetParam().name, make_fin_ray_finger(o())).first;
+    return it->second;
   }
 };
 
