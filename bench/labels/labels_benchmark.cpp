@@ -6,6 +6,8 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "src/objects/object_library.hpp"
+
 namespace grip::bench {
 
 LabelsArm parse_labels_arm(const std::string& text) {
@@ -19,6 +21,16 @@ LabelsArm parse_labels_arm(const std::string& text) {
 
 std::string labels_arm_name(const LabelsArm& arm) {
   return arm.gripper + " x " + (arm.soft ? "soft" : "rigid");
+}
+
+std::vector<std::string> labels_categories(const LabelsOptions& options) {
+  if (options.categories.empty()) return kLabelsCategories;
+  if (options.categories != std::vector<std::string>{"all"}) return options.categories;
+  std::vector<std::string> all;
+  for (const objects::ObjectCategory c : objects::all_object_categories()) {
+    all.emplace_back(objects::category_name(c));
+  }
+  return all;
 }
 
 trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults,
@@ -44,7 +56,7 @@ RobustnessOptions arm_options(const LabelsOptions& options, const LabelsArm& arm
   const bool uniform_mesh = reference && options.refinement.mesh;
   RobustnessOptions o;
   o.grippers = {arm.gripper};
-  o.categories = options.categories.empty() ? kLabelsCategories : options.categories;
+  o.categories = labels_categories(options);
   o.seeds = options.seeds;
   o.candidates = options.candidates;
   o.rigid = !arm.soft;
@@ -101,6 +113,10 @@ LabelsResult run_labels(const LabelsOptions& options) {
     spdlog::info("labels: {} x {} objects at the defaults", arm.gripper,
                  arm.soft ? "soft" : "rigid");
     run.defaults = run_robustness(arm_options(options, arm, result.defaults, false));
+    if (!options.refinement.any()) {
+      result.arms.push_back(std::move(run));
+      continue;
+    }
     spdlog::info("labels: {} x {} objects at the reference", arm.gripper,
                  arm.soft ? "soft" : "rigid");
     run.reference = run_robustness(arm_options(options, arm, result.reference, true));

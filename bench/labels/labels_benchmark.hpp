@@ -14,7 +14,9 @@
 
 namespace grip::bench {
 
-// What the reference refines; by default all three.
+// What the reference refines; by default all three. Nothing: no reference runs, and the benchmark
+// reports the defaults' verdicts and closing forces alone (a sweep over categories at a quarter
+// of the cost).
 struct LabelsRefinement {
   bool dt = true;            // divided by dt_divisor
   int dt_divisor = 2;        // a convergence study's finer references: 4, 8, ...
@@ -26,6 +28,8 @@ struct LabelsRefinement {
   // The fin-ray finger meshed finer (kFineFinRayLayers, kFineFinRayEdge); not by default: it
   // asks whether the finger's mesh sets a verdict. Production models only.
   bool finger = false;
+
+  bool any() const { return dt || newton_tol || friction_lag || mesh || finger; }
 };
 
 // A gripper and an object model: one column of the benchmark.
@@ -44,7 +48,7 @@ std::string labels_arm_name(const LabelsArm& arm);
 struct LabelsOptions {
   // Empty: parallel-jaw x rigid, fin-ray x rigid, fin-ray x soft, leap x rigid.
   std::vector<LabelsArm> arms;
-  std::vector<std::string> categories;  // empty: kLabelsCategories
+  std::vector<std::string> categories;  // empty: kLabelsCategories; {"all"}: the library's
   int seeds = 2;                        // shapes per category
   int candidates = 4;                   // per shape
   int threads = 0;                      // 0: all cores
@@ -59,6 +63,10 @@ struct LabelsOptions {
 // The default categories: four that every gripper finds candidates on.
 inline const std::vector<std::string> kLabelsCategories = {"box", "cylinder", "capsule", "bottle"};
 
+// The categories the options ask for: kLabelsCategories when none, every category of the object
+// library for {"all"}.
+std::vector<std::string> labels_categories(const LabelsOptions& options);
+
 // The reference settings for `defaults`: dt / dt_divisor (2), newton_tol / 10, one more friction
 // lag iteration (those `refinement` asks for). What the protocol measures in seconds and metres
 // stays the same: at dt / k its steps are counted at the reference's dt (settle_steps and
@@ -71,7 +79,7 @@ trial::TrialParameters reference_parameters(const trial::TrialParameters& defaul
 struct LabelsArmResult {
   LabelsArm arm;
   RobustnessResult defaults;
-  RobustnessResult reference;
+  RobustnessResult reference;  // empty when the refinement refines nothing
 };
 
 struct LabelsResult {

@@ -68,8 +68,11 @@ std::vector<LabelsArmTally> labels_tallies(const LabelsResult& result) {
     LabelsArmTally t;
     t.arm = labels_arm_name(arm.arm);
     std::vector<const RobustnessTrial*> defaults;
+    std::map<std::string, std::vector<const RobustnessTrial*>> defaults_by_category;
     for (const LabelsPair& pair : pair_trials(arm)) {
       defaults.push_back(pair.defaults);
+      ++t.candidates;
+      defaults_by_category[pair.defaults->category].push_back(pair.defaults);
       ++t.by_category[pair.defaults->category][verdict_of(*pair.defaults)];
       t.success_defaults += pair.defaults->failure == io::FailureKind::kNone;
       if (!pair.reference) continue;
@@ -79,6 +82,9 @@ std::vector<LabelsArmTally> labels_tallies(const LabelsResult& result) {
       t.success_reference += pair.reference->failure == io::FailureKind::kNone;
     }
     t.forces = force_summary(defaults, target, tolerance);
+    for (const auto& [category, trials] : defaults_by_category) {
+      t.forces_by_category[category] = force_summary(trials, target, tolerance);
+    }
     tallies.push_back(std::move(t));
   }
   return tallies;
@@ -91,19 +97,25 @@ void write_labels_table(std::ostream& out, const std::vector<LabelsArmTally>& ta
          "force min / median / max (N) |\n"
          "|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
   for (const LabelsArmTally& t : tallies) {
-    out << "| " << t.arm << " | " << t.trials << " | " << t.agree << " ("
-        << percent(t.agree, t.trials) << ") | " << t.same_kind << " | " << t.success_defaults
-        << " | " << t.success_reference << " | " << t.forces.fingers << " | " << t.forces.within
-        << " (" << percent(t.forces.within, t.forces.fingers) << ") | "
-        << fixed_or_dash(t.forces.min, 1) << " / " << fixed_or_dash(t.forces.median, 1) << " / "
-        << fixed_or_dash(t.forces.max, 1) << " |\n";
+    // Without a reference the comparison's columns are empty.
+    const bool paired = t.trials > 0;
+    out << "| " << t.arm << " | " << t.candidates << " | "
+        << (paired ? std::to_string(t.agree) + " (" + percent(t.agree, t.trials) + ")" : "-")
+        << " | " << (paired ? std::to_string(t.same_kind) : "-") << " | " << t.success_defaults
+        << " | " << (paired ? std::to_string(t.success_reference) : "-") << " | "
+        << t.forces.fingers << " | " << t.forces.within << " ("
+        << percent(t.forces.within, t.forces.fingers) << ") | " << fixed_or_dash(t.forces.min, 1)
+        << " / " << fixed_or_dash(t.forces.median, 1) << " / " << fixed_or_dash(t.forces.max, 1)
+        << " |\n";
   }
 }
 
 namespace {
 
 void write_category_table(std::ostream& out, const std::vector<LabelsArmTally>& tallies) {
-  out << "| arm | category | candidates | held | failures |\n|---|---|---:|---:|---|\n";
+  out << "| arm | category | candidates | held | failures | fingers in contact at the end of "
+         "closing | within tolerance of the grip force | force min / median / max (N) |\n"
+         "|---|---|---:|---:|---|---:|---:|---|\n";
   for (const LabelsArmTally& t : tallies) {
     for (const auto& [category, kinds] : t.by_category) {
       int total = 0;
@@ -117,7 +129,11 @@ void write_category_table(std::ostream& out, const std::vector<LabelsArmTally>& 
       const auto held = kinds.find("success");
       const int success = held == kinds.end() ? 0 : held->second;
       out << "| " << t.arm << " | " << category << " | " << total << " | " << success << " ("
-          << percent(success, total) << ") | " << (failures.empty() ? "-" : failures) << " |\n";
+          << percent(success, total) << ") | " << (failures.empty() ? "-" : failures) << " | ";
+      const ForceSummary& f = t.forces_by_category.at(category);
+      out << f.fingers << " | " << f.within << " (" << percent(f.within, f.fingers) << ") | "
+          << fixed_or_dash(f.min, 1) << " / " << fixed_or_dash(f.median, 1) << " / "
+          << fixed_or_dash(f.max, 1) << " |\n";
     }
   }
 }
@@ -141,21 +157,24 @@ void write_labels_files(const fs::path& out, const LabelsResult& result,
   const trial::TrialParameters& r = result.reference;
   md << "# grip bench labels\n\nDefaults: dt " << d.sim.dt << " s, newton_tol " << d.sim.newton_tol
      << ", " << d.sim.friction_lag_iterations << " friction lag iteration(s), verdict threshold "
-     << d.displacement_threshold() * 1e3
-     << " mm plus eps_v x the time under gravity. Reference: dt " << r.sim.dt << " s, newton_tol "
-     << r.sim.newton_tol << ", " << r.sim.friction_lag_iterations
-     << " friction lag iterations, the same threshold (" << r.displacement_threshold() * 1e3
-     << " mm)"
-     << (result.refinement.mesh
-             ? ", soft objects meshed uniformly inside (the defaults' tets grow with depth)"
-             : "")
-     << (result.refinement.finger ? ", the fin-ray finger at " + fine_fin_ray_model()
-                                  : std::string())
-     << ". Grip force " << d.grip_force << " N, tolerance " << d.force_tolerance * 100 << " %. "
+     << d.displacement_threshold() * 1e3 << " mm plus eps_v x the time under gravity. ";
+  if (!result.refinement.any()) {
+    md << "No reference (--refine none)";
+  } else {
+    md << "Reference: dt " << r.sim.dt << " s, newton_tol " << r.sim.newton_tol << ", "
+       << r.sim.friction_lag_iterations << " friction lag iterations, the same threshold ("
+       << r.displacement_threshold() * 1e3 << " mm)"
+       << (result.refinement.mesh
+               ? ", soft objects meshed uniformly inside (the defaults' tets grow with depth)"
+               : "")
+       << (result.refinement.finger ? ", the fin-ray finger at " + fine_fin_ray_model()
+                                    : std::string());
+  }
+  md << ". Grip force " << d.grip_force << " N, tolerance " << d.force_tolerance * 100 << " %. "
      << result.threads << " thread(s), " << fixed_or_dash(result.wall_seconds / 60, 1)
      << " min.\n\n";
   write_labels_table(md, tallies);
-  md << "\nSuccess and failure kinds per category, at the defaults:\n\n";
+  md << "\nSuccess, failure kinds and closing forces per category, at the defaults:\n\n";
   write_category_table(md, tallies);
   for (const LabelsArmResult& arm : result.arms) {
     for (const std::string& s : arm.defaults.shortfalls) {
@@ -194,7 +213,8 @@ void write_labels_json_line(std::ostream& out, const LabelsResult& result,
   nlohmann::ordered_json arms = nlohmann::ordered_json::array();
   for (const LabelsArmTally& t : tallies) {
     arms.push_back({{"arm", t.arm},
-                    {"candidates", t.trials},
+                    {"candidates", t.candidates},
+                    {"paired", t.trials},
                     {"same_verdict", t.agree},
                     {"agreement", t.trials ? static_cast<double>(t.agree) / t.trials : 0.0},
                     {"same_failure_kind", t.same_kind},

@@ -34,14 +34,16 @@ ForceSummary force_summary(const std::vector<const RobustnessTrial*>& trials, do
                            double tolerance);
 
 struct LabelsArmTally {
-  std::string arm;    // "fin-ray x soft"
-  int trials = 0;     // paired
-  int agree = 0;      // same verdict (held or not)
-  int same_kind = 0;  // same failure kind
+  std::string arm;     // "fin-ray x soft"
+  int candidates = 0;  // at the defaults
+  int trials = 0;      // paired with the reference's
+  int agree = 0;       // same verdict (held or not)
+  int same_kind = 0;   // same failure kind
   int success_defaults = 0;
   int success_reference = 0;
   ForceSummary forces;                                            // at the defaults
   std::map<std::string, std::map<std::string, int>> by_category;  // category -> kind -> count
+  std::map<std::string, ForceSummary> forces_by_category;         // at the defaults
 };
 
 std::vector<LabelsArmTally> labels_tallies(const LabelsResult& result);

@@ -121,6 +121,15 @@ TEST(GripCli, CheckArgsStopsAfterParsingAndValidation) {
   EXPECT_EQ(run_grip_checking_args("bench linear --repeats 1 -- -ksp_type cg").exit_code, 0);
 }
 
+// grip bench labels --refine none runs no reference, so it cannot be combined with a refinement:
+// one clear refusal before anything runs.
+TEST(GripCli, BenchLabelsRefusesNoneWithARefinement) {
+  const GripRun run = run_grip("bench labels --refine none,dt --out /nonexistent/labels");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--refine none runs no reference; give it alone"), std::string::npos)
+      << run.err;
+}
+
 // grip trial --finger-layers and --finger-edge mesh the fin-ray finger as asked, and the report
 // says how it was meshed: a coarse finger (1 layer, 6 mm edges) on a box.
 TEST(GripCli, TrialMeshesTheFinRayFingerAsAskedAndRecordsIt) {

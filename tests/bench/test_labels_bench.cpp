@@ -1,18 +1,20 @@
 // `grip bench labels` on a small plan: the reference refines the numerics but keeps what the
 // protocol measures in seconds and millimetres, bad options are refused, candidates pair up by
-// (category, seed, candidate), the tally counts what the pairs say, and rigid jaws on a box
-// hold every finger in contact at 50 N within 5 %.
+// (category, seed, candidate), the tally counts what the pairs say (per category too), and rigid
+// jaws on a box hold every finger in contact at 50 N within 5 %.
 #include "bench/labels/labels_benchmark.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "bench/labels/labels_report.hpp"
+#include "src/objects/object_library.hpp"
 
 namespace grip::bench {
 namespace {
@@ -111,13 +113,59 @@ TEST(LabelsBench, ForceSummaryCountsFingersInContactOfClosedTrials) {
   EXPECT_EQ(s.max, 53.0);
 }
 
-TEST(LabelsBench, RigidJawsOnABoxHoldTheGripForceAndTheTallyCountsThePairs) {
+TEST(LabelsBench, AllAsksForEveryCategoryOfTheLibrary) {
+  LabelsOptions options;
+  EXPECT_EQ(labels_categories(options), kLabelsCategories);
+  options.categories = {"mug", "rod"};
+  EXPECT_EQ(labels_categories(options), options.categories);
+  options.categories = {"all"};
+  const std::vector<std::string> all = labels_categories(options);
+  ASSERT_EQ(all.size(), objects::all_object_categories().size());
+  EXPECT_NE(std::find(all.begin(), all.end(), "torus"), all.end());
+  options.arms = {{"parallel-jaw", false}};
+  EXPECT_NO_THROW(check_labels_options(options));
+}
+
+TEST(LabelsBench, TheTallySplitsTheClosingForcesByCategory) {
+  auto trial = [](std::string category, std::uint64_t candidate, std::vector<double> forces) {
+    RobustnessTrial t;
+    t.category = std::move(category);
+    t.candidate = candidate;
+    t.closed = true;
+    t.closing_forces = std::move(forces);
+    return t;
+  };
+  LabelsArmResult arm;
+  arm.arm = {"fin-ray", false};
+  arm.defaults.trials = {trial("mug", 0, {50.2, 49.1}), trial("bowl", 0, {31.0, 50.0}),
+                         trial("mug", 1, {51.0, 48.0})};
+  arm.reference.trials = arm.defaults.trials;
+  LabelsResult result;
+  result.arms = {arm};
+  const LabelsArmTally t = labels_tallies(result).front();
+  EXPECT_EQ(t.forces.fingers, 6);
+  EXPECT_EQ(t.forces.within, 5);
+  ASSERT_EQ(t.forces_by_category.size(), 2u);
+  EXPECT_EQ(t.forces_by_category.at("mug").fingers, 4);
+  EXPECT_EQ(t.forces_by_category.at("mug").within, 4);
+  EXPECT_EQ(t.forces_by_category.at("bowl").fingers, 2);
+  EXPECT_EQ(t.forces_by_category.at("bowl").within, 1);
+  EXPECT_EQ(t.forces_by_category.at("bowl").min, 31.0);
+}
+
+// Rigid jaws on `candidates` candidates of one box, on two threads.
+LabelsOptions rigid_jaws_on_a_box(int candidates) {
   LabelsOptions options;
   options.arms = {{"parallel-jaw", false}};
   options.categories = {"box"};
   options.seeds = 1;
-  options.candidates = 3;
+  options.candidates = candidates;
   options.threads = 2;
+  return options;
+}
+
+TEST(LabelsBench, RigidJawsOnABoxHoldTheGripForceAndTheTallyCountsThePairs) {
+  LabelsOptions options = rigid_jaws_on_a_box(3);
   options.out = std::filesystem::path(::testing::TempDir()) / "labels";
   const LabelsResult result = run_labels(options);
   ASSERT_EQ(result.arms.size(), 1u);
@@ -153,6 +201,24 @@ TEST(LabelsBench, RigidJawsOnABoxHoldTheGripForceAndTheTallyCountsThePairs) {
   int rows = 0;
   for (std::string row; std::getline(csv, row);) ++rows;
   EXPECT_EQ(rows, 3);
+}
+
+TEST(LabelsBench, WithoutARefinementNoReferenceRunsAndTheComparisonIsLeftEmpty) {
+  LabelsOptions options = rigid_jaws_on_a_box(2);
+  options.refinement = {false, 2, false, false, false, false};
+  ASSERT_FALSE(options.refinement.any());
+  const LabelsResult result = run_labels(options);
+  ASSERT_EQ(result.arms.size(), 1u);
+  EXPECT_EQ(result.arms.front().defaults.trials.size(), 2u);
+  EXPECT_TRUE(result.arms.front().reference.trials.empty());
+  const std::vector<LabelsArmTally> tallies = labels_tallies(result);
+  EXPECT_EQ(tallies.front().candidates, 2);
+  EXPECT_EQ(tallies.front().trials, 0);
+  EXPECT_EQ(tallies.front().forces.fingers, 4);
+  std::ostringstream table;
+  write_labels_table(table, tallies);
+  EXPECT_NE(table.str().find("| parallel-jaw x rigid | 2 | - | - |"), std::string::npos)
+      << table.str();
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // (bench/labels/labels_benchmark.hpp, docs/results.md).
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -17,12 +18,13 @@ namespace {
 
 struct BenchLabelsArgs {
   std::vector<std::string> arms;        // "gripper:rigid|soft"; empty: the benchmark's four
-  std::vector<std::string> categories;  // empty: box, cylinder, capsule, bottle
+  std::vector<std::string> categories;  // empty: box, cylinder, capsule, bottle; all: every one
   int seeds = 2;                        // shapes per category
   int candidates = 4;                   // per shape
   int threads = 0;                      // 0: all cores
   std::string models = "coarse";        // coarse | production (LabelsOptions)
-  // What the reference refines: any of dt, newton_tol, friction_lag; empty: all three.
+  // What the reference refines: any of dt, newton_tol, friction_lag, mesh, finger; empty: the
+  // first three; none: no reference.
   std::vector<std::string> refine;
   int dt_divisor = 2;               // what refining dt divides it by
   double newton_tol = 0.0;          // the defaults' Newton tolerance; 0: the trial's
@@ -40,6 +42,12 @@ int bench_labels(const BenchLabelsArgs& args) {
   options.threads = args.threads;
   options.production_models = args.models == "production";
   options.soft_interior_growth = args.tet_growth;
+  // none: every flag stays off, and no reference runs.
+  const bool none = std::find(args.refine.begin(), args.refine.end(), "none") != args.refine.end();
+  if (none && args.refine.size() > 1) {
+    spdlog::error("grip bench labels: --refine none runs no reference; give it alone");
+    return 2;
+  }
   options.refinement.dt = args.refine.empty();
   options.refinement.newton_tol = args.refine.empty();
   options.refinement.friction_lag = args.refine.empty();
@@ -93,7 +101,8 @@ void declare_bench_labels(cli::Command& group) {
       .list();
   labels
       .option("--categories", args->categories,
-              "Object categories (default: box,cylinder,capsule,bottle)")
+              "Object categories, or all for every one of the library (default: "
+              "box,cylinder,capsule,bottle)")
       .list();
   labels.option("--seeds", args->seeds, "Shapes per category")
       .check(cli::Check::positive_count())
@@ -113,9 +122,10 @@ void declare_bench_labels(cli::Command& group) {
       .option("--refine", args->refine,
               "What the reference refines (default: the first three): dt (halved), "
               "newton_tol (/10), friction_lag (one more iteration), mesh (soft objects "
-              "meshed uniformly inside), finger (the fin-ray finger meshed finer)")
+              "meshed uniformly inside), finger (the fin-ray finger meshed finer); none: no "
+              "reference, the defaults' verdicts and closing forces alone")
       .list()
-      .check(cli::Check::one_of({"dt", "newton_tol", "friction_lag", "mesh", "finger"}));
+      .check(cli::Check::one_of({"dt", "newton_tol", "friction_lag", "mesh", "finger", "none"}));
   labels.flag("--full-trials", args->full_trials,
               "Run every trial through the six gravity phases, also once its verdict is decided");
   labels
