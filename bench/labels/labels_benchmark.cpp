@@ -6,8 +6,6 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "src/objects/object_library.hpp"
-
 namespace grip::bench {
 
 LabelsArm parse_labels_arm(const std::string& text) {
@@ -26,11 +24,7 @@ std::string labels_arm_name(const LabelsArm& arm) {
 std::vector<std::string> labels_categories(const LabelsOptions& options) {
   if (options.categories.empty()) return kLabelsCategories;
   if (options.categories != std::vector<std::string>{"all"}) return options.categories;
-  std::vector<std::string> all;
-  for (const objects::ObjectCategory c : objects::all_object_categories()) {
-    all.emplace_back(objects::category_name(c));
-  }
-  return all;
+  return robustness_categories({});
 }
 
 trial::TrialParameters reference_parameters(const trial::TrialParameters& defaults,

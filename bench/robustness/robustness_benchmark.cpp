@@ -172,6 +172,15 @@ std::string fine_fin_ray_model() {
                      production.edge_length * 1e3);
 }
 
+std::vector<std::string> robustness_categories(const std::vector<std::string>& categories) {
+  if (!categories.empty()) return categories;
+  std::vector<std::string> all;
+  for (const objects::ObjectCategory c : objects::all_object_categories()) {
+    all.emplace_back(objects::category_name(c));
+  }
+  return all;
+}
+
 std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options) {
   if (options.seeds < 0 || options.candidates < 0) {
     throw std::invalid_argument("--seeds and --candidates must not be negative");
@@ -183,12 +192,7 @@ std::vector<RobustnessSet> plan_robustness(const RobustnessOptions& options) {
   if (grippers.empty()) {
     for (const GripperDefaults& d : kDefaults) grippers.emplace_back(d.name);
   }
-  std::vector<std::string> categories = options.categories;
-  if (categories.empty()) {
-    for (const objects::ObjectCategory c : objects::all_object_categories()) {
-      categories.emplace_back(objects::category_name(c));
-    }
-  }
+  const std::vector<std::string> categories = robustness_categories(options.categories);
   for (const std::string& category : categories) objects::parse_object_category(category);
   std::vector<RobustnessSet> sets;
   for (const std::string& gripper : grippers) {

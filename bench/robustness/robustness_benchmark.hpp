@@ -74,6 +74,9 @@ std::string fine_fin_ray_model();
 // The gripper each registry name is simulated with in this benchmark, in words.
 std::string robustness_gripper_model(const std::string& gripper, bool production_models);
 
+// The categories `categories` names: every category of the object library when it is empty.
+std::vector<std::string> robustness_categories(const std::vector<std::string>& categories);
+
 // The sets the options ask for: gripper by gripper, then category, rigid before soft. Throws
 // std::invalid_argument for an unknown gripper or category, seeds or candidates below 0, or
 // neither rigid nor soft objects; the message leaves naming the command to its caller.
